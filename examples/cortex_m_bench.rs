@@ -1,0 +1,3 @@
+//! Placeholder: the Cortex-M example is being written.
+#![no_std]
+#![no_main]

@@ -1,0 +1,1 @@
+//! Writing frames to image files (PNG through a LUT, PGM, PPM).

@@ -1,0 +1,11 @@
+//! zscan-host: the std side of zscan.
+//!
+//! - [`image`]: writing framebuffers through a LUT to PNG, PGM and PPM.
+//! - [`reference`]: independent reference implementations (exact rational fill, Bresenham by
+//!   definition, ...), kept apart from the production code they check.
+//! - [`cli`]: the subcommands of the `zscan` tool.
+#![deny(missing_docs)]
+
+pub mod cli;
+pub mod image;
+pub mod reference;

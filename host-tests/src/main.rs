@@ -1,0 +1,32 @@
+//! The `zscan` command-line tool. See `zscan --help`.
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "zscan", version, about = "zscan host tool: render, inspect and benchmark")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Draw a test pattern of lines and circles to an image.
+    Lines(zscan_host::cli::lines::LinesArgs),
+    /// Print the covered spans of polygons read as text.
+    Spans(zscan_host::cli::spans::SpansArgs),
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Lines(a) => zscan_host::cli::lines::run(a),
+        Command::Spans(a) => zscan_host::cli::spans::run(a),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("zscan: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Reference implementations, independent of the production code, used by the tests.

@@ -1,0 +1,1 @@
+//! Projection: observer frame → sub-pixel fixed-point screen coordinates.

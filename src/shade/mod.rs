@@ -1,0 +1,1 @@
+//! Shading: incremental integer interpolation of per-vertex attributes (depth, luminance).

@@ -1,0 +1,117 @@
+//! The depth buffer (z-buffer) over a caller-provided `&mut [u16]` or `&mut [u32]`.
+//!
+//! Numeric contract: a stored depth is an unsigned integer where **smaller is nearer**;
+//! [`DepthValue::FAR`] (all ones) is the cleared value and never wins a test. The raster stage
+//! computes depth as a 32-bit quantity ([`DepthValue::from_depth32`]) and each width keeps its
+//! top bits, so one code path serves both widths: `u16` resolves 1/65 536 of the depth range,
+//! `u32` 1/4 294 967 296. The test is strict, nearer wins (course algorithm 3.3, TIPE §2):
+//! equal depths keep the first surface drawn.
+
+use super::{check_layout, TargetError};
+
+/// An unsigned depth sample width (`u16` or `u32`).
+pub trait DepthValue: Copy + Ord + core::fmt::Debug + 'static {
+    /// The cleared value: farther than anything drawn.
+    const FAR: Self;
+    /// Bits stored per sample.
+    const BITS: u32;
+    /// Keeps the top [`Self::BITS`] bits of a 32-bit depth (smaller is nearer).
+    fn from_depth32(d: u32) -> Self;
+}
+
+impl DepthValue for u16 {
+    const FAR: Self = u16::MAX;
+    const BITS: u32 = 16;
+    #[inline(always)]
+    fn from_depth32(d: u32) -> Self {
+        (d >> 16) as u16
+    }
+}
+
+impl DepthValue for u32 {
+    const FAR: Self = u32::MAX;
+    const BITS: u32 = 32;
+    #[inline(always)]
+    fn from_depth32(d: u32) -> Self {
+        d
+    }
+}
+
+/// A depth buffer of `D` samples (possibly a band of a taller picture, like the framebuffer).
+#[derive(Debug)]
+pub struct DepthBuffer<'a, D: DepthValue> {
+    samples: &'a mut [D],
+    width: u16,
+    height: u16,
+    top: i32,
+}
+
+impl<'a, D: DepthValue> DepthBuffer<'a, D> {
+    /// Wraps `samples` as a `width × height` depth buffer (rows packed).
+    pub fn new(samples: &'a mut [D], width: u16, height: u16) -> Result<Self, TargetError> {
+        check_layout(samples.len(), width, height, width as usize)?;
+        Ok(DepthBuffer {
+            samples,
+            width,
+            height,
+            top: 0,
+        })
+    }
+
+    /// Wraps `samples` as the band of rows `top..top + height`.
+    pub fn band(samples: &'a mut [D], width: u16, height: u16, top: u16) -> Result<Self, TargetError> {
+        let mut d = Self::new(samples, width, height)?;
+        d.top = top as i32;
+        Ok(d)
+    }
+
+    /// Width in samples.
+    pub fn width(&self) -> u16 {
+        self.width
+    }
+
+    /// Rows held.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+
+    /// Absolute row of the first row held.
+    pub fn top(&self) -> i32 {
+        self.top
+    }
+
+    /// Sets every sample to [`DepthValue::FAR`].
+    pub fn clear(&mut self) {
+        let n = self.width as usize * self.height as usize;
+        self.samples[..n].fill(D::FAR);
+    }
+
+    /// Row `y` (absolute) as a slice, or `None` outside the buffer.
+    pub fn row(&self, y: i32) -> Option<&[D]> {
+        let r = y.checked_sub(self.top)?;
+        if r < 0 || r >= self.height as i32 {
+            return None;
+        }
+        let s = r as usize * self.width as usize;
+        self.samples.get(s..s + self.width as usize)
+    }
+
+    /// Row `y` (absolute) as a mutable slice, or `None` outside the buffer.
+    #[inline]
+    pub fn row_mut(&mut self, y: i32) -> Option<&mut [D]> {
+        let r = y.checked_sub(self.top)?;
+        if r < 0 || r >= self.height as i32 {
+            return None;
+        }
+        let s = r as usize * self.width as usize;
+        self.samples.get_mut(s..s + self.width as usize)
+    }
+
+    /// The sample at `(x, y)`, or `None` outside.
+    pub fn get(&self, x: i32, y: i32) -> Option<D> {
+        if x < 0 {
+            return None;
+        }
+        self.row(y).and_then(|r| r.get(x as usize).copied())
+    }
+}
