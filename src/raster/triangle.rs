@@ -1,1 +1,163 @@
-//! TODO
+//! The triangle fast path: the same coverage as [`polygon`](super::polygon), built for speed.
+//!
+//! Role in the pipeline: meshes are drawn triangle by triangle; this is the stage between
+//! projection and the span writers (bare index fill, depth test, shading).
+//!
+//! Set-up once per triangle: sort the three vertices by row, find on which side of the long
+//! edge (top → bottom) the middle vertex lies from the sign of one cross product, and start one
+//! [`EdgeWalker`] on the long edge and one on each short edge, each at its first visible row.
+//! Then each row is two walker steps and one span. Both walkers yield `⌈x_e⌉` (TIPE's left-edge
+//! rounding), so a row covers `⌈x_left⌉ ≤ x < ⌈x_right⌉`: exactly the polygon fill's rule
+//! (left edge in, right edge out, rows `y_low ≤ y < y_high`), tested against it.
+//!
+//! Numeric contract: as the polygon fill (`|x|, |y| ≤ MAX_COORD`, `S ≤ 16`); the cross product
+//! is formed in `i64` (`< 2^60`). Triangles with zero area (collinear or repeated vertices)
+//! cover nothing. Either orientation is filled; callers cull back faces before, if they want to.
+
+use super::edge_walker::{
+    Edge, EdgeSide, EdgeWalker, IncrementalWalker, MAX_COORD, MAX_SUBPIXEL_BITS,
+};
+use super::polygon::FillError;
+use super::{Span, SubpixelPoint, Window};
+
+/// Twice the signed area of triangle `a, b, c` in sub-pixel units squared, `(b − a) × (c − a)`.
+/// With screen axes (`x` right, `y` down) it is negative when the vertices turn
+/// counter-clockwise on screen, and, for `a` above `c`, when `b` lies left of the line `a → c`.
+#[inline(always)]
+pub fn cross<const S: u32>(a: SubpixelPoint<S>, b: SubpixelPoint<S>, c: SubpixelPoint<S>) -> i64 {
+    (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
+        - (b.y as i64 - a.y as i64) * (c.x as i64 - a.x as i64)
+}
+
+/// Checks the documented coordinate range.
+#[inline]
+pub(crate) fn check_range<const S: u32>(v: &[SubpixelPoint<S>]) -> Result<(), FillError> {
+    if S > MAX_SUBPIXEL_BITS {
+        return Err(FillError::CoordinateOutOfRange { vertex: usize::MAX });
+    }
+    match v.iter().position(|p| {
+        p.x.unsigned_abs() > MAX_COORD as u32 || p.y.unsigned_abs() > MAX_COORD as u32
+    }) {
+        Some(i) => Err(FillError::CoordinateOutOfRange { vertex: i }),
+        None => Ok(()),
+    }
+}
+
+/// Fills a triangle with the default (incremental) walker, emitting its spans inside `window`
+/// row by row from the top. Same coverage as [`fill_polygon`](super::polygon::fill_polygon).
+#[inline]
+pub fn fill_triangle<const S: u32>(
+    v: [SubpixelPoint<S>; 3],
+    window: &Window,
+    emit: impl FnMut(Span),
+) -> Result<(), FillError> {
+    fill_triangle_with::<IncrementalWalker, S>(v, window, emit)
+}
+
+/// Fills a triangle with the edge stepping strategy `W`.
+///
+/// The middle vertex `b` (by row) is left of the long edge `a → c` when
+/// `cross(a, b, c) < 0` (screen axes: `x` right, `y` down).
+pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
+    v: [SubpixelPoint<S>; 3],
+    window: &Window,
+    mut emit: impl FnMut(Span),
+) -> Result<(), FillError> {
+    check_range(&v)?;
+    // Sort by row (three compares).
+    let [mut a, mut b, mut c] = v;
+    if b.y < a.y {
+        core::mem::swap(&mut a, &mut b);
+    }
+    if c.y < b.y {
+        core::mem::swap(&mut b, &mut c);
+        if b.y < a.y {
+            core::mem::swap(&mut a, &mut b);
+        }
+    }
+    let area = cross(a, b, c);
+    if area == 0 {
+        return Ok(());
+    }
+    let long = Edge {
+        x0: a.x,
+        y0: a.y,
+        x1: c.x,
+        y1: c.y,
+    };
+    let top = Edge {
+        x0: a.x,
+        y0: a.y,
+        x1: b.x,
+        y1: b.y,
+    };
+    let bottom = Edge {
+        x0: b.x,
+        y0: b.y,
+        x1: c.x,
+        y1: c.y,
+    };
+    let y_first = long.first_row::<S>().max(window.y0);
+    let y_mid = top.end_row::<S>(); // == bottom.first_row()
+    let y_end = long.end_row::<S>().min(window.y1);
+    if y_first >= y_end || window.x0 >= window.x1 {
+        return Ok(());
+    }
+    let mut long_w = W::start::<S>(&long, EdgeSide::Left, y_first);
+    let middle_left = area < 0;
+    let mut y = y_first;
+    for (short, rows_end) in [(top, y_mid.min(y_end)), (bottom, y_end)] {
+        if y >= rows_end {
+            continue;
+        }
+        let mut short_w = W::start::<S>(&short, EdgeSide::Left, y);
+        let (left, right) = if middle_left {
+            (&mut short_w, &mut long_w)
+        } else {
+            (&mut long_w, &mut short_w)
+        };
+        while y < rows_end {
+            let x0 = left.x().max(window.x0);
+            let x1 = right.x().min(window.x1);
+            if x0 < x1 {
+                emit(Span { y, x0, x1 });
+            }
+            left.step();
+            right.step();
+            y += 1;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::polygon::fill_polygon;
+    use heapless::Vec;
+
+    #[test]
+    fn matches_polygon_fill_on_random_triangles() {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut rnd = |m: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i32 - m
+        };
+        let w = Window::new(-3, -2, 20, 17);
+        for i in 0..4000 {
+            let m = if i % 2 == 0 { 200 } else { 20 };
+            let v = [
+                SubpixelPoint::<4>::new(rnd(m) + 130, rnd(m) + 120),
+                SubpixelPoint::<4>::new(rnd(m) + 130, rnd(m) + 120),
+                SubpixelPoint::<4>::new(rnd(m) + 130, rnd(m) + 120),
+            ];
+            let mut a: Vec<Span, 64> = Vec::new();
+            let mut b: Vec<Span, 64> = Vec::new();
+            fill_triangle(v, &w, |s| a.push(s).unwrap()).unwrap();
+            fill_polygon::<4, 3>(&v, &w, |s| b.push(s).unwrap()).unwrap();
+            assert_eq!(a, b, "{v:?}");
+        }
+    }
+}
