@@ -1,1 +1,9 @@
-//! Shading: incremental integer interpolation of per-vertex attributes (depth, luminance).
+//! Shading: per-pixel values from per-vertex ones, and the span writers that use them.
+//!
+//! Role in the pipeline: between the triangle fill (which gives spans) and the target (which
+//! stores indices and depths). [`attributes`] interpolates any number of integer attributes
+//! exactly and incrementally (depth and Gouraud luminance share it); [`span_writer`] holds the
+//! per-pixel loops: depth test, luminance → palette index, writes.
+
+pub mod attributes;
+pub mod span_writer;
