@@ -1,5 +1,29 @@
 //! `zscan spans`: covered spans of polygons read as text.
+//!
+//! ## Input
+//! One vertex per line as `x y`: two decimal numbers in pixel units (`3`, `-2.5`, `10.0625`),
+//! `y` growing downward. `#` starts a comment (a whole line, or after the numbers); a line that
+//! holds only a comment is ignored. A blank line (only white space) ends a polygon; several
+//! blank lines are one separator and the end of the input ends the last polygon.
+//!
+//! Numbers are parsed exactly (integer and fractional digits as integers, no floating point).
+//! A coordinate must be a multiple of `2^-S` pixel (`S` = `--subpixel-bits`, default 4) and lie
+//! within the fill's range `|x·2^S| ≤ MAX_COORD`; anything else is an error naming the line.
+//!
+//! ## Output
+//! For each polygon in input order, a line `polygon K` (`K` from 0), then one line `y x0 x1` per
+//! maximal horizontal run of covered pixels, `x0 ≤ x1` **inclusive**, sorted by `y` then `x0`.
+//! Coverage is the library's fill rule (`zscan::raster::polygon`: top-left rule, nonzero
+//! winding); the window is the polygon's whole bounding box. Nothing is printed when the input
+//! has an error.
 use super::CliError;
+use std::io::{BufWriter, Read, Write};
+use zscan::raster::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
+use zscan::raster::polygon::fill_polygon;
+use zscan::raster::{Span, SubpixelPoint, Window};
+
+/// The largest number of non-horizontal edges a polygon may have.
+pub const MAX_EDGES: usize = 1024;
 
 /// Arguments of `zscan spans`.
 #[derive(clap::Args, Debug)]
@@ -11,7 +35,265 @@ pub struct SpansArgs {
     pub file: Option<std::path::PathBuf>,
 }
 
+/// A polygon read from the input: its vertices in units of `2^-S` pixel and the line where it
+/// starts (1-based).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InputPolygon {
+    /// Line number of the first vertex.
+    pub line: usize,
+    /// Vertices `(x, y)` in units of `2^-S` pixel.
+    pub vertices: Vec<(i32, i32)>,
+}
+
 /// Runs `zscan spans`.
-pub fn run(_args: SpansArgs) -> Result<(), CliError> {
-    Err("not yet implemented".into())
+pub fn run(args: SpansArgs) -> Result<(), CliError> {
+    let mut text = String::new();
+    match &args.file {
+        Some(path) => {
+            text = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        }
+        None => {
+            std::io::stdin()
+                .lock()
+                .read_to_string(&mut text)
+                .map_err(|e| format!("cannot read standard input: {e}"))?;
+        }
+    }
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    write_spans(&text, args.subpixel_bits, &mut out)?;
+    out.flush()
+        .map_err(|e| format!("cannot write standard output: {e}"))?;
+    Ok(())
+}
+
+/// Parses `input` and writes the output described in the module doc to `out`. The whole input
+/// is parsed and filled before anything is written, so an error leaves `out` untouched.
+pub fn write_spans(input: &str, subpixel_bits: u32, out: &mut impl Write) -> Result<(), CliError> {
+    let polygons = parse_polygons(input, subpixel_bits)?;
+    let mut all = Vec::with_capacity(polygons.len());
+    for (k, p) in polygons.iter().enumerate() {
+        let spans = polygon_spans(&p.vertices, subpixel_bits).map_err(|e| {
+            format!(
+                "polygon {k} (starting at line {}, {} vertices): {e}",
+                p.line,
+                p.vertices.len()
+            )
+        })?;
+        all.push(spans);
+    }
+    let werr = |e: std::io::Error| format!("cannot write output: {e}");
+    for (k, spans) in all.iter().enumerate() {
+        writeln!(out, "polygon {k}").map_err(werr)?;
+        for s in spans {
+            writeln!(out, "{} {} {}", s.y, s.x0, s.x1 - 1).map_err(werr)?;
+        }
+    }
+    Ok(())
+}
+
+/// Splits the input into polygons (see the module doc for the format), converting each
+/// coordinate exactly to units of `2^-S` pixel. Errors name the line.
+pub fn parse_polygons(input: &str, subpixel_bits: u32) -> Result<Vec<InputPolygon>, String> {
+    if subpixel_bits > MAX_SUBPIXEL_BITS {
+        return Err(format!(
+            "--subpixel-bits {subpixel_bits} is larger than the maximum {MAX_SUBPIXEL_BITS}"
+        ));
+    }
+    let mut polygons = Vec::new();
+    let mut current: Option<InputPolygon> = None;
+    for (i, raw) in input.lines().enumerate() {
+        let line_no = i + 1;
+        if raw.trim().is_empty() {
+            if let Some(p) = current.take() {
+                polygons.push(p);
+            }
+            continue;
+        }
+        let content = match raw.find('#') {
+            Some(j) => &raw[..j],
+            None => raw,
+        };
+        let fields: Vec<&str> = content.split_whitespace().collect();
+        if fields.is_empty() {
+            continue; // a comment line
+        }
+        if fields.len() != 2 {
+            return Err(format!(
+                "line {line_no}: expected a vertex `x y`, found {} field(s): `{}`",
+                fields.len(),
+                content.trim()
+            ));
+        }
+        let x = parse_coord(fields[0], subpixel_bits)
+            .map_err(|e| format!("line {line_no}: x coordinate {e}"))?;
+        let y = parse_coord(fields[1], subpixel_bits)
+            .map_err(|e| format!("line {line_no}: y coordinate {e}"))?;
+        current
+            .get_or_insert_with(|| InputPolygon {
+                line: line_no,
+                vertices: Vec::new(),
+            })
+            .vertices
+            .push((x, y));
+    }
+    if let Some(p) = current.take() {
+        polygons.push(p);
+    }
+    Ok(polygons)
+}
+
+/// Parses one decimal coordinate in pixel units exactly and returns it in units of `2^-S`
+/// pixel. The error text completes "x coordinate …".
+pub fn parse_coord(token: &str, subpixel_bits: u32) -> Result<i32, String> {
+    let s = subpixel_bits;
+    let (negative, body) = match token.as_bytes().first() {
+        Some(b'-') => (true, &token[1..]),
+        Some(b'+') => (false, &token[1..]),
+        _ => (false, token),
+    };
+    let (int_digits, frac_digits) = match body.find('.') {
+        Some(j) => (&body[..j], &body[j + 1..]),
+        None => (body, ""),
+    };
+    let all_digits = |d: &str| d.bytes().all(|c| c.is_ascii_digit());
+    if (int_digits.is_empty() && frac_digits.is_empty())
+        || !all_digits(int_digits)
+        || !all_digits(frac_digits)
+    {
+        return Err(format!("`{token}` is not a decimal number"));
+    }
+    let out_of_range = || {
+        format!(
+            "`{token}` is out of range: |coordinate| must be at most {MAX_COORD} units of 2^-{s} pixel ({} pixels)",
+            MAX_COORD >> s
+        )
+    };
+    let int_digits = int_digits.trim_start_matches('0');
+    if int_digits.len() > 12 {
+        return Err(out_of_range());
+    }
+    let int_part: i128 = if int_digits.is_empty() {
+        0
+    } else {
+        int_digits.parse().map_err(|_| out_of_range())?
+    };
+    let frac_digits = frac_digits.trim_end_matches('0');
+    let not_multiple = || {
+        format!(
+            "`{token}` is not a multiple of 2^-{s} pixel (1/{} pixel)",
+            1u64 << s
+        )
+    };
+    // A multiple of 2^-S has at most S ≤ 16 decimals once trailing zeros are dropped.
+    if frac_digits.len() > MAX_SUBPIXEL_BITS as usize {
+        return Err(not_multiple());
+    }
+    let (frac_num, frac_den): (i128, i128) = if frac_digits.is_empty() {
+        (0, 1)
+    } else {
+        let num = frac_digits.parse().map_err(|_| not_multiple())?;
+        (num, 10i128.pow(frac_digits.len() as u32))
+    };
+    if (frac_num << s) % frac_den != 0 {
+        return Err(not_multiple());
+    }
+    let mut units = (int_part << s) + (frac_num << s) / frac_den;
+    if negative {
+        units = -units;
+    }
+    if units.abs() > MAX_COORD as i128 {
+        return Err(out_of_range());
+    }
+    Ok(units as i32)
+}
+
+/// The covered spans of one polygon (vertices in units of `2^-S` pixel, `S` given at run time),
+/// half-open, sorted by row then column, adjacent runs merged.
+pub fn polygon_spans(vertices: &[(i32, i32)], subpixel_bits: u32) -> Result<Vec<Span>, String> {
+    macro_rules! dispatch {
+        ($($s:literal)*) => {
+            match subpixel_bits {
+                $($s => fill_at::<$s>(vertices),)*
+                _ => Err(format!(
+                    "--subpixel-bits {subpixel_bits} is larger than the maximum {MAX_SUBPIXEL_BITS}"
+                )),
+            }
+        };
+    }
+    dispatch!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+}
+
+/// [`polygon_spans`] for a compile-time `S`.
+fn fill_at<const S: u32>(vertices: &[(i32, i32)]) -> Result<Vec<Span>, String> {
+    let points: Vec<SubpixelPoint<S>> = vertices
+        .iter()
+        .map(|&(x, y)| SubpixelPoint::new(x, y))
+        .collect();
+    let mut spans: Vec<Span> = Vec::new();
+    if points.is_empty() {
+        return Ok(spans);
+    }
+    // The bounding box in pixels (floor of the minimum, one past the floor of the maximum).
+    let min_x = points.iter().map(|p| p.x).min().unwrap_or(0) >> S;
+    let max_x = points.iter().map(|p| p.x).max().unwrap_or(0) >> S;
+    let min_y = points.iter().map(|p| p.y).min().unwrap_or(0) >> S;
+    let max_y = points.iter().map(|p| p.y).max().unwrap_or(0) >> S;
+    let window = Window::new(min_x, min_y, max_x + 1, max_y + 1);
+    fill_polygon::<S, MAX_EDGES>(&points, &window, |s| match spans.last_mut() {
+        Some(last) if last.y == s.y && last.x1 == s.x0 => last.x1 = s.x1,
+        _ => spans.push(s),
+    })
+    .map_err(|e| e.to_string())?;
+    // The fill emits in row order, left to right; sort anyway so the output contract does not
+    // depend on it.
+    spans.sort_unstable_by_key(|s| (s.y, s.x0));
+    Ok(spans)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_decimal_parsing() {
+        assert_eq!(parse_coord("3", 4), Ok(48));
+        assert_eq!(parse_coord("-2.5", 4), Ok(-40));
+        assert_eq!(parse_coord("10.0625", 4), Ok(161));
+        assert_eq!(parse_coord("+0.5000", 1), Ok(1));
+        assert_eq!(parse_coord(".25", 2), Ok(1));
+        assert_eq!(parse_coord("7.", 0), Ok(7));
+        assert_eq!(parse_coord("-0", 0), Ok(0));
+        assert_eq!(parse_coord("0.0000152587890625", 16), Ok(1));
+        assert!(parse_coord("0.1", 4).unwrap_err().contains("multiple"));
+        assert!(parse_coord("0.03125", 4).unwrap_err().contains("multiple"));
+        assert!(parse_coord("1e3", 4).unwrap_err().contains("not a decimal"));
+        assert!(parse_coord("-", 4).is_err());
+        assert!(parse_coord(".", 4).is_err());
+        assert!(parse_coord("1.2.3", 4).is_err());
+        assert!(parse_coord("99999999999999999999999", 0)
+            .unwrap_err()
+            .contains("out of range"));
+        assert_eq!(parse_coord(&MAX_COORD.to_string(), 0), Ok(MAX_COORD));
+        assert!(parse_coord(&(MAX_COORD as i64 + 1).to_string(), 0).is_err());
+        assert!(parse_coord("16777216", 4).is_err()); // 2^24 px = 2^28 units > MAX_COORD
+        assert_eq!(parse_coord("-16777215.9375", 4), Ok(-MAX_COORD));
+    }
+
+    #[test]
+    fn polygons_split_on_blank_lines() {
+        let p = parse_polygons("# c\n\n0 0\n4 0 # x\n# mid\n0 4\n\n\n \n1 1\n", 0).unwrap();
+        assert_eq!(p.len(), 2);
+        assert_eq!(p[0].line, 3);
+        assert_eq!(p[0].vertices, vec![(0, 0), (4, 0), (0, 4)]);
+        assert_eq!(p[1].line, 10);
+        assert!(parse_polygons("0 0 0\n", 0)
+            .unwrap_err()
+            .starts_with("line 1:"));
+        assert!(parse_polygons("0 0\nx 0\n", 0)
+            .unwrap_err()
+            .starts_with("line 2:"));
+        assert!(parse_polygons("0 0\n", 17).is_err());
+    }
 }

@@ -1,1 +1,3 @@
 //! Reference implementations, independent of the production code, used by the tests.
+
+pub mod exact_fill;
