@@ -2,8 +2,10 @@
 //!
 //! Role in the pipeline: between the triangle fill and the span writers. Depth, Gouraud
 //! luminance and any other per-vertex quantity go through this one mechanism: an
-//! [`AttributePlane<N>`] holds `N` attributes; at the start of each span it gives a
-//! [`AttributeCursor<N>`] that steps one pixel right with integer adds only.
+//! [`AttributePlane<N>`] holds `N` attributes; at the start of each span it gives, per
+//! attribute, an [`Interpolant`] that steps one pixel right with integer adds only. Span loops
+//! are generic over [`Interpolant`], so a flat attribute ([`Constant`]) costs nothing per pixel
+//! and the exact ([`Exact`]) and fast ([`Dda`]) variants share one loop.
 //!
 //! ## What is computed
 //! With vertices `P0, P1, P2` (sub-pixel units, `F = 2^S`) and values `A0, A1, A2`, the affine
@@ -43,32 +45,80 @@ pub enum PlaneError {
     TooLarge,
 }
 
-/// The per-pixel step of `N` attributes: add `q`, add `r` to the remainder, carry at `two_d`.
+/// A value that moves one pixel right at a time: the interface span loops are generic over.
+pub trait Interpolant: Copy {
+    /// True for [`Constant`]: lets span loops pick a branch-free, vectorisable form at compile time.
+    const IS_CONSTANT: bool = false;
+    /// The value at the current pixel.
+    fn value(&self) -> u32;
+    /// Moves one pixel to the right.
+    fn step(&mut self);
+}
+
+/// The correctly rounded value of an affine attribute, stepped exactly (quotient, remainder).
 #[derive(Debug, Clone, Copy)]
-pub struct AttributeStep<const N: usize> {
-    q: [u32; N],
-    r: [u32; N],
+pub struct Exact {
+    value: u32,
+    /// Remainder of `2M + D` by `2D`, in `0..two_d`.
+    rem: u32,
+    /// Quotient added per pixel (mod 2^32).
+    q: u32,
+    /// Remainder added per pixel, in `0..two_d`.
+    r: u32,
+    /// `2D`, the carry threshold (`< 2^31`).
     two_d: u32,
 }
 
-/// `N` attribute values at one pixel, with the remainders that keep them exact.
-#[derive(Debug, Clone, Copy)]
-pub struct AttributeCursor<const N: usize> {
-    /// The correctly rounded values at the current pixel.
-    pub values: [u32; N],
-    rem: [u32; N],
+impl Interpolant for Exact {
+    #[inline(always)]
+    fn value(&self) -> u32 {
+        self.value
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        let t = self.rem + self.r; // both < 2^31: no overflow
+        let carry = (t >= self.two_d) as u32;
+        self.rem = t - carry * self.two_d;
+        self.value = self.value.wrapping_add(self.q).wrapping_add(carry);
+    }
 }
 
-impl<const N: usize> AttributeCursor<N> {
-    /// Moves one pixel to the right.
+/// An attribute with the same value at every pixel: stepping is free.
+#[derive(Debug, Clone, Copy)]
+pub struct Constant(pub u32);
+
+impl Interpolant for Constant {
+    const IS_CONSTANT: bool = true;
+
     #[inline(always)]
-    pub fn step(&mut self, s: &AttributeStep<N>) {
-        for i in 0..N {
-            let t = self.rem[i] + s.r[i]; // both < 2^30·2: no overflow
-            let carry = (t >= s.two_d) as u32;
-            self.rem[i] = t - carry * s.two_d;
-            self.values[i] = self.values[i].wrapping_add(s.q[i]).wrapping_add(carry);
-        }
+    fn value(&self) -> u32 {
+        self.0
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {}
+}
+
+/// The fast variant: the value in 16.16 fixed point plus a 16.16 increment per pixel. Each
+/// span starts from the plane's value (exact to 2^-16); along the span the increment's
+/// truncation (< 2^-16 per pixel) accumulates, so after `n` pixels the value may be low by up
+/// to `n · 2^-16` plus the final rounding. For attributes below `2^15` (luminance, not depth).
+#[derive(Debug, Clone, Copy)]
+pub struct Dda {
+    acc: u32,
+    inc: u32,
+}
+
+impl Interpolant for Dda {
+    #[inline(always)]
+    fn value(&self) -> u32 {
+        self.acc >> 16
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.acc = self.acc.wrapping_add(self.inc);
     }
 }
 
@@ -80,7 +130,8 @@ pub struct AttributePlane<const N: usize, const S: u32> {
     gx: [i64; N],
     gy: [i64; N],
     d: i64,
-    step_x: AttributeStep<N>,
+    /// Per attribute, `(q, r)` of one pixel step right.
+    step_x: [(u32, u32); N],
 }
 
 impl<const N: usize, const S: u32> AttributePlane<N, S> {
@@ -100,8 +151,7 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
         }
         let mut gx = [0i64; N];
         let mut gy = [0i64; N];
-        let mut q = [0u32; N];
-        let mut r = [0u32; N];
+        let mut step_x = [(0u32, 0u32); N];
         let f = 1i64 << S;
         for i in 0..N {
             let a1 = values[1][i] as i64 - values[0][i] as i64;
@@ -112,8 +162,10 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             // 2·(gx·F mod D). Split gx = D·g1 + g0 so no product exceeds 2^46.
             let (g1, g0) = (gx[i].div_euclid(d), gx[i].rem_euclid(d));
             let g0f = g0 << S;
-            q[i] = (g1.wrapping_mul(f) + g0f / d) as u32;
-            r[i] = (2 * (g0f % d)) as u32;
+            step_x[i] = (
+                (g1.wrapping_mul(f) + g0f / d) as u32,
+                (2 * (g0f % d)) as u32,
+            );
         }
         Ok(AttributePlane {
             origin: v[0],
@@ -121,38 +173,50 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             gx,
             gy,
             d,
-            step_x: AttributeStep {
-                q,
-                r,
-                two_d: (2 * d) as u32,
-            },
+            step_x,
         })
     }
 
-    /// The values at pixel `(x, y)`, which must be covered by the triangle (see the module's
-    /// numeric contract), ready to step right.
-    #[inline]
-    pub fn at(&self, x: i32, y: i32) -> AttributeCursor<N> {
+    /// `M(p)` of the module doc at pixel `(x, y)` (wrapping products, exact in range).
+    #[inline(always)]
+    fn m(&self, i: usize, x: i32, y: i32) -> i64 {
         let px = ((x as i64) << S) - self.origin.x as i64;
         let py = ((y as i64) << S) - self.origin.y as i64;
-        let two_d = 2 * self.d;
-        let mut values = [0u32; N];
-        let mut rem = [0u32; N];
-        for i in 0..N {
-            let m = self.gx[i]
-                .wrapping_mul(px)
-                .wrapping_add(self.gy[i].wrapping_mul(py));
-            let t = 2 * m + self.d;
-            values[i] = self.base[i].wrapping_add(t.div_euclid(two_d) as u32);
-            rem[i] = t.rem_euclid(two_d) as u32;
-        }
-        AttributeCursor { values, rem }
+        self.gx[i]
+            .wrapping_mul(px)
+            .wrapping_add(self.gy[i].wrapping_mul(py))
     }
 
-    /// The per-pixel step to the right.
-    #[inline(always)]
-    pub fn step_x(&self) -> &AttributeStep<N> {
-        &self.step_x
+    /// Attribute `i < N` at pixel `(x, y)`, which must be covered by the triangle (see the
+    /// module's numeric contract), ready to step right exactly.
+    #[inline]
+    pub fn exact(&self, i: usize, x: i32, y: i32) -> Exact {
+        let two_d = 2 * self.d;
+        let t = 2 * self.m(i, x, y) + self.d;
+        Exact {
+            value: self.base[i].wrapping_add(t.div_euclid(two_d) as u32),
+            rem: t.rem_euclid(two_d) as u32,
+            q: self.step_x[i].0,
+            r: self.step_x[i].1,
+            two_d: two_d as u32,
+        }
+    }
+
+    /// Attribute `i < N` at pixel `(x, y)` as a fast 16.16 [`Dda`]. Only for attributes whose
+    /// vertex values are below `2^15`.
+    #[inline]
+    pub fn dda(&self, i: usize, x: i32, y: i32) -> Dda {
+        let start = ((self.base[i] as i64) << 16) + (self.m(i, x, y) << 16).div_euclid(self.d);
+        let inc = (self.gx[i] << (16 + S)).div_euclid(self.d);
+        Dda {
+            acc: (start + (1 << 15)) as u32,
+            inc: inc as u32,
+        }
+    }
+
+    /// All values at pixel `(x, y)`, exactly rounded.
+    pub fn values_at(&self, x: i32, y: i32) -> [u32; N] {
+        core::array::from_fn(|i| self.exact(i, x, y).value())
     }
 
     /// The attribute values at vertex 0 (the values everywhere for a constant attribute).
@@ -202,14 +266,14 @@ mod tests {
                 continue;
             };
             crate::raster::triangle::fill_triangle(v, &window, |s| {
-                let mut c = plane.at(s.x0, s.y);
+                let mut c = [plane.exact(0, s.x0, s.y), plane.exact(1, s.x0, s.y)];
                 for x in s.x0..s.x1 {
-                    for (i, &got) in c.values.iter().enumerate() {
+                    for (i, got) in c.iter_mut().enumerate() {
                         let want = exact(v, [a[0][i], a[1][i], a[2][i]], x, s.y);
-                        assert_eq!(got, want, "attr {i} at ({x},{}) of {v:?}", s.y);
+                        assert_eq!(got.value(), want, "attr {i} at ({x},{}) of {v:?}", s.y);
+                        got.step();
                     }
                     checked += 1;
-                    c.step(plane.step_x());
                 }
             })
             .unwrap();

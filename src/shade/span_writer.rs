@@ -1,29 +1,26 @@
 //! Span writers: the per-pixel loops that turn a triangle's spans into framebuffer writes.
 //!
 //! Role in the pipeline: the last step of the raster stage. [`draw_triangle`] sets up the
-//! triangle's [`AttributePlane`] once (attribute 0 is depth, the others feed the [`Shader`]),
-//! then for each span of [`fill_triangle`] runs one loop: depth test (strict, nearer wins,
-//! see [`DepthValue`]), palette index from the shader, two stores.
+//! triangle's [`AttributePlane`] once (attribute 0 is depth, attribute 1 luminance), then for
+//! each span of [`fill_triangle`] runs one generic loop, [`depth_span`]: depth test (strict,
+//! nearer wins, see [`DepthValue`]), palette index from a [`Shading`], two stores.
 //!
-//! A fast path: when no attribute but depth varies (flat shading) the index is computed once
-//! per triangle instead of once per pixel.
+//! The loop is generic over how each value steps ([`Interpolant`]): a flat plane becomes a
+//! [`Constant`] that costs nothing per pixel, so a face parallel to the screen (constant
+//! depth) or a flat-shaded one (constant index) runs a shorter loop of the same code. Which
+//! variant runs is decided per triangle from the plane, not guessed per scene.
 //!
 //! Numeric contract: as [`attributes`](super::attributes); depth values are the 32-bit
-//! normalised depth of the projection stage, stored through [`DepthValue::from_depth32`].
+//! normalised depth of the projection stage, stored through [`DepthValue::from_depth32`];
+//! luminance is `0..=255` (values above saturate in the ramp).
 
-use super::attributes::{AttributeCursor, AttributePlane, AttributeStep, PlaneError};
+use super::attributes::{AttributePlane, Constant, Dda, Exact, Interpolant, PlaneError};
 use crate::raster::polygon::FillError;
 use crate::raster::triangle::fill_triangle;
-use crate::raster::{SubpixelPoint, Window};
+use crate::raster::{Span, SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
-/// Maps a pixel's interpolated attributes (after depth, attribute 0) to a palette index.
-pub trait Shader<const N: usize> {
-    /// The index for attribute values `values` (`values[0]` is the depth).
-    fn index(&self, values: &[u32; N]) -> u8;
-}
-
-/// Luminance (attribute 1, `0..=255`) to a ramp of `levels` entries starting at `first`:
+/// Luminance (`0..=255`) to a ramp of `levels` palette entries starting at `first`:
 /// `index = first + ⌊lum · levels / 256⌋`. With `first = 0, levels = 256` the index is the
 /// luminance itself (a grey LUT).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -40,15 +37,72 @@ impl LuminanceRamp {
         first: 0,
         levels: 256,
     };
-}
 
-impl Shader<2> for LuminanceRamp {
+    /// The palette index of luminance `lum`.
     #[inline(always)]
-    fn index(&self, values: &[u32; 2]) -> u8 {
-        let l = values[1].min(255);
+    pub fn index(&self, lum: u32) -> u8 {
+        let l = lum.min(255);
         self.first
             .wrapping_add(((l * self.levels as u32) >> 8) as u8)
     }
+}
+
+/// Per-pixel colour of a span: the palette index at the current pixel, stepped right.
+pub trait Shading: Copy {
+    /// True for [`FlatIndex`]: the index does not change along a span.
+    const IS_CONSTANT: bool = false;
+    /// The palette index at the current pixel.
+    fn index(&self) -> u8;
+    /// Moves one pixel to the right.
+    fn step(&mut self);
+}
+
+/// One palette index for the whole span (flat shading, or a constant luminance).
+#[derive(Debug, Clone, Copy)]
+pub struct FlatIndex(pub u8);
+
+impl Shading for FlatIndex {
+    const IS_CONSTANT: bool = true;
+
+    #[inline(always)]
+    fn index(&self) -> u8 {
+        self.0
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {}
+}
+
+/// Gouraud shading: an interpolated luminance through a [`LuminanceRamp`].
+#[derive(Debug, Clone, Copy)]
+pub struct Gouraud<L: Interpolant> {
+    /// The interpolated luminance.
+    pub luminance: L,
+    /// Its mapping to palette indices.
+    pub ramp: LuminanceRamp,
+}
+
+impl<L: Interpolant> Shading for Gouraud<L> {
+    #[inline(always)]
+    fn index(&self) -> u8 {
+        self.ramp.index(self.luminance.value())
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.luminance.step();
+    }
+}
+
+/// How a triangle's luminance becomes palette indices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShadeMode {
+    /// One index per triangle: the ramp at the mean of the vertex luminances (rounded).
+    Flat,
+    /// Vertex luminances interpolated exactly (every pixel the correctly rounded value).
+    GouraudExact,
+    /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see [`Dda`](super::attributes::Dda)).
+    GouraudFast,
 }
 
 /// Why a triangle was not drawn.
@@ -60,82 +114,126 @@ pub enum DrawError {
     TooLarge,
 }
 
-/// Writes one span with a depth test: pixels `x0..x1` of `colours`/`depths`, starting with
-/// the attribute values of `cursor`. Callers pass row slices and in-bounds `x0 ≤ x1 ≤ len`.
+/// Writes one span with a depth test: every pixel of `colours`/`depths` (two row slices of
+/// equal length, the span's pixels), with depth `z` and colour `shading` at the first pixel.
 #[inline(always)]
-pub fn depth_span<D: DepthValue, const N: usize>(
+pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
     colours: &mut [u8],
     depths: &mut [D],
-    mut cursor: AttributeCursor<N>,
-    step: &AttributeStep<N>,
-    shader: &impl Shader<N>,
+    mut z: Z,
+    mut shading: Sh,
 ) {
-    for (c, z) in colours.iter_mut().zip(depths.iter_mut()) {
-        let d = D::from_depth32(cursor.values[0]);
-        if d < *z {
-            *z = d;
-            *c = shader.index(&cursor.values);
+    if Z::IS_CONSTANT && Sh::IS_CONSTANT {
+        // Constant depth and colour: a branch-free select the compiler vectorises.
+        let (d, index) = (D::from_depth32(z.value()), shading.index());
+        let select = |c: &mut u8, stored: &mut D| {
+            let nearer = d < *stored;
+            *stored = if nearer { d } else { *stored };
+            *c = if nearer { index } else { *c };
+        };
+        // Blocks of 16 pixels with a fixed trip count vectorise; the tail runs one by one.
+        let mut cs = colours.chunks_exact_mut(16);
+        let mut zs = depths.chunks_exact_mut(16);
+        for (cb, zb) in (&mut cs).zip(&mut zs) {
+            for i in 0..16 {
+                select(&mut cb[i], &mut zb[i]);
+            }
         }
-        cursor.step(step);
+        for (c, stored) in cs.into_remainder().iter_mut().zip(zs.into_remainder()) {
+            select(c, stored);
+        }
+        return;
+    }
+    for (c, stored) in colours.iter_mut().zip(depths.iter_mut()) {
+        let d = D::from_depth32(z.value());
+        if d < *stored {
+            *stored = d;
+            *c = shading.index();
+        }
+        z.step();
+        shading.step();
     }
 }
 
 /// Draws a depth-tested, shaded triangle into a frame and its depth buffer.
 ///
-/// `values[i]` are vertex `i`'s attributes: `[depth, ...]`. Pixels follow the fill rule of
+/// `values[i] = [depth, luminance]` at vertex `i`. Pixels follow the fill rule of
 /// [`polygon`](crate::raster::polygon), limited to the rows both buffers hold. Returns the
-/// number of pixels the triangle covers inside the buffers (tested or not). Zero-area
-/// triangles draw nothing and return `Ok(0)`.
-pub fn draw_triangle<D: DepthValue, const N: usize, const S: u32>(
+/// number of pixels the triangle covers inside the buffers (whether or not they pass the depth
+/// test). Zero-area triangles draw nothing and return `Ok(0)`.
+pub fn draw_triangle<D: DepthValue, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
     v: [SubpixelPoint<S>; 3],
-    values: [[u32; N]; 3],
-    shader: &impl Shader<N>,
+    values: [[u32; 2]; 3],
+    ramp: LuminanceRamp,
+    mode: ShadeMode,
 ) -> Result<u32, DrawError> {
-    let plane = match AttributePlane::<N, S>::new(v, values) {
+    let plane = match AttributePlane::<2, S>::new(v, values) {
         Ok(p) => p,
         Err(PlaneError::Degenerate) => return Ok(0),
         Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
     };
-    let fw = frame.window();
-    let window = fw.intersect(&Window::new(
+    let flat_lum = if plane.is_constant(1) {
+        values[0][1]
+    } else {
+        (values[0][1] + values[1][1] + values[2][1] + 1) / 3
+    };
+    let flat = FlatIndex(ramp.index(flat_lum));
+    let mode = if plane.is_constant(1) {
+        ShadeMode::Flat
+    } else {
+        mode
+    };
+    let const_depth = plane.is_constant(0).then(|| Constant(values[0][0]));
+    let window = frame.window().intersect(&Window::new(
         0,
         depth.top(),
         depth.width() as i32,
         depth.top() + depth.height() as i32,
     ));
     let mut covered = 0u32;
-    let shade_varies = (1..N).any(|i| !plane.is_constant(i));
-    let flat_index = shader.index(&plane.vertex0_values());
-    let step = *plane.step_x();
     fill_triangle(v, &window, |s| {
         let (x0, x1) = (s.x0 as usize, s.x1 as usize);
         covered += (x1 - x0) as u32;
         let (Some(crow), Some(zrow)) = (frame.row_mut(s.y), depth.row_mut(s.y)) else {
             return;
         };
-        let (Some(crow), Some(zrow)) = (crow.get_mut(x0..x1), zrow.get_mut(x0..x1)) else {
+        let (Some(c), Some(z)) = (crow.get_mut(x0..x1), zrow.get_mut(x0..x1)) else {
             return;
         };
-        let cursor = plane.at(s.x0, s.y);
-        if shade_varies {
-            depth_span(crow, zrow, cursor, &step, shader);
-        } else {
-            depth_span(crow, zrow, cursor, &step, &Flat(flat_index));
+        match (const_depth, mode) {
+            (Some(zc), ShadeMode::Flat) => depth_span(c, z, zc, flat),
+            (None, ShadeMode::Flat) => depth_span(c, z, plane.exact(0, s.x0, s.y), flat),
+            (Some(zc), ShadeMode::GouraudFast) => depth_span(c, z, zc, fast(&plane, s, ramp)),
+            (Some(zc), ShadeMode::GouraudExact) => depth_span(c, z, zc, exact(&plane, s, ramp)),
+            (None, ShadeMode::GouraudFast) => {
+                depth_span(c, z, plane.exact(0, s.x0, s.y), fast(&plane, s, ramp))
+            }
+            (None, ShadeMode::GouraudExact) => {
+                depth_span(c, z, plane.exact(0, s.x0, s.y), exact(&plane, s, ramp))
+            }
         }
     })
     .map_err(DrawError::Fill)?;
     Ok(covered)
 }
 
-/// The shader of a triangle whose shading attributes are constant.
-struct Flat(u8);
+/// Exact Gouraud shading for span `s`.
+#[inline(always)]
+fn exact<const S: u32>(p: &AttributePlane<2, S>, s: Span, ramp: LuminanceRamp) -> Gouraud<Exact> {
+    Gouraud {
+        luminance: p.exact(1, s.x0, s.y),
+        ramp,
+    }
+}
 
-impl<const N: usize> Shader<N> for Flat {
-    #[inline(always)]
-    fn index(&self, _: &[u32; N]) -> u8 {
-        self.0
+/// Fast (16.16 DDA) Gouraud shading for span `s`.
+#[inline(always)]
+fn fast<const S: u32>(p: &AttributePlane<2, S>, s: Span, ramp: LuminanceRamp) -> Gouraud<Dda> {
+    Gouraud {
+        luminance: p.dda(1, s.x0, s.y),
+        ramp,
     }
 }
 
@@ -165,7 +263,15 @@ mod tests {
                 } else {
                     (far, 2000u32 << 16, 100)
                 };
-                draw_triangle(&mut fb, &mut zb, tri, [[d, lum]; 3], &LuminanceRamp::GREY).unwrap();
+                draw_triangle(
+                    &mut fb,
+                    &mut zb,
+                    tri,
+                    [[d, lum]; 3],
+                    LuminanceRamp::GREY,
+                    ShadeMode::GouraudExact,
+                )
+                .unwrap();
             }
             assert_eq!(fb.pixel(3, 3), Some(200));
             assert_eq!(zb.get(3, 3), Some(1000));
@@ -178,8 +284,24 @@ mod tests {
         let mut fb = Framebuffer::new(&mut px, 16, 16).unwrap();
         let mut zb = DepthBuffer::new(&mut zs, 16, 16).unwrap();
         zb.clear();
-        draw_triangle(&mut fb, &mut zb, near, [[7, 10]; 3], &LuminanceRamp::GREY).unwrap();
-        draw_triangle(&mut fb, &mut zb, far, [[7, 20]; 3], &LuminanceRamp::GREY).unwrap();
+        draw_triangle(
+            &mut fb,
+            &mut zb,
+            near,
+            [[7, 10]; 3],
+            LuminanceRamp::GREY,
+            ShadeMode::Flat,
+        )
+        .unwrap();
+        draw_triangle(
+            &mut fb,
+            &mut zb,
+            far,
+            [[7, 20]; 3],
+            LuminanceRamp::GREY,
+            ShadeMode::Flat,
+        )
+        .unwrap();
         assert_eq!(fb.pixel(3, 3), Some(10));
     }
 
@@ -194,7 +316,15 @@ mod tests {
         let mut fb = Framebuffer::band(&mut px, 16, 4, 4).unwrap();
         let mut zb = DepthBuffer::band(&mut zs, 16, 4, 4).unwrap();
         zb.clear();
-        let covered = draw_triangle(&mut fb, &mut zb, tri, vals, &LuminanceRamp::GREY).unwrap();
+        let covered = draw_triangle(
+            &mut fb,
+            &mut zb,
+            tri,
+            vals,
+            LuminanceRamp::GREY,
+            ShadeMode::GouraudExact,
+        )
+        .unwrap();
         // Rows 4..8 of the triangle x + y < 16 cover 12 + 11 + 10 + 9 pixels.
         assert_eq!(covered, 42);
         // Luminance at (x, y) is exactly 16·x, clamped to 255 by the ramp.
