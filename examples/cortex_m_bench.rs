@@ -1,3 +1,142 @@
-//! Placeholder: the Cortex-M example is being written.
+//! zscan's Cortex-M benchmark firmware: runs every case of `benches/cases.rs` on a 320×240
+//! framebuffer and prints, over semihosting, one line per case:
+//!
+//! ```text
+//! zscan-bench case <name> pixels=<n> checksum=<fnv1a hex> systick_instructions=<n>
+//! ```
+//!
+//! between a `zscan-bench begin cases=<n> systick_resolution=40` line and a `zscan-bench end`
+//! line, then exits with `debug::exit(EXIT_SUCCESS)` (QEMU's exit status 0).
+//!
+//! Two measurements of each case's call, both *instructions* (QEMU has no cycle model):
+//! - **exact**: the call sits between `zscan_bench_begin` and `zscan_bench_end`, marker
+//!   functions whose addresses the `qemu-icount` plugin (`tools/qemu-icount`) watches; the
+//!   plugin prints `qemu-icount: region <k> <instructions>` to stderr, `k` = case index.
+//! - **SysTick**: with `-icount shift=0` on `mps2-an386`, SysTick (core clock) ticks once per
+//!   40 guest instructions, so `systick_instructions` has a resolution of 40 instructions
+//!   (±40 per reading). On QEMU's `microbit` it may not tick at all (the field is then 0).
+//!
+//! Both include the constant harness overhead; subtract the `empty` case (case 0).
+//!
+//! Build and run (see docs/BENCHMARKS.md):
+//! ```text
+//! cargo build --release --example cortex_m_bench --features cortex-m-example --target thumbv7em-none-eabihf
+//! qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
+//!   -semihosting-config enable=on,target=native -icount shift=0 \
+//!   -kernel target/thumbv7em-none-eabihf/release/examples/cortex_m_bench
+//! ```
+//! For the Cortex-M0, build for `thumbv6m-none-eabi` and run on `-machine microbit` with
+//! `-global nrf51-soc.sram-size=0x400000 -global nrf51-soc.flash-size=0x400000` (no real nRF51
+//! has that much RAM; instruction counts do not depend on it).
 #![no_std]
 #![no_main]
+
+use core::hint::black_box;
+use core::sync::atomic::{AtomicU32, Ordering};
+use cortex_m::peripheral::{syst::SystClkSource, Peripherals, SYST};
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use panic_semihosting as _;
+use zscan::target::Framebuffer;
+
+#[path = "../benches/cases.rs"]
+#[allow(dead_code)]
+mod cases;
+
+/// Last marker written; gives each marker a body of its own (no identical-code folding).
+static MARK: AtomicU32 = AtomicU32::new(0);
+
+/// Opens a measured region (the plugin watches this function's first block).
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn zscan_bench_begin(case: u32) {
+    MARK.store(0xB000_0000 | case, Ordering::Relaxed);
+    // Without an observer the store (and then the call) would be optimised away.
+    black_box(&MARK);
+}
+
+/// Closes the measured region opened by [`zscan_bench_begin`].
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn zscan_bench_end(case: u32) {
+    MARK.store(0xE000_0000 | case, Ordering::Relaxed);
+    black_box(&MARK);
+}
+
+/// Executes exactly `2 * n` instructions (`subs` + `bne` per iteration) for `n >= 1`.
+#[inline(never)]
+fn spin(n: u32) {
+    // SAFETY: the asm only decrements a scratch register it owns and branches locally; it
+    // touches no memory and no other register (asm is needed here: it is the one way to get
+    // a loop whose instruction count the compiler cannot change).
+    unsafe {
+        core::arch::asm!(
+            "2:",
+            "subs {0}, #1",
+            "bne 2b",
+            inout(reg) n => _,
+            options(nomem, nostack),
+        );
+    }
+}
+
+/// SysTick reload: the full 24 bits.
+const RELOAD: u32 = 0x00FF_FFFF;
+/// Guest instructions per SysTick tick under `-icount shift=0` (mps2-an386).
+const INSTRUCTIONS_PER_TICK: u32 = 40;
+
+#[entry]
+fn main() -> ! {
+    let mut p = Peripherals::take().expect("first and only take");
+    p.SYST.set_clock_source(SystClkSource::Core);
+    p.SYST.set_reload(RELOAD);
+    p.SYST.clear_current();
+    p.SYST.enable_counter();
+
+    // The framebuffer lives on the stack (cortex-m-rt puts it at the top of the 4 MB RAM).
+    let mut pixels = [0u8; cases::FB_LEN];
+    hprintln!(
+        "zscan-bench begin cases={} systick_resolution={}",
+        cases::CASES.len(),
+        INSTRUCTIONS_PER_TICK
+    );
+    for (i, case) in cases::CASES.iter().enumerate() {
+        let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT)
+            .expect("the buffer has the cases' size");
+        // Warm-up call (keeps the host and target harnesses identical), then the measured one.
+        fb.clear(0);
+        black_box((case.run)(black_box(&mut fb)));
+        fb.clear(0);
+        // `black_box` makes the framebuffer escape and the call indirect, so the compiler can
+        // neither move drawing across the markers nor inline the case into the loop.
+        let run = black_box(case.run);
+        let fb = black_box(&mut fb);
+        let t0 = SYST::get_current();
+        zscan_bench_begin(i as u32);
+        let px = run(fb);
+        zscan_bench_end(i as u32);
+        let t1 = SYST::get_current();
+        let ticks = t0.wrapping_sub(t1) & RELOAD;
+        let sum = cases::fnv1a(&pixels);
+        hprintln!(
+            "zscan-bench case {} pixels={} checksum={:08x} systick_instructions={}",
+            case.name,
+            px,
+            sum,
+            ticks * INSTRUCTIONS_PER_TICK
+        );
+    }
+    // Self-test of the counter: two regions around a loop of exactly 2 instructions per
+    // iteration; the plugin's counts must differ by exactly 2 × (2000 - 1000) = 2000.
+    for (k, n) in [1000u32, 2000].into_iter().enumerate() {
+        let n = black_box(n);
+        zscan_bench_begin((cases::CASES.len() + k) as u32);
+        spin(n);
+        zscan_bench_end((cases::CASES.len() + k) as u32);
+        hprintln!("zscan-bench selftest spin={}", n);
+    }
+    hprintln!("zscan-bench end");
+    debug::exit(debug::EXIT_SUCCESS);
+    #[allow(clippy::empty_loop)]
+    loop {}
+}

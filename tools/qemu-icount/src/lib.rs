@@ -1,0 +1,164 @@
+//! `qemu-icount`: a QEMU TCG plugin that counts executed guest instructions inside regions
+//! delimited by two marker functions of the guest program.
+//!
+//! # Protocol
+//! The guest (zscan's `examples/cortex_m_bench.rs`) has two `#[no_mangle] #[inline(never)]`
+//! functions, `zscan_bench_begin` and `zscan_bench_end`. Their addresses (from `llvm-nm`; the
+//! Thumb bit may be set, it is cleared here) are passed as plugin arguments:
+//!
+//! ```text
+//! qemu-system-arm ... -plugin libqemu_icount.so,begin=0x1234,end=0x1240[,out=counts.txt]
+//! ```
+//!
+//! - When the translation block (TB) at `begin` executes, a region opens with a count of 0.
+//!   The instructions of that block (the marker's own body) are not counted.
+//! - While a region is open, every executed TB adds its instruction count.
+//! - When the TB at `end` executes, the region closes (the marker's body is not counted) and
+//!   the plugin prints `qemu-icount: region <k> <instructions>` to stderr, `k` = 0, 1, 2, ...
+//!   in execution order (and appends the same line to `out` when given).
+//! - At exit it prints `qemu-icount: regions <n> errors <e>`; an error is a `begin` inside an
+//!   open region or an `end` outside one.
+//!
+//! Counts are *raw*: they include the few instructions between the markers that are not the
+//! measured work (the return from `begin`, the call of `end`, ...). The guest measures an empty
+//! region first, and consumers subtract it. Counts are instructions, not cycles; a skipped
+//! conditional instruction (IT block) counts as executed, and an interrupt handler running
+//! inside a region is counted. QEMU must run with a single vCPU (Cortex-M boards have one).
+//!
+//! Counts are exact because TCG calls the execute callback once per execution of a block and a
+//! block always runs to its end unless an exception leaves it (none occurs in the measured code);
+//! with `-icount`, QEMU retranslates shorter blocks instead of stopping one half-way, and
+//! those shorter blocks are announced to this plugin with their own sizes.
+
+use qemu_plugin::{
+    install::{Args, Info},
+    plugin::{HasCallbacks, Register},
+    register, PluginId, Result, TranslationBlock, VCPUIndex,
+};
+use std::{
+    io::Write,
+    sync::{
+        atomic::{AtomicBool, AtomicU64, Ordering},
+        Mutex,
+    },
+};
+
+/// Whether a region is open.
+static OPEN: AtomicBool = AtomicBool::new(false);
+/// Instructions counted in the open region.
+static COUNT: AtomicU64 = AtomicU64::new(0);
+/// Regions closed so far.
+static REGIONS: AtomicU64 = AtomicU64::new(0);
+/// Protocol errors (begin inside a region, end outside one).
+static ERRORS: AtomicU64 = AtomicU64::new(0);
+/// Optional output file (`out=` argument).
+static OUT: Mutex<Option<std::fs::File>> = Mutex::new(None);
+
+#[derive(Default)]
+struct ICount {
+    begin: u64,
+    end: u64,
+}
+
+fn parse_addr(s: &str) -> Option<u64> {
+    let s = s.trim();
+    let v = if let Some(h) = s.strip_prefix("0x").or_else(|| s.strip_prefix("0X")) {
+        u64::from_str_radix(h, 16).ok()?
+    } else {
+        s.parse().ok()?
+    };
+    // Thumb functions have bit 0 set in symbol tables; code addresses never do.
+    Some(v & !1)
+}
+
+fn emit(line: &str) {
+    eprintln!("{line}");
+    if let Ok(mut g) = OUT.lock() {
+        if let Some(f) = g.as_mut() {
+            let _ = writeln!(f, "{line}");
+        }
+    }
+}
+
+fn on_begin(_: VCPUIndex) {
+    if OPEN.swap(true, Ordering::Relaxed) {
+        ERRORS.fetch_add(1, Ordering::Relaxed);
+    }
+    COUNT.store(0, Ordering::Relaxed);
+}
+
+fn on_end(_: VCPUIndex) {
+    if OPEN.swap(false, Ordering::Relaxed) {
+        let k = REGIONS.fetch_add(1, Ordering::Relaxed);
+        let n = COUNT.load(Ordering::Relaxed);
+        emit(&format!("qemu-icount: region {k} {n}"));
+    } else {
+        ERRORS.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+fn on_exit() {
+    emit(&format!(
+        "qemu-icount: regions {} errors {}",
+        REGIONS.load(Ordering::Relaxed),
+        ERRORS.load(Ordering::Relaxed)
+    ));
+}
+
+impl Register for ICount {
+    fn register(&mut self, id: PluginId, args: &Args, _info: &Info) -> Result<()> {
+        let mut begin = None;
+        let mut end = None;
+        for raw in &args.raw {
+            let (k, v) = raw.split_once('=').unwrap_or((raw.as_str(), ""));
+            match k {
+                "begin" => begin = parse_addr(v),
+                "end" => end = parse_addr(v),
+                "out" => match std::fs::File::create(v) {
+                    Ok(f) => *OUT.lock().expect("not poisoned") = Some(f),
+                    Err(e) => eprintln!("qemu-icount: cannot create {v}: {e}"),
+                },
+                _ => {
+                    eprintln!("qemu-icount: unknown argument {raw:?} (expected begin=, end=, out=)")
+                }
+            }
+        }
+        match (begin, end) {
+            (Some(b), Some(e)) if b != e => {
+                self.begin = b;
+                self.end = e;
+            }
+            _ => {
+                eprintln!("qemu-icount: need distinct begin=<addr> and end=<addr> arguments");
+                std::process::exit(2);
+            }
+        }
+        qemu_plugin::qemu_plugin_register_atexit_cb(id, |_| on_exit())?;
+        Ok(())
+    }
+}
+
+impl HasCallbacks for ICount {
+    fn on_translation_block_translate(
+        &mut self,
+        _id: PluginId,
+        tb: TranslationBlock,
+    ) -> Result<()> {
+        let at = tb.vaddr();
+        if at == self.begin {
+            tb.register_execute_callback(on_begin);
+        } else if at == self.end {
+            tb.register_execute_callback(on_end);
+        } else {
+            let n = tb.size() as u64;
+            tb.register_execute_callback(move |_| {
+                if OPEN.load(Ordering::Relaxed) {
+                    COUNT.fetch_add(n, Ordering::Relaxed);
+                }
+            });
+        }
+        Ok(())
+    }
+}
+
+register!(ICount::default());
