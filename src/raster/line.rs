@@ -1,1 +1,587 @@
-//! TODO
+//! Bresenham (midpoint) lines between lattice points, with exact clipping to a [`Window`].
+//!
+//! Role in the pipeline: the raster stage's wireframe primitive. Projected edges (whole
+//! pixels) become a [`Bresenham`] iterator of pixels, clipped to the drawing window, then
+//! [`draw_line`] writes a palette index into the [`Framebuffer`].
+//!
+//! ## Which pixels a line covers (the definition the code implements)
+//! A line from `p0 = (x0, y0)` to `p1 = (x1, y1)` has deltas `dx = x1 − x0`, `dy = y1 − y0`.
+//! Its **major axis** is `x` when `|dx| ≥ |dy|` (diagonals included), else `y`; with
+//! `n = |major delta|` and `a = |minor delta|` (so `a ≤ n`), the line has exactly `n + 1`
+//! pixels, one per major coordinate between the ends. At major step `t = 0..=n` the minor
+//! coordinate is the exact value `minor0 + t·(minor delta)/n` **rounded to the nearest
+//! integer, ties toward the smaller coordinate** (towards the top for an x-major line, since
+//! `y` grows downward; towards the left for a y-major line).
+//!
+//! Because the tie rule depends on absolute coordinates, not on the direction of travel, and
+//! the choice of the major axis is symmetric too, **drawing `p1 → p0` covers the same pixels
+//! as `p0 → p1`, visited in reverse order** (tested exhaustively).
+//!
+//! ```text
+//!                     −y (up)
+//!             \   5   |   6   /        x-major (|dx| ≥ |dy|): octants 0, 3, 4, 7
+//!               \     |     /          y-major (|dy| > |dx|): octants 1, 2, 5, 6
+//!           4     \   |   /     7      ties round the minor coordinate toward
+//!                   \ | /              the smaller value: up for x-major,
+//!     −x ────────────p0──────────── +x left for y-major, in every octant
+//!                   / | \
+//!           3     /   |   \     0      octant 0: dx > 0, dy ≥ 0, |dx| ≥ |dy|
+//!               /     |     \          octant 1: dy > 0, dx ≥ 0, |dy| > |dx|
+//!             /   2   |   1   \        ... clockwise on screen
+//!                     +y (down)
+//! ```
+//!
+//! ## End points
+//! [`Ends::Closed`] (the default of [`Bresenham::new`] and [`draw_line`]) yields both end
+//! points: `n + 1` pixels. [`Ends::HalfOpen`] yields the same pixels without the last one
+//! (`p1`): `n` pixels, none for a zero-length line. Chaining half-open segments of a polyline
+//! draws each joint once (useful with XOR or blending); add the final point separately.
+//!
+//! ## The midpoint iteration
+//! With `c = n − 1` when the minor coordinate increases along the line and `c = n` when it
+//! decreases, the minor offset after `t` major steps is `o(t) = ⌊(2ta + c) / 2n⌋` (this is the
+//! rounding above, expressed in the direction of travel). The [`Bresenham`] state keeps the
+//! remainder of that division shifted down by `2n` as its `error ∈ [−2n, 0)`: each major move
+//! adds `2a`; when the error becomes non-negative a minor move is taken and `2n` subtracted.
+//! Only additions and one comparison per pixel; no division after set-up.
+//!
+//! ## Clipping
+//! [`Bresenham::clipped`] classifies the ends with Cohen–Sutherland [`Outcode`]s (trivial
+//! accept/reject), and otherwise computes directly, with a few `u64`/`i64` divisions, the
+//! first and last steps `t` whose pixel is inside the window, and the exact midpoint state at
+//! the first one. So a clipped line draws **exactly the pixels of the unclipped line that lie
+//! inside the window, in the same order** — clipping never moves a pixel — and its set-up
+//! costs O(1) whatever the line's length; a line far outside costs O(1) in total.
+//!
+//! ## Numeric contract
+//! - [`Bresenham::new`] accepts **any** `i32` end points: `n, a ≤ 2^32 − 1` are held as
+//!   `u32`, the error and its steps (`|error| ≤ 2n < 2^33`) as `i64`, and every pixel lies
+//!   between the end points so positions never overflow `i32` (the state never moves past the
+//!   last pixel).
+//! - [`Bresenham::clipped`] and the `draw_*` functions need `|x|, |y| ≤ `[`MAX_COORD`]` = 2^30`
+//!   for both ends, and return [`LineError::CoordinateOutOfRange`] otherwise (nothing drawn).
+//!   Then `n, a ≤ 2^31`, and the largest set-up product, `2·n·k` with `k ≤ a`, is at most
+//!   `2^63`, which fits `u64`; `2ta + c ≤ 2^63 + 2^31` as well. Window bounds may be any `i32`
+//!   (they enter only through `i64` differences).
+
+use crate::clip::outcode::Outcode;
+use crate::raster::Window;
+use crate::target::Framebuffer;
+use embedded_graphics_core::geometry::Point;
+
+/// The largest end-point coordinate magnitude accepted by clipping and drawing: `2^30`.
+pub const MAX_COORD: i32 = 1 << 30;
+
+/// Whether the last end point of a line is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Ends {
+    /// Both end points are drawn: `n + 1` pixels.
+    #[default]
+    Closed,
+    /// The last end point is left out: `n` pixels (polyline segments without double joints).
+    HalfOpen,
+}
+
+/// Why a line could not be clipped or drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LineError {
+    /// An end point has a coordinate beyond `±`[`MAX_COORD`].
+    CoordinateOutOfRange {
+        /// The offending end point.
+        point: Point,
+    },
+}
+
+impl core::fmt::Display for LineError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            LineError::CoordinateOutOfRange { point } => write!(
+                f,
+                "line end point ({}, {}) is beyond ±{} and cannot be clipped",
+                point.x, point.y, MAX_COORD
+            ),
+        }
+    }
+}
+
+/// The set-up shared by plain and clipped iteration: axes, directions and deltas.
+#[derive(Debug, Clone, Copy)]
+struct Setup {
+    /// Unit move along the major axis.
+    major_step: Point,
+    /// Unit move along the minor axis.
+    minor_step: Point,
+    /// True when the minor coordinate increases along the line.
+    minor_increases: bool,
+    /// `|major delta|`.
+    n: u32,
+    /// `|minor delta|` (`a ≤ n`).
+    a: u32,
+}
+
+impl Setup {
+    fn new(p0: Point, p1: Point) -> Setup {
+        let dx = p1.x as i64 - p0.x as i64;
+        let dy = p1.y as i64 - p0.y as i64;
+        // |dx|, |dy| ≤ 2^32 − 1: they fit u32.
+        let (adx, ady) = (dx.unsigned_abs() as u32, dy.unsigned_abs() as u32);
+        let sx = if dx < 0 { -1 } else { 1 };
+        let sy = if dy < 0 { -1 } else { 1 };
+        if adx >= ady {
+            Setup {
+                major_step: Point::new(sx, 0),
+                minor_step: Point::new(0, sy),
+                minor_increases: dy > 0,
+                n: adx,
+                a: ady,
+            }
+        } else {
+            Setup {
+                major_step: Point::new(0, sy),
+                minor_step: Point::new(sx, 0),
+                minor_increases: dx > 0,
+                n: ady,
+                a: adx,
+            }
+        }
+    }
+
+    /// The rounding bias `c` of `o(t) = ⌊(2ta + c) / 2n⌋`: ties go to the smaller absolute
+    /// coordinate, i.e. down in offset when the minor coordinate increases, up otherwise.
+    fn bias(&self) -> u64 {
+        if self.minor_increases {
+            (self.n as u64).saturating_sub(1)
+        } else {
+            self.n as u64
+        }
+    }
+}
+
+/// A Bresenham line as an allocation-free iterator of pixels ([`Point`]s), in order from the
+/// first end point to the last.
+///
+/// See the [module documentation](self) for the pixels covered, the tie rule and the ranges.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct Bresenham {
+    /// The next pixel to yield.
+    point: Point,
+    /// Unit move along the major axis (`(±1, 0)` or `(0, ±1)`), taken at every step.
+    major_step: Point,
+    /// Unit move along the minor axis, taken when the error becomes non-negative.
+    minor_step: Point,
+    /// The midpoint decision variable, in `[−2n, 0)`: the remainder of `(2ta + c) / 2n`
+    /// minus `2n`.
+    error: i64,
+    /// Added to the error at every major move: `2a`.
+    error_step_major: i64,
+    /// Subtracted from the error at every minor move: `2n`.
+    error_step_minor: i64,
+    /// Moves left after `point` (so `steps_left + 1` pixels remain unless `done`).
+    steps_left: u32,
+    /// True when every pixel has been yielded.
+    done: bool,
+}
+
+impl Bresenham {
+    /// The closed line from `p0` to `p1`: both end points included. Any `i32` end points.
+    pub fn new(p0: Point, p1: Point) -> Bresenham {
+        Bresenham::with_ends(p0, p1, Ends::Closed)
+    }
+
+    /// The half-open line from `p0` to `p1`: `p1` excluded (empty when `p0 == p1`).
+    pub fn half_open(p0: Point, p1: Point) -> Bresenham {
+        Bresenham::with_ends(p0, p1, Ends::HalfOpen)
+    }
+
+    /// The line from `p0` to `p1` with the given treatment of `p1`. Any `i32` end points.
+    pub fn with_ends(p0: Point, p1: Point, ends: Ends) -> Bresenham {
+        let s = Setup::new(p0, p1);
+        let (steps_left, done) = match ends {
+            Ends::Closed => (s.n, false),
+            Ends::HalfOpen => (s.n.saturating_sub(1), s.n == 0),
+        };
+        Bresenham {
+            point: p0,
+            major_step: s.major_step,
+            minor_step: s.minor_step,
+            // r(0) = c, so error = c − 2n.
+            error: s.bias() as i64 - 2 * s.n as i64,
+            error_step_major: 2 * s.a as i64,
+            error_step_minor: 2 * s.n as i64,
+            steps_left,
+            done,
+        }
+    }
+
+    /// An iterator that yields nothing.
+    pub fn empty() -> Bresenham {
+        Bresenham {
+            point: Point::zero(),
+            major_step: Point::new(1, 0),
+            minor_step: Point::new(0, 1),
+            error: -1,
+            error_step_major: 0,
+            error_step_minor: 0,
+            steps_left: 0,
+            done: true,
+        }
+    }
+
+    /// The part of the line from `p0` to `p1` inside `window`: exactly the pixels of
+    /// [`Bresenham::with_ends`]`(p0, p1, ends)` that `window` contains, in the same order.
+    ///
+    /// O(1) set-up (outcodes, then at most three divisions). Errors when a coordinate of `p0`
+    /// or `p1` is beyond `±`[`MAX_COORD`].
+    pub fn clipped(
+        p0: Point,
+        p1: Point,
+        ends: Ends,
+        window: &Window,
+    ) -> Result<Bresenham, LineError> {
+        for p in [p0, p1] {
+            if p.x.unsigned_abs() > MAX_COORD as u32 || p.y.unsigned_abs() > MAX_COORD as u32 {
+                return Err(LineError::CoordinateOutOfRange { point: p });
+            }
+        }
+        if window.is_empty() {
+            return Ok(Bresenham::empty());
+        }
+        let c0 = Outcode::of(p0.x, p0.y, window);
+        let c1 = Outcode::of(p1.x, p1.y, window);
+        if Outcode::trivially_inside(c0, c1) {
+            return Ok(Bresenham::with_ends(p0, p1, ends));
+        }
+        if Outcode::trivially_outside(c0, c1) {
+            return Ok(Bresenham::empty());
+        }
+        Ok(Bresenham::clip_exact(p0, p1, ends, window).unwrap_or_else(Bresenham::empty))
+    }
+
+    /// The exact clipping of a partially visible line; `None` when no pixel is inside.
+    /// Preconditions (checked by the caller): coordinates within `±MAX_COORD`, window not empty.
+    fn clip_exact(p0: Point, p1: Point, ends: Ends, window: &Window) -> Option<Bresenham> {
+        let s = Setup::new(p0, p1);
+        let (n, a) = (s.n as u64, s.a as u64);
+        // Last step index drawn (as i64; −1 for an empty half-open line).
+        let last: i64 = match ends {
+            Ends::Closed => n as i64,
+            Ends::HalfOpen => n as i64 - 1,
+        };
+        // Window bounds, closed, along the major and minor axes.
+        let xs = (window.x0 as i64, window.x1 as i64 - 1);
+        let ys = (window.y0 as i64, window.y1 as i64 - 1);
+        let (major0, minor0, major_win, minor_win, major_sign, minor_sign) = if s.major_step.x != 0
+        {
+            (p0.x, p0.y, xs, ys, s.major_step.x, s.minor_step.y)
+        } else {
+            (p0.y, p0.x, ys, xs, s.major_step.y, s.minor_step.x)
+        };
+        // Steps t whose major coordinate major0 + sign·t is inside the window.
+        let (tm_lo, tm_hi) = signed_range(major0 as i64, major_win, major_sign);
+        // Minor offsets o whose minor coordinate minor0 + sign·o is inside the window.
+        let (k_lo, k_hi) = signed_range(minor0 as i64, minor_win, minor_sign);
+        if k_hi < 0 || k_lo > a as i64 {
+            return None; // o(t) ∈ [0, a] never reaches the window's rows/columns
+        }
+        let c = s.bias();
+        // T(k): the first step with o(t) ≥ k, for 1 ≤ k ≤ a (then a ≥ 1, n ≥ 1):
+        // ⌊(2ta + c) / 2n⌋ ≥ k  ⇔  2ta ≥ 2nk − c  ⇔  t ≥ ⌈(2nk − c) / 2a⌉.
+        // 2nk ≤ 2·2^31·2^31 = 2^63 and 2nk − c ≥ 2n − n ≥ 0: no overflow in u64.
+        let first_step_reaching = |k: u64| -> i64 {
+            let num = 2 * n * k - c;
+            num.div_ceil(2 * a) as i64
+        };
+        let tk_lo = if k_lo <= 0 {
+            0
+        } else {
+            first_step_reaching(k_lo as u64)
+        };
+        let tk_hi = if k_hi >= a as i64 {
+            n as i64
+        } else {
+            first_step_reaching(k_hi as u64 + 1) - 1
+        };
+        let t_first = tm_lo.max(tk_lo).max(0);
+        let t_last = tm_hi.min(tk_hi).min(last);
+        if t_first > t_last {
+            return None;
+        }
+        // Midpoint state at t_first: 2ta + c ≤ 2^63 + 2^31 < 2^64.
+        let num = 2 * t_first as u64 * a + c;
+        let two_n = 2 * n; // n ≥ 1 here: p0 ≠ p1, or the outcodes would have decided
+        let o = num / two_n;
+        let r = num % two_n;
+        // The pixel is on the segment, so both coordinates fit i32.
+        let major = major0 as i64 + major_sign as i64 * t_first;
+        let minor = minor0 as i64 + minor_sign as i64 * o as i64;
+        let point = if s.major_step.x != 0 {
+            Point::new(major as i32, minor as i32)
+        } else {
+            Point::new(minor as i32, major as i32)
+        };
+        Some(Bresenham {
+            point,
+            major_step: s.major_step,
+            minor_step: s.minor_step,
+            error: r as i64 - two_n as i64,
+            error_step_major: 2 * a as i64,
+            error_step_minor: two_n as i64,
+            // t_last − t_first ≤ n ≤ 2^31.
+            steps_left: (t_last - t_first) as u32,
+            done: false,
+        })
+    }
+
+    /// Pixels not yet yielded (up to `2^32` for a closed line across the whole `i32` range).
+    pub fn remaining(&self) -> u64 {
+        if self.done {
+            0
+        } else {
+            self.steps_left as u64 + 1
+        }
+    }
+}
+
+/// The steps `t` with `lo ≤ origin + sign·t ≤ hi`, as a closed `i64` range (possibly empty or
+/// negative: the caller intersects it with the line's own steps). All terms are below `2^33`.
+fn signed_range(origin: i64, (lo, hi): (i64, i64), sign: i32) -> (i64, i64) {
+    if sign > 0 {
+        (lo - origin, hi - origin)
+    } else {
+        (origin - hi, origin - lo)
+    }
+}
+
+impl Iterator for Bresenham {
+    type Item = Point;
+
+    #[inline]
+    fn next(&mut self) -> Option<Point> {
+        if self.done {
+            return None;
+        }
+        let p = self.point;
+        if self.steps_left == 0 {
+            self.done = true;
+        } else {
+            self.steps_left -= 1;
+            self.point += self.major_step;
+            self.error += self.error_step_major;
+            if self.error >= 0 {
+                self.error -= self.error_step_minor;
+                self.point += self.minor_step;
+            }
+        }
+        Some(p)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        match usize::try_from(self.remaining()) {
+            Ok(n) => (n, Some(n)),
+            Err(_) => (usize::MAX, None),
+        }
+    }
+}
+
+impl core::iter::FusedIterator for Bresenham {}
+
+/// Draws the closed line `p0`–`p1` (both ends included) into `fb` with palette `index`,
+/// clipped to the buffer's window (bands included): exactly the pixels of
+/// [`Bresenham::new`]`(p0, p1)` that the buffer holds.
+///
+/// Errors (nothing drawn) when a coordinate is beyond `±`[`MAX_COORD`].
+pub fn draw_line(
+    fb: &mut Framebuffer<'_>,
+    p0: Point,
+    p1: Point,
+    index: u8,
+) -> Result<(), LineError> {
+    draw_line_with_ends(fb, p0, p1, Ends::Closed, index)
+}
+
+/// Draws the half-open line `p0`–`p1` (`p1` excluded), clipped like [`draw_line`].
+pub fn draw_line_half_open(
+    fb: &mut Framebuffer<'_>,
+    p0: Point,
+    p1: Point,
+    index: u8,
+) -> Result<(), LineError> {
+    draw_line_with_ends(fb, p0, p1, Ends::HalfOpen, index)
+}
+
+/// Draws the line `p0`–`p1` with the given end treatment, clipped like [`draw_line`].
+pub fn draw_line_with_ends(
+    fb: &mut Framebuffer<'_>,
+    p0: Point,
+    p1: Point,
+    ends: Ends,
+    index: u8,
+) -> Result<(), LineError> {
+    let window = fb.window();
+    for p in Bresenham::clipped(p0, p1, ends, &window)? {
+        // Every pixel is inside the window; the lookups still cannot panic.
+        if let (Some(row), Ok(x)) = (fb.row_mut(p.y), usize::try_from(p.x)) {
+            if let Some(px) = row.get_mut(x) {
+                *px = index;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Draws the polyline through `points` (each joint once: half-open segments, then the last
+/// point), clipped like [`draw_line`]. One point draws that pixel; none draws nothing.
+///
+/// Errors (stopping at the offending segment) when a coordinate is beyond `±`[`MAX_COORD`].
+pub fn draw_polyline(
+    fb: &mut Framebuffer<'_>,
+    points: &[Point],
+    index: u8,
+) -> Result<(), LineError> {
+    for pair in points.windows(2) {
+        draw_line_half_open(fb, pair[0], pair[1], index)?;
+    }
+    if let Some(&last) = points.last() {
+        draw_line(fb, last, last, index)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pts(it: Bresenham) -> heapless::Vec<(i32, i32), 64> {
+        it.map(|p| (p.x, p.y)).collect()
+    }
+
+    #[test]
+    fn octant_zero_with_a_tie() {
+        // (0,0)→(4,1): y = t/4 → 0, 0, 0.5→0 (tie up), 1, 1.
+        assert_eq!(
+            &pts(Bresenham::new(Point::new(0, 0), Point::new(4, 1)))[..],
+            &[(0, 0), (1, 0), (2, 0), (3, 1), (4, 1)]
+        );
+        // Reversed: same pixels, reverse order (tie still goes to the smaller y).
+        assert_eq!(
+            &pts(Bresenham::new(Point::new(4, 1), Point::new(0, 0)))[..],
+            &[(4, 1), (3, 1), (2, 0), (1, 0), (0, 0)]
+        );
+    }
+
+    #[test]
+    fn steep_line_ties_go_left() {
+        // (0,0)→(1,2): x = y/2 → 0, 0.5→0, 1.
+        assert_eq!(
+            &pts(Bresenham::new(Point::new(0, 0), Point::new(1, 2)))[..],
+            &[(0, 0), (0, 1), (1, 2)]
+        );
+        assert_eq!(
+            &pts(Bresenham::new(Point::new(1, 2), Point::new(0, 0)))[..],
+            &[(1, 2), (0, 1), (0, 0)]
+        );
+    }
+
+    #[test]
+    fn axis_lines_and_single_points() {
+        assert_eq!(
+            &pts(Bresenham::new(Point::new(2, 5), Point::new(2, 2)))[..],
+            &[(2, 5), (2, 4), (2, 3), (2, 2)]
+        );
+        assert_eq!(
+            &pts(Bresenham::new(Point::new(7, 7), Point::new(7, 7)))[..],
+            &[(7, 7)]
+        );
+        assert_eq!(
+            Bresenham::half_open(Point::new(7, 7), Point::new(7, 7)).count(),
+            0
+        );
+        assert_eq!(
+            &pts(Bresenham::half_open(Point::new(0, 0), Point::new(-2, -2)))[..],
+            &[(0, 0), (-1, -1)]
+        );
+    }
+
+    #[test]
+    fn extreme_coordinates_do_not_overflow() {
+        let mut it = Bresenham::new(
+            Point::new(i32::MIN, i32::MAX),
+            Point::new(i32::MAX, i32::MIN),
+        );
+        assert_eq!(it.remaining(), 1 << 32);
+        assert_eq!(it.next(), Some(Point::new(i32::MIN, i32::MAX)));
+        let p = Point::new(i32::MAX, i32::MAX);
+        let mut single = Bresenham::new(p, p);
+        assert_eq!(single.next(), Some(p));
+        assert_eq!(single.next(), None);
+        // Clipping rejects what it cannot compute exactly, without panicking.
+        let w = Window::new(0, 0, 10, 10);
+        assert!(
+            Bresenham::clipped(Point::new(i32::MIN, 0), Point::new(5, 5), Ends::Closed, &w)
+                .is_err()
+        );
+        assert!(Bresenham::clipped(
+            Point::new(-MAX_COORD, MAX_COORD),
+            Point::new(MAX_COORD, -MAX_COORD),
+            Ends::Closed,
+            &w
+        )
+        .is_ok());
+    }
+
+    #[test]
+    fn clipping_keeps_pixels_in_place() {
+        let w = Window::new(2, 1, 7, 4);
+        for (p0, p1) in [
+            ((-3, -2), (11, 6)),
+            ((12, 0), (-5, 5)),
+            ((3, -9), (5, 20)),
+            ((0, 5), (9, 0)),
+        ] {
+            let (p0, p1) = (Point::new(p0.0, p0.1), Point::new(p1.0, p1.1));
+            let expect: heapless::Vec<(i32, i32), 64> = Bresenham::new(p0, p1)
+                .filter(|p| w.contains(p.x, p.y))
+                .map(|p| (p.x, p.y))
+                .collect();
+            let got = pts(Bresenham::clipped(p0, p1, Ends::Closed, &w).unwrap());
+            assert_eq!(got, expect, "{p0:?} {p1:?}");
+        }
+    }
+
+    #[test]
+    fn far_lines_cost_nothing() {
+        let w = Window::new(0, 0, 320, 240);
+        let it = Bresenham::clipped(
+            Point::new(-MAX_COORD, -MAX_COORD),
+            Point::new(MAX_COORD, -MAX_COORD + 3),
+            Ends::Closed,
+            &w,
+        )
+        .unwrap();
+        assert_eq!(it.remaining(), 0);
+        // A huge line crossing the window: only the visible part is left to walk.
+        let it = Bresenham::clipped(
+            Point::new(-MAX_COORD, 100),
+            Point::new(MAX_COORD, 140),
+            Ends::Closed,
+            &w,
+        )
+        .unwrap();
+        assert!(it.remaining() <= 320);
+        assert!(it.remaining() > 0);
+    }
+
+    #[test]
+    fn draw_line_into_a_band() {
+        let mut buf = [0u8; 8 * 3];
+        let mut fb = Framebuffer::band(&mut buf, 8, 3, 2).unwrap(); // rows 2..5
+        draw_line(&mut fb, Point::new(-4, -4), Point::new(12, 12), 9).unwrap();
+        for y in 2..5 {
+            for x in 0..8 {
+                let want = if x == y { 9 } else { 0 };
+                assert_eq!(fb.pixel(x, y), Some(want), "({x}, {y})");
+            }
+        }
+        assert!(draw_line(&mut fb, Point::new(0, 0), Point::new(MAX_COORD + 1, 0), 1).is_err());
+    }
+}
