@@ -1,0 +1,457 @@
+//! The observer (course chapter 1, §3.1–3.5): position `Ω`, orthonormal basis `(W, V, U)`,
+//! field of view, focal distance, and the screen grid with possibly non-square pixels.
+//!
+//! Role in the pipeline: set-up. A [`Camera`] yields the world → observer transform
+//! ([`Camera::view_transform`]) and the numbers the projector needs
+//! ([`Projector`](crate::project::Projector)).
+//!
+//! ## Conventions
+//! - **Basis.** `U` = the normalised view direction (observer `z`, depth). `V` = the approximate
+//!   up `V'` made orthogonal to `U` and normalised, `V = (V' − (U·V')U)/|…|` (observer `y`, up).
+//!   `W = U × V` (observer `x`, to the viewer's right). With the right-handed world of SCENES.md,
+//!   `(W, V, U)` is a **left-handed** frame (x right, y up, z into the screen). The course writes
+//!   `W = V ∧ U`, which names the same vector in a left-handed world; here the sign is chosen so
+//!   that world `+x` appears on the right for a camera on `+z` looking at the origin.
+//! - **Observer coordinates** of a world point `P`: `x = (P − Ω)·W`, `y = (P − Ω)·V`,
+//!   `z = (P − Ω)·U` (the rows of the view transform are `W`, `V`, `U`).
+//! - **Screen grid** (TIPE 2010 §1): `i = i0 + f_x·x/z`, `j = j0 − f_y·y/z` in pixels, with `j`
+//!   growing downward; pixels are lattice points, so a pixel-centred picture of `W × H` pixels
+//!   has its principal point at `((W − 1)/2, (H − 1)/2)` ([`Viewport::new`]).
+//! - **Focal distance** (course eq. 1.7): `d = r / tan(φ/2)` where `r` is the half-extent of the
+//!   image along the axis the field of view `φ` is measured on ([`FovAxis`]: vertical,
+//!   horizontal, or the course's diagonal, the radius of the circle containing the image).
+//!   With pixels of physical size `pixel_width × pixel_height` (the TIPE's `r_x`, `r_y`), `r` is
+//!   in those physical units and the focal lengths in pixels are `f_x = d / pixel_width`,
+//!   `f_y = d / pixel_height`.
+//!
+//! ## Numeric contract
+//! Set-up only (runs once per camera change): `u64`/`u128` intermediates and divisions are
+//! used freely. Basis vectors are [`Linear`](super::fixed::Linear) (2^-24). Focal lengths and the
+//! principal point are I16F16 pixels; `f < 32 768` pixels (a field of view of 60° on a
+//! 240-row screen gives `f_y = 207.85`). Image extents in physical units (`width·pixel_width`,
+//! `height·pixel_height`) must be at most 2^20. Everything out of range is a [`CameraError`].
+
+use super::fixed::{Coord, LINEAR_FRAC};
+use super::isqrt::isqrt_u64;
+use super::matrix::Affine3;
+use super::trig::{sin_cos_bits, Angle};
+use super::vector::{unit_bits, Vec3};
+
+/// What went wrong building a camera.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CameraError {
+    /// The view direction (or `target − position`) is the zero vector.
+    ZeroViewDirection,
+    /// The approximate up vector is zero or parallel to the view direction.
+    UpParallelToView,
+    /// The field of view is not strictly between 0 and half a turn.
+    FovOutOfRange,
+    /// The field of view is so narrow that a focal length reaches 32 768 pixels.
+    FocalTooLong,
+    /// Zero width, height or pixel size, or an image extent above 2^20 physical units.
+    BadViewport,
+    /// Not `0 < near < far`.
+    BadDepthRange,
+    /// A derived position or distance leaves the I16F16 range.
+    OutOfRange,
+}
+
+/// Which extent of the image the field of view spans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum FovAxis {
+    /// Top to bottom (SCENES.md's convention).
+    #[default]
+    Vertical,
+    /// Left to right.
+    Horizontal,
+    /// Corner to corner: the course's `r`, radius of the circle containing the image.
+    Diagonal,
+}
+
+/// The lens: field of view and the depth range.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Lens {
+    /// Full field of view `φ`, strictly between 0 and half a turn.
+    pub fov: Angle,
+    /// The extent `φ` spans.
+    pub axis: FovAxis,
+    /// Near plane distance (`z = near`, observer frame), `> 0`.
+    pub near: Coord,
+    /// Far plane distance, `> near`.
+    pub far: Coord,
+}
+
+/// The screen: size in pixels, principal point, pixel shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Viewport {
+    /// Width in pixels.
+    pub width: u16,
+    /// Height in pixels.
+    pub height: u16,
+    /// Principal point `i0` (where the optical axis meets the screen), in pixels (I16F16).
+    pub principal_x: Coord,
+    /// Principal point `j0`, in pixels, rows growing downward.
+    pub principal_y: Coord,
+    /// Physical pixel width `r_x` (any unit shared with `pixel_height`).
+    pub pixel_width: u16,
+    /// Physical pixel height `r_y`.
+    pub pixel_height: u16,
+}
+
+impl Viewport {
+    /// `width × height` square pixels with the principal point at the picture's centre,
+    /// `((width − 1)/2, (height − 1)/2)` (pixel-centred sampling on lattice pixels).
+    pub fn new(width: u16, height: u16) -> Viewport {
+        let half = |n: u16| Coord::from_bits(((n as i32 - 1) << 16) / 2);
+        Viewport {
+            width,
+            height,
+            principal_x: half(width),
+            principal_y: half(height),
+            pixel_width: 1,
+            pixel_height: 1,
+        }
+    }
+}
+
+/// The observer: position, basis, focal lengths and screen (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Camera {
+    position: Vec3,
+    view: Affine3,
+    focal_x: i32,
+    focal_y: i32,
+    viewport: Viewport,
+    lens: Lens,
+}
+
+/// Physical half-extent of the image along `axis` in Q16, checked.
+fn half_extent_q16(axis: FovAxis, vp: &Viewport) -> Result<u64, CameraError> {
+    let w = vp.width as u64 * vp.pixel_width as u64;
+    let h = vp.height as u64 * vp.pixel_height as u64;
+    if w == 0 || h == 0 || w > 1 << 20 || h > 1 << 20 {
+        return Err(CameraError::BadViewport);
+    }
+    Ok(match axis {
+        FovAxis::Vertical => h << 15,
+        FovAxis::Horizontal => w << 15,
+        // √(w² + h²)/2: the sum is ≤ 2^41, shifted by 22 stays < 2^64; the root is in Q11.
+        FovAxis::Diagonal => (isqrt_u64((w * w + h * h) << 22) as u64) << 4,
+    })
+}
+
+impl Camera {
+    /// The observer at `position` looking along `view_dir` with approximate up `up`
+    /// (course §3.5), with the given lens and screen.
+    pub fn new(
+        position: Vec3,
+        view_dir: Vec3,
+        up: Vec3,
+        lens: Lens,
+        viewport: Viewport,
+    ) -> Result<Camera, CameraError> {
+        let wide = |v: Vec3| {
+            let b = v.bits();
+            [b[0] as i64, b[1] as i64, b[2] as i64]
+        };
+        let u = unit_bits(wide(view_dir), LINEAR_FRAC).ok_or(CameraError::ZeroViewDirection)?;
+        let vp = unit_bits(wide(up), LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
+        let (u64v, vp64) = (u.map(|c| c as i64), vp.map(|c| c as i64));
+        // U·V' in Q48, then V' − (U·V')U in Q48.
+        let d: i64 = (0..3).map(|i| u64v[i] * vp64[i]).sum();
+        let d24 = d >> LINEAR_FRAC;
+        let vw: [i64; 3] = core::array::from_fn(|i| (vp64[i] << LINEAR_FRAC) - d24 * u64v[i]);
+        // Reject |V' − (U·V')U| < 2^-10 (V' within ~0.06° of ±U).
+        let len2: u64 = vw.iter().map(|c| ((c.unsigned_abs()) >> 24).pow(2)).sum();
+        if len2 < 1 << 28 {
+            return Err(CameraError::UpParallelToView);
+        }
+        let v = unit_bits(vw, LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
+        let v64 = v.map(|c| c as i64);
+        // W = U × V (Q48).
+        let ww = [
+            u64v[1] * v64[2] - u64v[2] * v64[1],
+            u64v[2] * v64[0] - u64v[0] * v64[2],
+            u64v[0] * v64[1] - u64v[1] * v64[0],
+        ];
+        let w = unit_bits(ww, LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
+        let rot = Affine3::from_bits([w, v, u], Vec3::ZERO).map_err(|_| CameraError::OutOfRange)?;
+        let t = rot.transform_vector(position);
+        // The translation is −R·Ω; refuse positions whose observer-frame image saturated.
+        if t.bits().iter().any(|&c| c == i32::MAX || c == i32::MIN) {
+            return Err(CameraError::OutOfRange);
+        }
+        let view = Affine3::translation(t.neg())
+            .mul(&rot)
+            .map_err(|_| CameraError::OutOfRange)?;
+
+        if lens.near.to_bits() <= 0 || lens.far <= lens.near {
+            return Err(CameraError::BadDepthRange);
+        }
+        if lens.fov.0 == 0 || lens.fov.0 >= 1 << 31 {
+            return Err(CameraError::FovOutOfRange);
+        }
+        if viewport.pixel_width == 0 || viewport.pixel_height == 0 {
+            return Err(CameraError::BadViewport);
+        }
+        let r = half_extent_q16(lens.axis, &viewport)?;
+        let (s, c) = sin_cos_bits(lens.fov.half());
+        if s <= 0 {
+            return Err(CameraError::FocalTooLong);
+        }
+        // d = r·cos/sin in Q16 physical units (u128: r < 2^37, cos ≤ 2^30).
+        let d = (r as u128 * c as u128 + s as u128 / 2) / s as u128;
+        let fx = (d + viewport.pixel_width as u128 / 2) / viewport.pixel_width as u128;
+        let fy = (d + viewport.pixel_height as u128 / 2) / viewport.pixel_height as u128;
+        if fx > i32::MAX as u128 || fy > i32::MAX as u128 {
+            return Err(CameraError::FocalTooLong);
+        }
+        if fx == 0 || fy == 0 {
+            return Err(CameraError::FovOutOfRange);
+        }
+        Ok(Camera {
+            position,
+            view,
+            focal_x: fx as i32,
+            focal_y: fy as i32,
+            viewport,
+            lens,
+        })
+    }
+
+    /// The observer at `position` looking at `target`, with approximate up `up`.
+    pub fn look_at(
+        position: Vec3,
+        target: Vec3,
+        up: Vec3,
+        lens: Lens,
+        viewport: Viewport,
+    ) -> Result<Camera, CameraError> {
+        let dir = target.sub(position);
+        if target
+            .bits()
+            .iter()
+            .zip(position.bits())
+            .any(|(a, b)| (*a as i64 - b as i64).abs() > i32::MAX as i64)
+        {
+            return Err(CameraError::OutOfRange);
+        }
+        Camera::new(position, dir, up, lens, viewport)
+    }
+
+    /// Course exercise 5: the observer looking along `view_dir` at a bounding sphere
+    /// (`centre`, `radius`), placed at the smallest distance where the whole sphere is inside
+    /// the picture: its silhouette touches the screen edge nearest to the principal point.
+    /// Returns the camera and that distance.
+    pub fn framing_sphere(
+        centre: Vec3,
+        radius: Coord,
+        view_dir: Vec3,
+        up: Vec3,
+        lens: Lens,
+        viewport: Viewport,
+    ) -> Result<(Camera, Coord), CameraError> {
+        // A provisional camera gives the focal lengths and validates everything else.
+        let probe = Camera::new(centre, view_dir, up, lens, viewport)?;
+        let r = radius.to_bits();
+        if r < 0 {
+            return Err(CameraError::OutOfRange);
+        }
+        let half = 1i64 << 15;
+        let px = viewport.principal_x.to_bits() as i64;
+        let py = viewport.principal_y.to_bits() as i64;
+        // Screen covers [-0.5, W - 0.5] around lattice pixels.
+        let ex = (px + half).min(((viewport.width as i64) << 16) - half - px);
+        let ey = (py + half).min(((viewport.height as i64) << 16) - half - py);
+        if ex <= 0 || ey <= 0 {
+            return Err(CameraError::BadViewport);
+        }
+        // D = R·√(e² + f²)/e for each axis (sin α = e/√(e² + f²)); keep the larger.
+        let dist = |e: i64, f: i32| -> u64 {
+            let e = e.min(i32::MAX as i64) as u64;
+            let hyp = isqrt_u64(e * e + (f as u64) * (f as u64)) as u64; // Q16, < 2^32
+            (r as u64 * hyp + e / 2) / e // < 2^63
+        };
+        let d = dist(ex, probe.focal_x).max(dist(ey, probe.focal_y));
+        let d = i32::try_from(d).map_err(|_| CameraError::OutOfRange)?;
+        let u = probe.forward();
+        let back = u.scale(Coord::from_bits(d));
+        let eye = [0, 1, 2].map(|i| centre.bits()[i] as i64 - back.bits()[i] as i64);
+        let eye = eye.map(i32::try_from);
+        let eye = match eye {
+            [Ok(x), Ok(y), Ok(z)] => Vec3::from_bits(x, y, z),
+            _ => return Err(CameraError::OutOfRange),
+        };
+        Ok((
+            Camera::new(eye, view_dir, up, lens, viewport)?,
+            Coord::from_bits(d),
+        ))
+    }
+
+    /// The world → observer transform (rows `W`, `V`, `U`; translation `−R·Ω`).
+    pub fn view_transform(&self) -> &Affine3 {
+        &self.view
+    }
+
+    /// A world point in observer coordinates (see [`Affine3::transform_point`] for rounding).
+    pub fn to_observer(&self, p: Vec3) -> Vec3 {
+        self.view.transform_point(p)
+    }
+
+    /// `Ω`, the observer's position.
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+
+    fn row(&self, i: usize) -> Vec3 {
+        let r = self.view.linear_bits()[i];
+        let f = |c: i32| super::fixed::shr_round(c as i64, LINEAR_FRAC - 16) as i32;
+        Vec3::from_bits(f(r[0]), f(r[1]), f(r[2]))
+    }
+
+    /// `W`, the unit vector to the viewer's right (I16F16).
+    pub fn right(&self) -> Vec3 {
+        self.row(0)
+    }
+
+    /// `V`, the unit up vector (I16F16).
+    pub fn up(&self) -> Vec3 {
+        self.row(1)
+    }
+
+    /// `U`, the unit view direction (I16F16).
+    pub fn forward(&self) -> Vec3 {
+        self.row(2)
+    }
+
+    /// Horizontal focal length `f_x = d / r_x` in pixels.
+    pub fn focal_x(&self) -> Coord {
+        Coord::from_bits(self.focal_x)
+    }
+
+    /// Vertical focal length `f_y = d / r_y` in pixels.
+    pub fn focal_y(&self) -> Coord {
+        Coord::from_bits(self.focal_y)
+    }
+
+    /// The screen.
+    pub fn viewport(&self) -> &Viewport {
+        &self.viewport
+    }
+
+    /// The lens.
+    pub fn lens(&self) -> &Lens {
+        &self.lens
+    }
+}
+
+/// Course exercise 5 with a circular field of view: the distance `D = R / sin(φ/2)` at which a
+/// sphere of radius `R` just fills a view cone of opening `fov`, and the eye position
+/// `centre − D·U` looking along `view_dir`. Errors for a zero direction, a field of view not
+/// strictly between 0 and half a turn, or a distance beyond I16F16.
+pub fn frame_sphere(
+    centre: Vec3,
+    radius: Coord,
+    view_dir: Vec3,
+    fov: Angle,
+) -> Result<(Vec3, Coord), CameraError> {
+    if fov.0 == 0 || fov.0 >= 1 << 31 {
+        return Err(CameraError::FovOutOfRange);
+    }
+    if radius.to_bits() < 0 {
+        return Err(CameraError::OutOfRange);
+    }
+    let (s, _) = sin_cos_bits(fov.half());
+    if s <= 0 {
+        return Err(CameraError::FovOutOfRange);
+    }
+    let d = ((radius.to_bits() as i64) << 30) / s as i64;
+    let d = i32::try_from(d).map_err(|_| CameraError::OutOfRange)?;
+    let u = view_dir.normalize().ok_or(CameraError::ZeroViewDirection)?;
+    let back = u.scale(Coord::from_bits(d));
+    let e: [i64; 3] = core::array::from_fn(|i| centre.bits()[i] as i64 - back.bits()[i] as i64);
+    match e.map(i32::try_from) {
+        [Ok(x), Ok(y), Ok(z)] => Ok((Vec3::from_bits(x, y, z), Coord::from_bits(d))),
+        _ => Err(CameraError::OutOfRange),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> Vec3 {
+        Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))
+    }
+
+    fn lens() -> Lens {
+        Lens {
+            fov: Angle::from_degrees(60),
+            axis: FovAxis::Vertical,
+            near: Coord::from_num(0.5),
+            far: Coord::from_num(10),
+        }
+    }
+
+    #[test]
+    fn scenes_camera() {
+        let cam = Camera::look_at(
+            v(0.0, 0.0, 3.0),
+            Vec3::ZERO,
+            v(0.0, 1.0, 0.0),
+            lens(),
+            Viewport::new(320, 240),
+        )
+        .unwrap();
+        assert_eq!(cam.right(), v(1.0, 0.0, 0.0));
+        assert_eq!(cam.up(), v(0.0, 1.0, 0.0));
+        assert_eq!(cam.forward(), v(0.0, 0.0, -1.0));
+        assert_eq!(cam.to_observer(Vec3::ZERO), v(0.0, 0.0, 3.0));
+        let f = 120.0 / (30.0f64.to_radians().tan());
+        assert!((cam.focal_y().to_num::<f64>() - f).abs() < 2.0 / 65536.0);
+        assert_eq!(cam.focal_x(), cam.focal_y());
+        assert_eq!(cam.viewport().principal_x, Coord::from_num(159.5));
+    }
+
+    #[test]
+    fn errors() {
+        let vp = Viewport::new(320, 240);
+        let o = Vec3::ZERO;
+        let up = v(0.0, 1.0, 0.0);
+        assert_eq!(
+            Camera::new(o, o, up, lens(), vp),
+            Err(CameraError::ZeroViewDirection)
+        );
+        assert_eq!(
+            Camera::new(o, v(0.0, 2.0, 0.0), up, lens(), vp),
+            Err(CameraError::UpParallelToView)
+        );
+        assert_eq!(
+            Camera::new(o, v(0.0, 0.0, 1.0), o, lens(), vp),
+            Err(CameraError::UpParallelToView)
+        );
+        let mut l = lens();
+        l.fov = Angle::HALF_TURN;
+        assert_eq!(
+            Camera::new(o, v(0.0, 0.0, 1.0), up, l, vp),
+            Err(CameraError::FovOutOfRange)
+        );
+        l.fov = Angle(3);
+        assert_eq!(
+            Camera::new(o, v(0.0, 0.0, 1.0), up, l, vp),
+            Err(CameraError::FocalTooLong)
+        );
+        let mut l = lens();
+        l.near = l.far;
+        assert_eq!(
+            Camera::new(o, v(0.0, 0.0, 1.0), up, l, vp),
+            Err(CameraError::BadDepthRange)
+        );
+        assert_eq!(
+            Camera::new(o, v(0.0, 0.0, 1.0), up, lens(), Viewport::new(0, 10)),
+            Err(CameraError::BadViewport)
+        );
+        let far = Vec3::from_bits(i32::MAX, i32::MIN, i32::MAX);
+        assert!(Camera::look_at(far, far.neg(), up, lens(), vp).is_err());
+    }
+}

@@ -1,0 +1,372 @@
+//! 3×4 affine transforms ([`Affine3`]): a linear part (rotation × scale) and a translation.
+//!
+//! Role in the pipeline: model → world → observer. The per-vertex work of a frame is one
+//! [`Affine3::transform_point`] with the composed model-view transform.
+//!
+//! ## Conventions
+//! Column vectors: `p' = M·p + t`. [`Affine3::mul`]`(a, b)` is the matrix product `a·b`, which
+//! applies `b` first; [`Affine3::then`] reads in application order. Rotations follow the
+//! right-hand rule: a positive angle turns counter-clockwise when looking down the axis toward
+//! the origin (SCENES.md's convention).
+//!
+//! ## Numeric contract
+//! - The linear part is [`Linear`] (I8F24, raw `i32`, resolution 2^-24 ≈ 6·10^-8: unit
+//!   vectors and rotations to about 7 decimal digits). Every constructor keeps `|entry| ≤ 64`
+//!   (raw `≤ 2^30`); larger entries are [`MatrixError::OutOfRange`].
+//! - The translation is a [`Vec3`] (I16F16).
+//! - [`transform_point`](Affine3::transform_point): three products `|m·p| ≤ 2^30·2^31 = 2^61`
+//!   plus the translation `t·2^24 ≤ 2^55` stay below `2^63` in `i64`; the Q40 sum is rounded to
+//!   Q16 and **saturated** to the `i32` range (points that leave ±32 768 units clamp there).
+//! - [`mul`](Affine3::mul): entries are sums of three `Q24·Q24` products (`≤ 3·2^60`); results
+//!   outside the ranges above are [`MatrixError::OutOfRange`], never wrapped.
+
+use super::fixed::{saturate_i32, shr_round, Coord, Linear, LINEAR_FRAC};
+use super::trig::{sin_cos_bits, Angle};
+use super::vector::{unit_bits, Vec3};
+
+/// Largest raw linear entry (`64.0` in I8F24).
+pub const MAX_LINEAR_BITS: i32 = 1 << 30;
+
+/// What went wrong building or combining a transform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MatrixError {
+    /// A linear entry would exceed ±64 or a translation would leave the I16F16 range.
+    OutOfRange,
+    /// A rotation axis was the zero vector.
+    ZeroAxis,
+    /// [`Affine3::inverse_rigid`] was given a linear part that is not a rotation (within 2^-12).
+    NotRigid,
+}
+
+/// A 3×4 affine transform: `p' = M·p + t` (see the module doc for formats and ranges).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Affine3 {
+    /// Rows of the linear part, raw I8F24, `|entry| ≤ 2^30`.
+    m: [[i32; 3]; 3],
+    /// Translation, raw I16F16.
+    t: [i32; 3],
+}
+
+const ONE: i32 = 1 << LINEAR_FRAC;
+
+impl Default for Affine3 {
+    fn default() -> Self {
+        Affine3::IDENTITY
+    }
+}
+
+impl Affine3 {
+    /// The identity transform.
+    pub const IDENTITY: Affine3 = Affine3 {
+        m: [[ONE, 0, 0], [0, ONE, 0], [0, 0, ONE]],
+        t: [0, 0, 0],
+    };
+
+    /// The transform with linear rows `rows` (raw I8F24) and translation `t`; entries beyond
+    /// ±64 are [`MatrixError::OutOfRange`].
+    pub fn from_bits(rows: [[i32; 3]; 3], t: Vec3) -> Result<Affine3, MatrixError> {
+        if rows
+            .iter()
+            .flatten()
+            .any(|&e| e.unsigned_abs() > MAX_LINEAR_BITS as u32)
+        {
+            return Err(MatrixError::OutOfRange);
+        }
+        Ok(Affine3 {
+            m: rows,
+            t: t.bits(),
+        })
+    }
+
+    /// The transform with linear rows `rows` and translation `t` (checked like [`from_bits`](Affine3::from_bits)).
+    pub fn from_parts(rows: [[Linear; 3]; 3], t: Vec3) -> Result<Affine3, MatrixError> {
+        Affine3::from_bits(rows.map(|r| r.map(Linear::to_bits)), t)
+    }
+
+    /// Raw I8F24 rows of the linear part.
+    pub const fn linear_bits(&self) -> [[i32; 3]; 3] {
+        self.m
+    }
+
+    /// Entry `(row, col)` of the linear part (indices taken modulo 3).
+    pub fn entry(&self, row: usize, col: usize) -> Linear {
+        Linear::from_bits(self.m[row % 3][col % 3])
+    }
+
+    /// The translation.
+    pub const fn translation_part(&self) -> Vec3 {
+        Vec3::from_bits(self.t[0], self.t[1], self.t[2])
+    }
+
+    /// The translation by `t`.
+    pub const fn translation(t: Vec3) -> Affine3 {
+        Affine3 {
+            m: Affine3::IDENTITY.m,
+            t: t.bits(),
+        }
+    }
+
+    /// Scaling by `(sx, sy, sz)` about the origin; factors beyond ±64 are an error.
+    pub fn scale3(sx: Coord, sy: Coord, sz: Coord) -> Result<Affine3, MatrixError> {
+        let f = |s: Coord| (s.to_bits() as i64) << (LINEAR_FRAC - 16);
+        let (x, y, z) = (f(sx), f(sy), f(sz));
+        if [x, y, z]
+            .iter()
+            .any(|v| v.unsigned_abs() > MAX_LINEAR_BITS as u64)
+        {
+            return Err(MatrixError::OutOfRange);
+        }
+        Ok(Affine3 {
+            m: [[x as i32, 0, 0], [0, y as i32, 0], [0, 0, z as i32]],
+            t: [0; 3],
+        })
+    }
+
+    /// Uniform scaling by `s` about the origin; `|s| > 64` is an error.
+    pub fn scale(s: Coord) -> Result<Affine3, MatrixError> {
+        Affine3::scale3(s, s, s)
+    }
+
+    fn trig24(a: Angle) -> (i32, i32) {
+        let (s, c) = sin_cos_bits(a);
+        let r = |v: i32| shr_round(v as i64, 30 - LINEAR_FRAC) as i32;
+        (r(s), r(c))
+    }
+
+    /// Rotation by `a` about the x axis: `y' = c·y − s·z`, `z' = s·y + c·z`.
+    pub fn rotation_x(a: Angle) -> Affine3 {
+        let (s, c) = Affine3::trig24(a);
+        Affine3 {
+            m: [[ONE, 0, 0], [0, c, -s], [0, s, c]],
+            t: [0; 3],
+        }
+    }
+
+    /// Rotation by `a` about the y axis: `z' = c·z − s·x`, `x' = s·z + c·x`.
+    pub fn rotation_y(a: Angle) -> Affine3 {
+        let (s, c) = Affine3::trig24(a);
+        Affine3 {
+            m: [[c, 0, s], [0, ONE, 0], [-s, 0, c]],
+            t: [0; 3],
+        }
+    }
+
+    /// Rotation by `a` about the z axis: `x' = c·x − s·y`, `y' = s·x + c·y`.
+    pub fn rotation_z(a: Angle) -> Affine3 {
+        let (s, c) = Affine3::trig24(a);
+        Affine3 {
+            m: [[c, -s, 0], [s, c, 0], [0, 0, ONE]],
+            t: [0; 3],
+        }
+    }
+
+    /// Rotation by `a` about the axis through the origin along `axis` (any length; it is
+    /// normalised here, in 30-bit precision): Rodrigues' `R = c·I + s·[k]× + (1 − c)·k·kᵀ`.
+    pub fn rotation_axis(axis: Vec3, a: Angle) -> Result<Affine3, MatrixError> {
+        let b = axis.bits();
+        let k =
+            unit_bits([b[0] as i64, b[1] as i64, b[2] as i64], 30).ok_or(MatrixError::ZeroAxis)?;
+        let (s, c) = sin_cos_bits(a);
+        let (s, c) = (s as i64, c as i64); // Q30
+        let k = k.map(|v| v as i64); // Q30
+        let omc = (1i64 << 30) - c; // Q30, in [0, 2^31]
+        let mut m = [[0i32; 3]; 3];
+        for (i, row) in m.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                // (1 − c)·k_i·k_j: (k_i·k_j >> 30) ≤ 2^30, times omc ≤ 2^31 → ≤ 2^61.
+                let mut v = (omc * ((k[i] * k[j]) >> 30)) >> 30;
+                if i == j {
+                    v += c;
+                }
+                // s·[k]×: row i, col j = −s·ε_ijl·k_l
+                let cross = match (i, j) {
+                    (0, 1) => -k[2],
+                    (0, 2) => k[1],
+                    (1, 0) => k[2],
+                    (1, 2) => -k[0],
+                    (2, 0) => -k[1],
+                    (2, 1) => k[0],
+                    _ => 0,
+                };
+                v += (s * cross) >> 30;
+                *e = shr_round(v, 30 - LINEAR_FRAC) as i32; // |v| ≤ 2^30·(1 + small) → fits
+            }
+        }
+        Ok(Affine3 { m, t: [0; 3] })
+    }
+
+    /// The product `self · rhs` (applies `rhs` first), or [`MatrixError::OutOfRange`].
+    pub fn mul(&self, rhs: &Affine3) -> Result<Affine3, MatrixError> {
+        let mut m = [[0i32; 3]; 3];
+        for (i, row) in m.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                let mut acc = 0i64;
+                for k in 0..3 {
+                    acc += self.m[i][k] as i64 * rhs.m[k][j] as i64; // ≤ 2^60 each
+                }
+                let v = shr_round(acc, LINEAR_FRAC);
+                if v.unsigned_abs() > MAX_LINEAR_BITS as u64 {
+                    return Err(MatrixError::OutOfRange);
+                }
+                *e = v as i32;
+            }
+        }
+        let mut t = [0i32; 3];
+        for (i, ti) in t.iter_mut().enumerate() {
+            let mut acc = (self.t[i] as i64) << LINEAR_FRAC; // ≤ 2^55
+            for k in 0..3 {
+                acc += self.m[i][k] as i64 * rhs.t[k] as i64; // ≤ 2^61
+            }
+            let v = shr_round(acc, LINEAR_FRAC);
+            *ti = i32::try_from(v).map_err(|_| MatrixError::OutOfRange)?;
+        }
+        Ok(Affine3 { m, t })
+    }
+
+    /// `next ∘ self`: the transform that applies `self`, then `next`.
+    pub fn then(&self, next: &Affine3) -> Result<Affine3, MatrixError> {
+        next.mul(self)
+    }
+
+    /// `M·p + t`, rounded to nearest, saturating to the I16F16 range (see the module doc).
+    #[inline]
+    pub fn transform_point(&self, p: Vec3) -> Vec3 {
+        let p = p.bits();
+        let row = |i: usize| {
+            let r = &self.m[i];
+            let acc = ((self.t[i] as i64) << LINEAR_FRAC)
+                + r[0] as i64 * p[0] as i64
+                + r[1] as i64 * p[1] as i64
+                + r[2] as i64 * p[2] as i64;
+            saturate_i32(shr_round(acc, LINEAR_FRAC))
+        };
+        Vec3::from_bits(row(0), row(1), row(2))
+    }
+
+    /// `M·v` (no translation), rounded to nearest, saturating.
+    pub fn transform_vector(&self, v: Vec3) -> Vec3 {
+        Affine3 {
+            m: self.m,
+            t: [0; 3],
+        }
+        .transform_point(v)
+    }
+
+    /// The inverse of a rigid transform (rotation + translation): `p = Rᵀ·(p' − t)`.
+    /// [`MatrixError::NotRigid`] unless `R·Rᵀ = I` within 2^-12 per entry;
+    /// [`MatrixError::OutOfRange`] if the new translation leaves the I16F16 range.
+    pub fn inverse_rigid(&self) -> Result<Affine3, MatrixError> {
+        for i in 0..3 {
+            for j in 0..3 {
+                let mut acc = 0i64;
+                for k in 0..3 {
+                    acc += self.m[i][k] as i64 * self.m[j][k] as i64; // Q48
+                }
+                let expect = if i == j { 1i64 << 48 } else { 0 };
+                if (acc - expect).abs() > 1 << 36 {
+                    return Err(MatrixError::NotRigid);
+                }
+            }
+        }
+        let mut m = [[0i32; 3]; 3];
+        for (i, row) in m.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                *e = self.m[j][i];
+            }
+        }
+        let mut t = [0i32; 3];
+        for (i, ti) in t.iter_mut().enumerate() {
+            let acc: i64 =
+                -(m[i].iter().zip(self.t).map(|(&a, b)| a as i64 * b as i64)).sum::<i64>();
+            *ti =
+                i32::try_from(shr_round(acc, LINEAR_FRAC)).map_err(|_| MatrixError::OutOfRange)?;
+        }
+        Ok(Affine3 { m, t })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> Vec3 {
+        Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))
+    }
+
+    fn close(a: Vec3, b: Vec3, tol: i32) -> bool {
+        let (a, b) = (a.bits(), b.bits());
+        (0..3).all(|i| (a[i] - b[i]).abs() <= tol)
+    }
+
+    #[test]
+    fn rotations_follow_the_right_hand_rule() {
+        let q = Angle::QUARTER_TURN;
+        assert_eq!(
+            Affine3::rotation_z(q).transform_point(v(1.0, 0.0, 0.0)),
+            v(0.0, 1.0, 0.0)
+        );
+        assert_eq!(
+            Affine3::rotation_x(q).transform_point(v(0.0, 1.0, 0.0)),
+            v(0.0, 0.0, 1.0)
+        );
+        assert_eq!(
+            Affine3::rotation_y(q).transform_point(v(0.0, 0.0, 1.0)),
+            v(1.0, 0.0, 0.0)
+        );
+    }
+
+    #[test]
+    fn axis_rotation_matches_principal_axes() {
+        for deg in [0, 17, 90, 123, 200, 359] {
+            let a = Angle::from_degrees(deg);
+            for (axis, r) in [
+                (v(1.0, 0.0, 0.0), Affine3::rotation_x(a)),
+                (v(0.0, 2.0, 0.0), Affine3::rotation_y(a)),
+                (v(0.0, 0.0, -0.5), Affine3::rotation_z(-a)),
+            ] {
+                let g = Affine3::rotation_axis(axis, a).unwrap();
+                for i in 0..3 {
+                    for j in 0..3 {
+                        assert!((g.m[i][j] - r.m[i][j]).abs() <= 2, "{deg} {i}{j}");
+                    }
+                }
+            }
+        }
+        assert_eq!(
+            Affine3::rotation_axis(Vec3::ZERO, Angle(1)),
+            Err(MatrixError::ZeroAxis)
+        );
+    }
+
+    #[test]
+    fn composition_and_rigid_inverse() {
+        let r = Affine3::rotation_axis(v(1.0, 2.0, -3.0), Angle::from_degrees(40)).unwrap();
+        let t = Affine3::translation(v(3.0, -1.5, 7.25));
+        let m = t.mul(&r).unwrap();
+        assert_eq!(m, r.then(&t).unwrap());
+        let inv = m.inverse_rigid().unwrap();
+        let p = v(0.3, -5.0, 2.0);
+        let back = inv.transform_point(m.transform_point(p));
+        assert!(close(back, p, 2), "{back:?}");
+        assert!(close(inv.mul(&m).unwrap().transform_point(p), p, 2));
+        let s = Affine3::scale(Coord::from_num(2)).unwrap();
+        assert_eq!(s.inverse_rigid(), Err(MatrixError::NotRigid));
+        assert_eq!(s.transform_point(p), v(0.6, -10.0, 4.0));
+    }
+
+    #[test]
+    fn extremes_are_errors_or_saturate() {
+        assert_eq!(
+            Affine3::scale(Coord::from_num(65)),
+            Err(MatrixError::OutOfRange)
+        );
+        let s = Affine3::scale(Coord::from_num(64)).unwrap();
+        assert_eq!(s.mul(&s), Err(MatrixError::OutOfRange));
+        let big = Vec3::from_bits(i32::MAX, i32::MIN, i32::MAX);
+        let p = s.transform_point(big);
+        assert_eq!(p, Vec3::from_bits(i32::MAX, i32::MIN, i32::MAX));
+        let t = Affine3::translation(big);
+        assert_eq!(t.mul(&t), Err(MatrixError::OutOfRange));
+        assert!(Affine3::from_bits([[i32::MAX, 0, 0], [0; 3], [0; 3]], Vec3::ZERO).is_err());
+    }
+}
