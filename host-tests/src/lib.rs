@@ -9,3 +9,4 @@
 pub mod cli;
 pub mod image;
 pub mod reference;
+pub mod scenes;

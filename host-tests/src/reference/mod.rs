@@ -1,3 +1,4 @@
 //! Reference implementations, independent of the production code, used by the tests.
 
 pub mod exact_fill;
+pub mod float_render;
