@@ -14,6 +14,8 @@ enum Command {
     Lines(zscan_host::cli::lines::LinesArgs),
     /// Print the covered spans of polygons read as text.
     Spans(zscan_host::cli::spans::SpansArgs),
+    /// Count instructions of the benchmark cases on the host and Cortex-M (docs/BENCHMARKS.md).
+    Bench(zscan_host::cli::bench::BenchArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -21,6 +23,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Lines(a) => zscan_host::cli::lines::run(a),
         Command::Spans(a) => zscan_host::cli::spans::run(a),
+        Command::Bench(a) => zscan_host::cli::bench::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

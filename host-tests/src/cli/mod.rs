@@ -1,6 +1,7 @@
 //! Subcommands of the `zscan` tool, one module each. Every `run` returns a descriptive error
 //! string on bad input instead of panicking.
 
+pub mod bench;
 pub mod lines;
 pub mod spans;
 

@@ -1,0 +1,464 @@
+//! `zscan bench`: instruction counts of the shared benchmark cases (`benches/cases.rs`) on the
+//! host (valgrind's callgrind) and on a Cortex-M4 (QEMU `mps2-an386` with the `qemu-icount`
+//! plugin of `tools/qemu-icount`), optionally a Cortex-M0 (QEMU `microbit`, RAM enlarged),
+//! printed side by side. Figures are *instructions*, not cycles. See docs/BENCHMARKS.md.
+//!
+//! Every count is the measured call minus the `empty` case (the harness overhead), so it is
+//! the case function's own work. Framebuffer checksums must agree across platforms; a
+//! mismatch is an error.
+//!
+//! Run it from a release build: `cargo run --release -p zscan-host --bin zscan -- bench`
+//! (or `scripts/bench.sh`). It builds the firmware and the plugin with cargo unless
+//! `--no-build` is given.
+use super::CliError;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use zscan::target::Framebuffer;
+
+/// The benchmark cases, the same source file the Cortex-M example includes.
+#[path = "../../../benches/cases.rs"]
+pub mod cases;
+
+/// Arguments of `zscan bench`.
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    /// Only print each case's pixel count and framebuffer checksum (no measurement), in the
+    /// firmware's line format without the SysTick field.
+    #[arg(long)]
+    pub checksums: bool,
+    /// Skip the host (callgrind) column.
+    #[arg(long)]
+    pub no_host: bool,
+    /// Skip the Cortex-M4 (QEMU mps2-an386) column.
+    #[arg(long)]
+    pub no_m4: bool,
+    /// Add a Cortex-M0 column (QEMU microbit with 4 MB of RAM, which no real nRF51 has).
+    #[arg(long)]
+    pub m0: bool,
+    /// Use the existing firmware and plugin builds instead of running cargo.
+    #[arg(long)]
+    pub no_build: bool,
+    /// Internal: run one case between the host markers (what callgrind measures).
+    #[arg(long, hide = true)]
+    pub run_case: Option<String>,
+}
+
+/// The host's measured region: callgrind collects exactly the calls of this function
+/// (`--toggle-collect=zscan_bench_host_region`). Kept out of line and unmangled so its symbol
+/// is stable.
+#[no_mangle]
+#[inline(never)]
+pub fn zscan_bench_host_region(
+    run: fn(&mut Framebuffer<'_>) -> u32,
+    fb: &mut Framebuffer<'_>,
+) -> u32 {
+    run(fb)
+}
+
+/// Draws `case` on a cleared frame the way the firmware does (warm-up call, clear, measured
+/// call); returns the pixels reported and the framebuffer checksum.
+pub fn run_case(case: &cases::Case) -> (u32, u32) {
+    let mut pixels = vec![0u8; cases::FB_LEN];
+    let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT)
+        .expect("the buffer has the cases' size");
+    fb.clear(0);
+    std::hint::black_box((case.run)(std::hint::black_box(&mut fb)));
+    fb.clear(0);
+    let run = std::hint::black_box(case.run);
+    let px = zscan_bench_host_region(run, std::hint::black_box(&mut fb));
+    drop(fb);
+    (px, cases::fnv1a(&pixels))
+}
+
+/// One platform's figures: raw instruction count per case index (harness overhead included).
+#[derive(Debug, Default, Clone)]
+struct Column {
+    raw: Vec<u64>,
+    checksums: Vec<Option<u32>>,
+}
+
+impl Column {
+    fn net(&self, i: usize) -> Option<u64> {
+        Some(self.raw.get(i)?.saturating_sub(*self.raw.first()?))
+    }
+}
+
+/// Runs `zscan bench`.
+pub fn run(args: BenchArgs) -> Result<(), CliError> {
+    if let Some(name) = &args.run_case {
+        let case = find_case(name)?;
+        let (px, sum) = run_case(case);
+        println!(
+            "zscan-bench case {} pixels={px} checksum={sum:08x}",
+            case.name
+        );
+        return Ok(());
+    }
+    let host_sums: Vec<(u32, u32)> = cases::CASES.iter().map(run_case).collect();
+    if args.checksums {
+        for (case, (px, sum)) in cases::CASES.iter().zip(&host_sums) {
+            println!(
+                "zscan-bench case {} pixels={px} checksum={sum:08x}",
+                case.name
+            );
+        }
+        return Ok(());
+    }
+    if cfg!(debug_assertions) {
+        eprintln!(
+            "zscan bench: warning: a debug build; run with --release for meaningful host figures"
+        );
+    }
+    let root = workspace_root();
+    let host = if args.no_host {
+        None
+    } else {
+        Some(host_column()?)
+    };
+    let mut arm = Vec::new();
+    if !args.no_build && (!args.no_m4 || args.m0) {
+        build_plugin(&root)?;
+    }
+    if !args.no_m4 {
+        arm.push((
+            "Cortex-M4",
+            qemu_column(&root, Board::Mps2An386, !args.no_build)?,
+        ));
+    }
+    if args.m0 {
+        arm.push((
+            "Cortex-M0",
+            qemu_column(&root, Board::Microbit, !args.no_build)?,
+        ));
+    }
+
+    // Checksums: every platform must draw the same pixels.
+    let mut mismatches = Vec::new();
+    for (label, col) in &arm {
+        for (i, case) in cases::CASES.iter().enumerate() {
+            if col.checksums.get(i).copied().flatten() != Some(host_sums[i].1) {
+                mismatches.push(format!("{} on {label}", case.name));
+            }
+        }
+    }
+
+    print_table(&host_sums, host.as_ref(), &arm);
+    if !mismatches.is_empty() {
+        return Err(format!(
+            "framebuffer checksums differ from the host's: {}",
+            mismatches.join(", ")
+        )
+        .into());
+    }
+    Ok(())
+}
+
+fn find_case(name: &str) -> Result<&'static cases::Case, CliError> {
+    cases::CASES.iter().find(|c| c.name == name).ok_or_else(|| {
+        let names: Vec<_> = cases::CASES.iter().map(|c| c.name).collect();
+        format!("no case {name:?}; cases: {}", names.join(", ")).into()
+    })
+}
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("host-tests has a parent")
+        .to_path_buf()
+}
+
+fn target_dir(root: &Path) -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("target"))
+}
+
+fn run_checked(cmd: &mut Command) -> Result<std::process::Output, CliError> {
+    let out = cmd
+        .output()
+        .map_err(|e| format!("cannot run {cmd:?}: {e}"))?;
+    if !out.status.success() {
+        return Err(format!(
+            "{cmd:?} failed ({}):\n{}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        )
+        .into());
+    }
+    Ok(out)
+}
+
+/// Host figures: one callgrind run per case, collecting only inside the host region.
+fn host_column() -> Result<Column, CliError> {
+    let exe = std::env::current_exe()?;
+    let dir = std::env::temp_dir().join(format!("zscan-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let mut col = Column::default();
+    for case in cases::CASES {
+        let out_file = dir.join(format!("callgrind.{}", case.name));
+        let out = run_checked(
+            Command::new("valgrind")
+                .arg("--tool=callgrind")
+                .arg("--collect-atstart=no")
+                .arg("--toggle-collect=zscan_bench_host_region")
+                .arg(format!("--callgrind-out-file={}", out_file.display()))
+                .arg(&exe)
+                .args(["bench", "--run-case", case.name]),
+        )
+        .map_err(|e| format!("valgrind (is it installed?): {e}"))?;
+        let text = std::fs::read_to_string(&out_file)?;
+        let total = text
+            .lines()
+            .find_map(|l| {
+                l.strip_prefix("totals:")
+                    .or_else(|| l.strip_prefix("summary:"))
+            })
+            .and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok())
+            .ok_or_else(|| format!("no totals in {}", out_file.display()))?;
+        col.raw.push(total);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        col.checksums
+            .push(parse_case_line(&stdout, case.name).map(|(_, s, _)| s));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    Ok(col)
+}
+
+/// Parses `zscan-bench case <name> pixels=<p> checksum=<hex> [systick_instructions=<n>]`.
+fn parse_case_line(text: &str, name: &str) -> Option<(u32, u32, Option<u64>)> {
+    text.lines().find_map(|l| {
+        let mut w = l.split_whitespace();
+        if w.next()? != "zscan-bench" || w.next()? != "case" || w.next()? != name {
+            return None;
+        }
+        let kv: BTreeMap<&str, &str> = w.filter_map(|f| f.split_once('=')).collect();
+        Some((
+            kv.get("pixels")?.parse().ok()?,
+            u32::from_str_radix(kv.get("checksum")?, 16).ok()?,
+            kv.get("systick_instructions").and_then(|v| v.parse().ok()),
+        ))
+    })
+}
+
+#[derive(Clone, Copy)]
+enum Board {
+    Mps2An386,
+    Microbit,
+}
+
+impl Board {
+    fn target(self) -> &'static str {
+        match self {
+            Board::Mps2An386 => "thumbv7em-none-eabihf",
+            Board::Microbit => "thumbv6m-none-eabi",
+        }
+    }
+    fn qemu_args(self) -> &'static [&'static str] {
+        match self {
+            Board::Mps2An386 => &["-machine", "mps2-an386", "-cpu", "cortex-m4"],
+            Board::Microbit => &[
+                "-machine",
+                "microbit",
+                "-global",
+                "nrf51-soc.sram-size=0x400000",
+                "-global",
+                "nrf51-soc.flash-size=0x400000",
+            ],
+        }
+    }
+}
+
+fn cargo() -> String {
+    std::env::var("CARGO").unwrap_or_else(|_| "cargo".into())
+}
+
+fn plugin_path(root: &Path) -> PathBuf {
+    target_dir(root).join("qemu-icount/release/libqemu_icount.so")
+}
+
+fn build_plugin(root: &Path) -> Result<(), CliError> {
+    eprintln!("zscan bench: building the qemu-icount plugin");
+    run_checked(
+        Command::new(cargo())
+            .current_dir(root)
+            .args([
+                "build",
+                "--release",
+                "--quiet",
+                "--manifest-path",
+                "tools/qemu-icount/Cargo.toml",
+            ])
+            .arg("--target-dir")
+            .arg(target_dir(root).join("qemu-icount")),
+    )?;
+    Ok(())
+}
+
+/// The `llvm-nm` of the rustup component `llvm-tools`.
+fn llvm_tool(tool: &str) -> Result<PathBuf, CliError> {
+    let sysroot = run_checked(Command::new("rustc").args(["--print", "sysroot"]))?;
+    let vv = run_checked(Command::new("rustc").arg("-vV"))?;
+    let host = String::from_utf8_lossy(&vv.stdout)
+        .lines()
+        .find_map(|l| l.strip_prefix("host: ").map(str::to_owned))
+        .ok_or("rustc -vV printed no host")?;
+    let p = PathBuf::from(String::from_utf8_lossy(&sysroot.stdout).trim())
+        .join("lib/rustlib")
+        .join(host)
+        .join("bin")
+        .join(tool);
+    if !p.exists() {
+        return Err(format!("{} not found: rustup component add llvm-tools", p.display()).into());
+    }
+    Ok(p)
+}
+
+fn symbol(nm_out: &str, name: &str) -> Result<u64, CliError> {
+    nm_out
+        .lines()
+        .find_map(|l| {
+            let f: Vec<_> = l.split_whitespace().collect();
+            (f.len() == 3 && f[2] == name)
+                .then(|| u64::from_str_radix(f[0], 16).ok())
+                .flatten()
+        })
+        .ok_or_else(|| format!("symbol {name} not in the firmware").into())
+}
+
+/// Cortex-M figures: one QEMU run of the firmware with the plugin.
+fn qemu_column(root: &Path, board: Board, build: bool) -> Result<Column, CliError> {
+    let target = board.target();
+    if build {
+        eprintln!("zscan bench: building the firmware for {target}");
+        run_checked(Command::new(cargo()).current_dir(root).args([
+            "build",
+            "--release",
+            "--quiet",
+            "--example",
+            "cortex_m_bench",
+            "--features",
+            "cortex-m-example",
+            "--target",
+            target,
+        ]))?;
+    }
+    let elf = target_dir(root)
+        .join(target)
+        .join("release/examples/cortex_m_bench");
+    let nm = run_checked(Command::new(llvm_tool("llvm-nm")?).arg(&elf))?;
+    let nm = String::from_utf8_lossy(&nm.stdout);
+    let begin = symbol(&nm, "zscan_bench_begin")? & !1;
+    let end = symbol(&nm, "zscan_bench_end")? & !1;
+    let plugin = plugin_path(root);
+    eprintln!("zscan bench: running {} under QEMU", elf.display());
+    let out = run_checked(
+        Command::new("timeout")
+            .args(["300", "qemu-system-arm"])
+            .args(board.qemu_args())
+            .args([
+                "-nographic",
+                "-semihosting-config",
+                "enable=on,target=native",
+                "-icount",
+                "shift=0",
+            ])
+            .arg("-kernel")
+            .arg(&elf)
+            .arg("-plugin")
+            .arg(format!(
+                "{},begin={begin:#x},end={end:#x}",
+                plugin.display()
+            )),
+    )?;
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let mut regions = Vec::new();
+    for l in stderr.lines() {
+        let f: Vec<_> = l.split_whitespace().collect();
+        if f.len() == 4 && f[0] == "qemu-icount:" && f[1] == "region" {
+            regions.push(f[3].parse::<u64>()?);
+        }
+        if f.len() == 5 && f[1] == "regions" && f[4] != "0" {
+            return Err(format!("qemu-icount reported protocol errors: {l}").into());
+        }
+    }
+    let n = cases::CASES.len();
+    if regions.len() != n + 2 {
+        return Err(format!(
+            "expected {} regions from qemu-icount, got {}:\n{stderr}",
+            n + 2,
+            regions.len()
+        )
+        .into());
+    }
+    // Self-test: the two spin loops differ by exactly 2 x 1000 instructions.
+    if regions[n + 1] - regions[n] != 2000 {
+        return Err(format!(
+            "counter self-test failed: spin regions {} and {}",
+            regions[n],
+            regions[n + 1]
+        )
+        .into());
+    }
+    let mut col = Column {
+        raw: regions[..n].to_vec(),
+        checksums: Vec::new(),
+    };
+    for case in cases::CASES {
+        col.checksums
+            .push(parse_case_line(&stdout, case.name).map(|(_, s, _)| s));
+    }
+    Ok(col)
+}
+
+fn per_px(net: Option<u64>, px: u32) -> String {
+    match net {
+        Some(n) if px > 0 => format!("{:.2}", n as f64 / px as f64),
+        _ => "-".into(),
+    }
+}
+
+fn cell(net: Option<u64>) -> String {
+    net.map_or_else(|| "-".into(), |n| n.to_string())
+}
+
+fn print_table(sums: &[(u32, u32)], host: Option<&Column>, arm: &[(&str, Column)]) {
+    let mut cols: Vec<(&str, &Column)> = Vec::new();
+    if let Some(h) = host {
+        cols.push(("host x86-64", h));
+    }
+    for (l, c) in arm {
+        cols.push((l, c));
+    }
+    println!("instructions per call (harness overhead subtracted), pixels written, instructions per pixel");
+    let mut head = format!("{:<16} {:>7}", "case", "pixels");
+    for (l, _) in &cols {
+        head += &format!(" | {:>22}", format!("{l} instr  /px"));
+    }
+    println!("{head} | checksum");
+    println!("{}", "-".repeat(head.len() + 11));
+    for (i, case) in cases::CASES.iter().enumerate() {
+        let px = sums[i].0;
+        let mut row = format!("{:<16} {:>7}", case.name, px);
+        for (_, c) in &cols {
+            row += &format!(" | {:>13} {:>8}", cell(c.net(i)), per_px(c.net(i), px));
+        }
+        println!("{row} | {:08x}", sums[i].1);
+    }
+    // A line model fitted on the two all-octant cases: per-line set-up + per-pixel cost.
+    let idx = |n: &str| cases::CASES.iter().position(|c| c.name == n);
+    if let (Some(a), Some(b)) = (idx("line_short"), idx("line_star64")) {
+        let (la, pa) = (256.0, sums[a].0 as f64);
+        let (lb, pb) = (64.0, sums[b].0 as f64);
+        for (l, c) in &cols {
+            if let (Some(na), Some(nb)) = (c.net(a), c.net(b)) {
+                // na = la*S + pa*P, nb = lb*S + pb*P.
+                let det = la * pb - lb * pa;
+                let s = (na as f64 * pb - nb as f64 * pa) / det;
+                let p = (la * nb as f64 - lb * na as f64) / det;
+                println!("line model on {l}: {s:.1} instructions per line + {p:.2} per pixel (fit of line_short and line_star64)");
+            }
+        }
+    }
+}
