@@ -1,0 +1,387 @@
+//! Sutherland–Hodgman polygon clipping in 3D (course exercise 12), against any plane
+//! `a·x + b·y + c·z + d ≥ 0` of the observer frame, and the view [`Frustum`] built from them.
+//!
+//! Role in the pipeline: after the world → observer transform and back-face culling, before
+//! [`project`](crate::project). One clipper, [`clip_to_plane`], serves every plane:
+//! - the **near** plane `z ≥ near`, which makes projection safe (no `z ≤ 0`);
+//! - the **far** plane `z ≤ far`;
+//! - four **side** planes widened to a *guard band* ([`Frustum::new`]): polygons are only cut
+//!   when they reach far outside the screen, which keeps every projected coordinate inside the
+//!   2D fill's range (`|x|, |y| ≤ 2^28 − 1` sub-pixel units) while the fill's own window
+//!   clipping does the exact cut at the screen edge. Most polygons that cross the screen edge
+//!   are therefore not clipped in 3D at all.
+//!
+//! ## Vertices and attributes
+//! A [`ClipVertex<A>`] carries its observer-frame position and `A` integer attributes
+//! (intensity, …), interpolated linearly along the edge at each intersection.
+//!
+//! ## Numeric contract
+//! - Plane coefficients `a, b, c` are [`Coord`] with `|a|, |b|, |c| ≤ 8192` (raw `≤ 2^29`),
+//!   `d` any [`Coord`]. A signed distance `a·x + b·y + c·z + d` is computed exactly in Q32
+//!   `i64`: three products `≤ 2^29·2^31 = 2^60` plus `d·2^16 < 2^47` stay below 2^63.
+//! - An intersection is always computed **from the inside endpoint** `P` toward the outside one
+//!   `Q`, so the two polygons sharing an edge get the same point (no cracks). With distances
+//!   `d_P ≥ 0 > d_Q`, both are scaled down by the same power of two until their sum is below
+//!   2^30, rounding `d_P` down and `|d_Q|` up: the parameter `t' = d_P'/(d_P' + |d_Q|')` never
+//!   exceeds the exact `t`. Each coordinate (and attribute) is `P + trunc(Δ·d_P'/den)` with
+//!   `|Δ| ≤ 2^32` and `d_P' < 2^30` (product `< 2^62`), truncated toward `P`. Hence a new vertex
+//!   lies between `P` and `Q` component-wise, and **for an axis-aligned plane such as the near
+//!   plane it is never on the outside**: clipped vertices always satisfy `z ≥ near` exactly.
+//!   For oblique planes (the side planes) it may be outside by less than one raw unit per
+//!   coordinate, which the guard band's margin absorbs.
+//! - Capacity: the output is a `heapless::Vec<_, N>`; a polygon that would need more than `N`
+//!   vertices (each plane adds at most one) is [`ClipError::CapacityExceeded`], never truncated.
+//!   Output with fewer than three vertices (a polygon that only touches the volume) is returned
+//!   empty.
+
+use heapless::Vec;
+
+use crate::geometry::camera::Camera;
+use crate::geometry::fixed::Coord;
+use crate::geometry::vector::Vec3;
+use crate::raster::edge_walker::MAX_COORD;
+
+/// A polygon vertex in the observer frame with `A` integer attributes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ClipVertex<const A: usize> {
+    /// Observer-frame position (x right, y up, z forward).
+    pub pos: Vec3,
+    /// Attributes interpolated at intersections.
+    pub attrs: [i32; A],
+}
+
+impl<const A: usize> ClipVertex<A> {
+    /// A vertex at `pos` with attributes `attrs`.
+    pub const fn new(pos: Vec3, attrs: [i32; A]) -> Self {
+        ClipVertex { pos, attrs }
+    }
+}
+
+/// What went wrong clipping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ClipError {
+    /// The input or an intermediate polygon has more vertices than the capacity `N`.
+    CapacityExceeded,
+    /// A plane coefficient `a`, `b` or `c` exceeds ±8192.
+    PlaneOutOfRange,
+}
+
+/// Largest raw plane coefficient (8192.0 in I16F16).
+pub const MAX_PLANE_COEFF_BITS: i32 = 1 << 29;
+
+/// The half-space `a·x + b·y + c·z + d ≥ 0` (inside) of the observer frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Plane {
+    a: i32,
+    b: i32,
+    c: i32,
+    d: i32,
+}
+
+impl Plane {
+    /// The plane `a·x + b·y + c·z + d ≥ 0`; `|a|, |b|, |c| ≤ 8192`.
+    pub fn new(a: Coord, b: Coord, c: Coord, d: Coord) -> Result<Plane, ClipError> {
+        let ok = |v: Coord| v.to_bits().unsigned_abs() <= MAX_PLANE_COEFF_BITS as u32;
+        if !(ok(a) && ok(b) && ok(c)) {
+            return Err(ClipError::PlaneOutOfRange);
+        }
+        Ok(Plane {
+            a: a.to_bits(),
+            b: b.to_bits(),
+            c: c.to_bits(),
+            d: d.to_bits(),
+        })
+    }
+
+    /// Signed distance (scaled by the normal's length) in Q32: `≥ 0` inside.
+    #[inline(always)]
+    pub fn distance(&self, p: Vec3) -> i64 {
+        let [x, y, z] = p.bits();
+        self.a as i64 * x as i64
+            + self.b as i64 * y as i64
+            + self.c as i64 * z as i64
+            + ((self.d as i64) << 16)
+    }
+
+    /// True when `p` is inside (distance `≥ 0`).
+    pub fn contains(&self, p: Vec3) -> bool {
+        self.distance(p) >= 0
+    }
+}
+
+/// The intersection of edge `p`–`q` with the plane, from the inside endpoint `p`
+/// (`dp ≥ 0 > dq`); see the module doc.
+fn intersect<const A: usize>(
+    p: &ClipVertex<A>,
+    q: &ClipVertex<A>,
+    dp: i64,
+    dq: i64,
+) -> ClipVertex<A> {
+    let dp = dp.unsigned_abs();
+    let dq = dq.unsigned_abs();
+    let total = dp + dq; // both < 2^63 / 2, see Plane::distance
+    let bits = 64 - total.leading_zeros();
+    let k = bits.saturating_sub(30);
+    let a = (dp >> k) as i64;
+    let b = ((dq + (1u64 << k) - 1) >> k) as i64; // ≥ 1 since dq > 0
+    let den = a + b;
+    let lerp = |from: i32, to: i32| -> i32 {
+        let delta = to as i64 - from as i64;
+        (from as i64 + delta * a / den) as i32 // between from and to
+    };
+    let pp = p.pos.bits();
+    let qq = q.pos.bits();
+    ClipVertex {
+        pos: Vec3::from_bits(lerp(pp[0], qq[0]), lerp(pp[1], qq[1]), lerp(pp[2], qq[2])),
+        attrs: core::array::from_fn(|i| lerp(p.attrs[i], q.attrs[i])),
+    }
+}
+
+/// Clips the closed polygon `input` to the inside of `plane`, appending the result to `out`
+/// (Sutherland–Hodgman, one plane). `out` is cleared first.
+pub fn clip_to_plane<const A: usize, const N: usize>(
+    plane: &Plane,
+    input: &[ClipVertex<A>],
+    out: &mut Vec<ClipVertex<A>, N>,
+) -> Result<(), ClipError> {
+    out.clear();
+    let Some(last) = input.last() else {
+        return Ok(());
+    };
+    let mut s = last;
+    let mut ds = plane.distance(s.pos);
+    for e in input {
+        let de = plane.distance(e.pos);
+        match (ds >= 0, de >= 0) {
+            (true, true) => out.push(*e).map_err(|_| ClipError::CapacityExceeded)?,
+            (true, false) => out
+                .push(intersect(s, e, ds, de))
+                .map_err(|_| ClipError::CapacityExceeded)?,
+            (false, true) => {
+                out.push(intersect(e, s, de, ds))
+                    .map_err(|_| ClipError::CapacityExceeded)?;
+                out.push(*e).map_err(|_| ClipError::CapacityExceeded)?;
+            }
+            (false, false) => {}
+        }
+        s = e;
+        ds = de;
+    }
+    Ok(())
+}
+
+/// The view volume: near, far and four guard-band side planes (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Frustum {
+    planes: [Plane; 6],
+}
+
+/// Index of the near plane in [`Frustum::planes`] (bit 0 of an outcode).
+pub const NEAR: usize = 0;
+/// Index of the far plane (bit 1).
+pub const FAR: usize = 1;
+
+impl Frustum {
+    /// The default guard factor: side planes at 4 times the screen's half-extent.
+    pub const DEFAULT_GUARD: u16 = 4;
+
+    /// The frustum of `camera`, for a projection at `S` sub-pixel bits, with side planes at
+    /// `guard` (≥ 1) times the larger distance from the principal point to a screen edge.
+    ///
+    /// The guard extent is capped at half of what the raster's range leaves at `S` bits
+    /// (`(2^28 − 1)/2^S` pixels minus the principal point), so that projected guard-band
+    /// vertices stay inside the range with a wide margin for rounding.
+    pub fn new<const S: u32>(camera: &Camera, guard: u16) -> Result<Frustum, ClipError> {
+        let lens = camera.lens();
+        let vp = camera.viewport();
+        let guard = guard.max(1) as i64;
+        let one = Coord::from_bits(1 << 16);
+        let zero = Coord::ZERO;
+        // Extents in Q16 pixels.
+        let half = 1i64 << 15;
+        let side = |p: Coord, n: u16, f: Coord| -> Coord {
+            let p = p.to_bits() as i64;
+            let e = (p + half).max(((n as i64) << 16) - half - p).max(1 << 16);
+            let range = ((MAX_COORD as i64) >> S.min(16)) << 16; // Q16 pixels
+            let cap = ((range - p.abs()) / 2).max(1 << 16);
+            let g = (e * guard).min(cap);
+            // c = g / f in Q16, rounded down (a slightly narrower band is always safe).
+            let c = (g << 16) / (f.to_bits().max(1) as i64);
+            Coord::from_bits(c.clamp(1, MAX_PLANE_COEFF_BITS as i64) as i32)
+        };
+        let cx = side(vp.principal_x, vp.width, camera.focal_x());
+        let cy = side(vp.principal_y, vp.height, camera.focal_y());
+        let p = Plane::new;
+        Ok(Frustum {
+            planes: [
+                p(zero, zero, one, -lens.near)?,
+                p(zero, zero, -one, lens.far)?,
+                p(one, zero, cx, zero)?,
+                p(-one, zero, cx, zero)?,
+                p(zero, one, cy, zero)?,
+                p(zero, -one, cy, zero)?,
+            ],
+        })
+    }
+
+    /// The planes: near, far, left, right, bottom, top.
+    pub fn planes(&self) -> &[Plane; 6] {
+        &self.planes
+    }
+
+    /// Bit `i` set when `p` is outside plane `i`.
+    #[inline]
+    pub fn outcode(&self, p: Vec3) -> u8 {
+        let mut code = 0;
+        for (i, pl) in self.planes.iter().enumerate() {
+            if pl.distance(p) < 0 {
+                code |= 1 << i;
+            }
+        }
+        code
+    }
+
+    /// Clips a polygon to the frustum. Polygons wholly inside are copied, wholly outside one
+    /// plane give an empty result; others are clipped against the planes they cross only.
+    pub fn clip<const A: usize, const N: usize>(
+        &self,
+        input: &[ClipVertex<A>],
+    ) -> Result<Vec<ClipVertex<A>, N>, ClipError> {
+        let mut any = 0u8;
+        let mut all = 0xFFu8;
+        for v in input {
+            let c = self.outcode(v.pos);
+            any |= c;
+            all &= c;
+        }
+        let mut a: Vec<ClipVertex<A>, N> = Vec::new();
+        if input.len() < 3 || (all != 0) {
+            return Ok(a);
+        }
+        a.extend_from_slice(input)
+            .map_err(|_| ClipError::CapacityExceeded)?;
+        if any == 0 {
+            return Ok(a);
+        }
+        let mut b: Vec<ClipVertex<A>, N> = Vec::new();
+        for (i, pl) in self.planes.iter().enumerate() {
+            if any & (1 << i) != 0 {
+                clip_to_plane(pl, &a, &mut b)?;
+                core::mem::swap(&mut a, &mut b);
+                if a.len() < 3 {
+                    a.clear();
+                    return Ok(a);
+                }
+            }
+        }
+        Ok(a)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::camera::{FovAxis, Lens, Viewport};
+    use crate::geometry::trig::Angle;
+    use crate::project::Projector;
+
+    fn v(x: f64, y: f64, z: f64) -> Vec3 {
+        Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))
+    }
+
+    fn cv(x: f64, y: f64, z: f64, a: i32) -> ClipVertex<1> {
+        ClipVertex::new(v(x, y, z), [a])
+    }
+
+    fn camera() -> Camera {
+        let lens = Lens {
+            fov: Angle::from_degrees(60),
+            axis: FovAxis::Vertical,
+            near: Coord::from_num(0.5),
+            far: Coord::from_num(10),
+        };
+        Camera::new(
+            Vec3::ZERO,
+            v(0.0, 0.0, 1.0),
+            v(0.0, 1.0, 0.0),
+            lens,
+            Viewport::new(320, 240),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn single_plane_halves_a_square_and_interpolates() {
+        let pl = Plane::new(Coord::ONE, Coord::ZERO, Coord::ZERO, Coord::ZERO).unwrap(); // x ≥ 0
+        let sq = [
+            cv(-1.0, -1.0, 1.0, 0),
+            cv(1.0, -1.0, 1.0, 100),
+            cv(1.0, 1.0, 1.0, 100),
+            cv(-1.0, 1.0, 1.0, 0),
+        ];
+        let mut out: Vec<ClipVertex<1>, 8> = Vec::new();
+        clip_to_plane(&pl, &sq, &mut out).unwrap();
+        assert_eq!(out.len(), 4);
+        for p in &out {
+            assert!(p.pos.x >= Coord::ZERO);
+            if p.pos.x == Coord::ZERO {
+                assert_eq!(p.attrs[0], 50);
+            }
+        }
+        let mut small: Vec<ClipVertex<1>, 3> = Vec::new();
+        assert_eq!(
+            clip_to_plane(&pl, &sq, &mut small),
+            Err(ClipError::CapacityExceeded)
+        );
+    }
+
+    #[test]
+    fn near_plane_crossing_behind_and_spanning() {
+        let cam = camera();
+        let f = Frustum::new::<4>(&cam, Frustum::DEFAULT_GUARD).unwrap();
+        let proj: Projector<4> = Projector::new(&cam).unwrap();
+        // Crosses the near plane (and the eye plane).
+        let tri = [
+            cv(0.0, 0.0, -2.0, 0),
+            cv(0.3, 0.0, 3.0, 255),
+            cv(-0.3, 0.2, 3.0, 255),
+        ];
+        let out: Vec<_, 9> = f.clip(&tri).unwrap();
+        assert_eq!(out.len(), 4);
+        for p in &out {
+            assert!(p.pos.z >= Coord::from_num(0.5), "{p:?}");
+            proj.project(p).unwrap();
+        }
+        // Wholly behind the eye.
+        let back = [
+            cv(0.0, 0.0, -2.0, 0),
+            cv(1.0, 0.0, -3.0, 0),
+            cv(0.0, 1.0, -1.0, 0),
+        ];
+        assert!(f.clip::<1, 9>(&back).unwrap().is_empty());
+        // Spanning the whole view and beyond, at z = 5: cut to the guard band, all projectable.
+        let big = [
+            cv(-1000.0, -1000.0, 5.0, 0),
+            cv(1000.0, -1000.0, 5.0, 0),
+            cv(1000.0, 1000.0, 5.0, 0),
+            cv(-1000.0, 1000.0, 5.0, 0),
+        ];
+        let out: Vec<_, 10> = f.clip(&big).unwrap();
+        assert_eq!(out.len(), 4);
+        for p in &out {
+            let s = proj.project(p).unwrap();
+            assert!(
+                s.point.x.abs() < 16 * 160 * 6 && s.point.y.abs() < 16 * 160 * 6,
+                "{s:?}"
+            );
+        }
+        // Wholly inside: copied unchanged.
+        let inside = [
+            cv(0.0, 0.0, 2.0, 1),
+            cv(0.1, 0.0, 2.0, 2),
+            cv(0.0, 0.1, 2.0, 3),
+        ];
+        assert_eq!(f.clip::<1, 3>(&inside).unwrap().as_slice(), &inside);
+        assert_eq!(f.clip::<1, 2>(&inside), Err(ClipError::CapacityExceeded));
+    }
+}
