@@ -62,6 +62,8 @@ impl core::fmt::Display for CircleError {
     }
 }
 
+impl core::error::Error for CircleError {}
+
 /// The eight reflections of an octant point `(x, y)`: signs of the two offsets and whether
 /// `x` and `y` are swapped. Index 0 is the octant itself, `(x, y)` below the centre.
 const REFLECTIONS: [(i64, i64, bool); 8] = [

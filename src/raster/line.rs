@@ -104,6 +104,8 @@ impl core::fmt::Display for LineError {
     }
 }
 
+impl core::error::Error for LineError {}
+
 /// The set-up shared by plain and clipped iteration: axes, directions and deltas.
 #[derive(Debug, Clone, Copy)]
 struct Setup {

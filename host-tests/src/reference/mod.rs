@@ -1,4 +1,5 @@
 //! Reference implementations, independent of the production code, used by the tests.
 
+pub mod bresenham;
 pub mod exact_fill;
 pub mod float_render;
