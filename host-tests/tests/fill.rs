@@ -696,19 +696,13 @@ fn grid(rng: &mut Rng, f: i64) -> (Vec<Tri>, Vec<V>) {
             }
         }
     }
-    let mut outline = Vec::new();
-    for col in p.iter().take(nx) {
-        outline.push(col[0]);
-    }
-    for k in 0..ny {
-        outline.push(p[nx][k]);
-    }
-    for i in (1..=nx).rev() {
-        outline.push(p[i][ny]);
-    }
-    for k in (1..=ny).rev() {
-        outline.push(p[0][k]);
-    }
+    // Counter-clockwise in the grid's index space: bottom row, right column, top row back,
+    // left column back.
+    let mut outline: Vec<V> = Vec::new();
+    outline.extend(p.iter().take(nx).map(|col| col[0]));
+    outline.extend(p[nx].iter().take(ny).copied());
+    outline.extend(p.iter().skip(1).rev().map(|col| col[ny]));
+    outline.extend(p[0].iter().skip(1).rev().copied());
     (tris, outline)
 }
 
