@@ -148,7 +148,7 @@ fn line_short(fb: &mut Framebuffer<'_>) -> u32 {
         let (dx, dy) = DIRS[i & 7];
         let x = 10 + 19 * ((i >> 3) & 15) as i32;
         let y = 12 + 20 * ((i >> 7) * 5 + (i >> 3) % 5) as i32;
-        line(fb, x, y, x + dx, y + dy, 1 + i as u8);
+        line(fb, x, y, x + dx, y + dy, 1 + (i % 255) as u8);
     }
     256 * 9
 }

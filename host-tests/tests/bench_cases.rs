@@ -1,0 +1,95 @@
+//! Checks of the shared benchmark cases (`benches/cases.rs`): names, the calibration case, and
+//! that each case's reported pixel count matches what it draws.
+use zscan::target::Framebuffer;
+use zscan_host::cli::bench::{cases, run_case};
+
+fn draw(case: &cases::Case) -> (u32, Vec<u8>) {
+    let mut pixels = vec![0u8; cases::FB_LEN];
+    let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT).unwrap();
+    let px = (case.run)(&mut fb);
+    (px, pixels)
+}
+
+fn case(name: &str) -> &'static cases::Case {
+    cases::CASES.iter().find(|c| c.name == name).unwrap()
+}
+
+#[test]
+fn names_are_unique_single_words_and_empty_comes_first() {
+    assert_eq!(cases::CASES[0].name, "empty");
+    for (i, a) in cases::CASES.iter().enumerate() {
+        assert!(
+            !a.name.is_empty()
+                && a.name
+                    .bytes()
+                    .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'_'),
+            "bad name {:?}",
+            a.name
+        );
+        assert!(
+            cases::CASES[i + 1..].iter().all(|b| b.name != a.name),
+            "duplicate {}",
+            a.name
+        );
+    }
+}
+
+#[test]
+fn empty_case_draws_nothing() {
+    let (px, pixels) = draw(&cases::CASES[0]);
+    assert_eq!(px, 0);
+    assert!(pixels.iter().all(|&p| p == 0));
+}
+
+#[test]
+fn pixel_counts_match_the_pixels_drawn() {
+    // Cases whose lines never share a pixel: the count is exactly the pixels set.
+    for (name, distinct) in [
+        ("line_shallow", 2560),
+        ("line_diagonal", 1920),
+        ("line_steep", 1920),
+    ] {
+        let (px, pixels) = draw(case(name));
+        let set = pixels.iter().filter(|&&p| p != 0).count() as u32;
+        assert_eq!(set, distinct, "{name}");
+        assert!(px >= set, "{name}");
+    }
+    assert_eq!(draw(case("line_short")).0, 256 * 9);
+    // Every case: at least as many writes as pixels set, and something drawn.
+    for c in &cases::CASES[1..] {
+        let (px, pixels) = draw(c);
+        let set = pixels.iter().filter(|&&p| p != 0).count() as u32;
+        assert!(set > 0 && px >= set, "{}: {px} written, {set} set", c.name);
+    }
+}
+
+#[test]
+fn clipped_case_writes_one_pixel_per_major_column_or_row_inside() {
+    // 8 x-major lines crossing all 320 columns + 8 y-major lines crossing all 240 rows; the
+    // 8 × 8 crossings may each share one pixel (drawn twice, set once).
+    let (px, pixels) = draw(case("line_clipped"));
+    assert_eq!(px, 8 * 320 + 8 * 240);
+    let set = pixels.iter().filter(|&&p| p != 0).count() as u32;
+    assert!(set <= px && set >= px - 64, "{set} set");
+    // Every column holds at least one pixel of each x-major line that was not overdrawn.
+    for x in 0..cases::WIDTH as usize {
+        let n = (0..cases::HEIGHT as usize)
+            .filter(|&y| pixels[y * 320 + x] != 0)
+            .count();
+        assert!(n >= 8, "column {x}: {n}");
+    }
+}
+
+#[test]
+fn harness_run_is_deterministic() {
+    for c in cases::CASES {
+        assert_eq!(run_case(c), run_case(c), "{}", c.name);
+    }
+}
+
+#[test]
+fn fnv1a_known_values() {
+    assert_eq!(cases::fnv1a(b""), 0x811c_9dc5);
+    assert_eq!(cases::fnv1a(b"a"), 0xe40c_292c);
+    assert_eq!(cases::fnv1a(b"foobar"), 0xbf9c_f968);
+}
