@@ -13,7 +13,7 @@
 //!   `A = (2^32−1)·far/(far−near)` and `K = A·near`: 0 at `near`, `2^32 − 1` at `far`,
 //!   increasing with `z`. It is affine in `1/z`, hence **affine in screen space**: the raster can
 //!   interpolate it linearly across a triangle. Smaller is nearer
-//!   ([`target::depth`](crate::target::depth)). Points beyond `far` get `2^32 − 1` (clamped),
+//!   ([`DepthValue`](crate::target::DepthValue)). Points beyond `far` get `2^32 − 1` (clamped),
 //!   which never wins a depth test.
 //! - Depth resolution: a buffer of `b` bits (the top `b` bits of `D`) separates surfaces at
 //!   distance `z` when they are more than

@@ -1,1 +1,360 @@
-//! Generators.
+//! Mesh generators: the course's unit cube (a static table), UV spheres, the hollow prism of
+//! course exercise 4 and tori, written into caller-provided slices.
+//!
+//! Role in the pipeline: set-up (or build time). Every generator fills `vertices` and
+//! `indices` slices the caller owns and returns a [`Mesh`] borrowing them, or
+//! [`MeshError::OutputTooSmall`] / [`MeshError::BadParameters`]; a `*_sizes` function gives the
+//! exact lengths to allocate. Nothing allocates, nothing panics.
+//!
+//! ## Conventions
+//! Outward faces are counter-clockwise seen from outside ([`mesh`](super::mesh)). Angles come
+//! from [`trig`](super::trig) (≤ 1 unit of 2^-30), positions are rounded to I16F16. Sizes must
+//! keep the result inside the mesh range (`|coordinate| ≤ 1024`).
+//!
+//! - **UV sphere** (SCENES.md's exact convention): poles on `y`; vertex 0 is the north pole
+//!   `(0, R, 0)`, then `rings − 1` rings of `segments` vertices from north to south, then the
+//!   south pole. Ring `k` is at polar angle `θ = π·k/rings`, segment `j` at azimuth
+//!   `φ = 2π·j/segments` from `+x`, turning toward `−z` (a positive rotation about `+y`):
+//!   `(R sin θ cos φ, R cos θ, −R sin θ sin φ)`. Triangles: the north cap
+//!   `(N, (1, j), (1, j+1))`; each band quad split along `(k, j)–(k+1, j+1)` into
+//!   `((k, j), (k+1, j), (k+1, j+1))` and `((k, j), (k+1, j+1), (k, j+1))`; the south cap
+//!   `((last, j), S, (last, j+1))`. 32 × 16 gives 482 vertices and 960 triangles.
+//! - **Hollow prism** (course exercise 4, with `sides = 6` the hollow hexagonal cylinder):
+//!   axis `z`, `z ∈ [−h, h]`, outer and inner circumradii; vertices `j`, `n + j`, `2n + j`,
+//!   `3n + j` are the outer bottom, outer top, inner bottom, inner top corners at azimuth
+//!   `2π·j/n` from `+x` toward `+y`; `4n` quads: outer sides, inner sides (facing the axis), top
+//!   and bottom rings.
+//! - **Torus**: axis `y`, major radius `R` (tube centre), minor radius `r`; vertex
+//!   `(i, j)` = `i·sides + j` at azimuth `φ_i = 2π·i/rings` (toward `−z`, as the sphere) and tube
+//!   angle `θ_j = 2π·j/sides`: `((R + r cos θ) cos φ, r sin θ, −(R + r cos θ) sin φ)`; quads.
+
+use super::fixed::{shr_round, Coord};
+use super::mesh::{Mesh, MeshError, PolygonSizes};
+use super::trig::{sin_cos_bits, Angle};
+use super::vector::Vec3;
+
+/// The course's unit cube `[0, 1]³` (ch. 1, example 2): vertex `i` has coordinates given by
+/// the bits of `i` (`x` = bit 0, `y` = bit 1, `z` = bit 2).
+pub static UNIT_CUBE_VERTICES: [Vec3; 8] = [
+    Vec3::from_int(0, 0, 0),
+    Vec3::from_int(1, 0, 0),
+    Vec3::from_int(0, 1, 0),
+    Vec3::from_int(1, 1, 0),
+    Vec3::from_int(0, 0, 1),
+    Vec3::from_int(1, 0, 1),
+    Vec3::from_int(0, 1, 1),
+    Vec3::from_int(1, 1, 1),
+];
+
+/// The unit cube's six quads, counter-clockwise seen from outside (the course's table with
+/// each polygon's order reversed): `z = 0`, `z = 1`, `y = 0`, `y = 1`, `x = 0`, `x = 1`.
+pub static UNIT_CUBE_INDICES: [u16; 24] = [
+    0, 2, 3, 1, //
+    4, 5, 7, 6, //
+    0, 1, 5, 4, //
+    2, 6, 7, 3, //
+    0, 4, 6, 2, //
+    1, 3, 7, 5, //
+];
+
+/// The unit cube as a mesh living in static memory.
+pub fn unit_cube() -> Mesh<'static> {
+    // The tables are valid, so the fallback is never taken.
+    Mesh::new(
+        &UNIT_CUBE_VERTICES,
+        &UNIT_CUBE_INDICES,
+        PolygonSizes::Uniform(4),
+    )
+    .unwrap_or_else(|_| Mesh::empty())
+}
+
+/// `r·cos a`, `r·sin a` in raw I16F16 (`r` raw, `|r| ≤ 2^31`).
+fn polar(r: i64, a: Angle) -> (i32, i32) {
+    let (s, c) = sin_cos_bits(a);
+    let f = |t: i32| shr_round(r * t as i64, 30) as i32; // |r·t| ≤ 2^61
+    (f(c), f(s))
+}
+
+fn check_out(vertices: &[Vec3], indices: &[u16], need: (usize, usize)) -> Result<(), MeshError> {
+    if need.0 > 65_536 {
+        return Err(MeshError::BadParameters);
+    }
+    if vertices.len() < need.0 || indices.len() < need.1 {
+        return Err(MeshError::OutputTooSmall);
+    }
+    Ok(())
+}
+
+/// `(vertices, indices)` needed by [`uv_sphere`]: `2 + (rings − 1)·segments` and
+/// `6·segments·(rings − 1)`.
+pub const fn uv_sphere_sizes(segments: u16, rings: u16) -> (usize, usize) {
+    let (s, r) = (segments as usize, rings as usize);
+    if r < 1 {
+        return (2, 0);
+    }
+    (2 + (r - 1) * s, 6 * s * (r - 1))
+}
+
+/// A UV sphere of `radius` centred at the origin (SCENES.md's convention, module doc);
+/// `segments ≥ 3`, `rings ≥ 2`.
+pub fn uv_sphere<'a>(
+    segments: u16,
+    rings: u16,
+    radius: Coord,
+    vertices: &'a mut [Vec3],
+    indices: &'a mut [u16],
+) -> Result<Mesh<'a>, MeshError> {
+    if segments < 3 || rings < 2 || radius.to_bits() < 0 {
+        return Err(MeshError::BadParameters);
+    }
+    let need = uv_sphere_sizes(segments, rings);
+    check_out(vertices, indices, need)?;
+    let r = radius.to_bits() as i64;
+    let (ns, nr) = (segments as usize, rings as usize);
+    let mut vi = 0usize;
+    let mut put = |v: Vec3| {
+        if let Some(slot) = vertices.get_mut(vi) {
+            *slot = v;
+        }
+        vi += 1;
+    };
+    put(Vec3::from_bits(0, r as i32, 0));
+    for k in 1..nr {
+        // y = R cos θ, radial = R sin θ
+        let (y, radial) = polar(r, Angle::from_turns(k as i64, 2 * rings as u32));
+        for j in 0..ns {
+            let (x, mz) = polar(radial as i64, Angle::from_turns(j as i64, segments as u32));
+            put(Vec3::from_bits(x, y, -mz));
+        }
+    }
+    put(Vec3::from_bits(0, -(r as i32), 0));
+    let south = (need.0 - 1) as u16;
+    let at = |k: usize, j: usize| (1 + (k - 1) * ns + j % ns) as u16;
+    let mut ii = 0usize;
+    let mut tri = |a: u16, b: u16, c: u16| {
+        for x in [a, b, c] {
+            if let Some(slot) = indices.get_mut(ii) {
+                *slot = x;
+            }
+            ii += 1;
+        }
+    };
+    for j in 0..ns {
+        tri(0, at(1, j), at(1, j + 1));
+    }
+    for k in 1..nr - 1 {
+        for j in 0..ns {
+            tri(at(k, j), at(k + 1, j), at(k + 1, j + 1));
+            tri(at(k, j), at(k + 1, j + 1), at(k, j + 1));
+        }
+    }
+    for j in 0..ns {
+        tri(at(nr - 1, j), south, at(nr - 1, j + 1));
+    }
+    Mesh::triangles(&vertices[..need.0], &indices[..need.1])
+}
+
+/// `(vertices, indices)` needed by [`hollow_prism`]: `4·sides` and `16·sides` (4n quads).
+pub const fn hollow_prism_sizes(sides: u16) -> (usize, usize) {
+    (4 * sides as usize, 16 * sides as usize)
+}
+
+/// Course exercise 4: a hollow prism with `sides` sides (6: the hollow hexagonal cylinder)
+/// about the `z` axis, `z ∈ [−half_height, half_height]`, circumradii `outer > inner > 0`.
+/// The course's instance is `(6, 1, 0.8, 1)`.
+pub fn hollow_prism<'a>(
+    sides: u16,
+    outer: Coord,
+    inner: Coord,
+    half_height: Coord,
+    vertices: &'a mut [Vec3],
+    indices: &'a mut [u16],
+) -> Result<Mesh<'a>, MeshError> {
+    if sides < 3 || inner <= Coord::ZERO || outer <= inner || half_height <= Coord::ZERO {
+        return Err(MeshError::BadParameters);
+    }
+    let need = hollow_prism_sizes(sides);
+    check_out(vertices, indices, need)?;
+    let n = sides as usize;
+    let h = half_height.to_bits();
+    for j in 0..n {
+        let a = Angle::from_turns(j as i64, sides as u32);
+        let (ox, oy) = polar(outer.to_bits() as i64, a);
+        let (ix, iy) = polar(inner.to_bits() as i64, a);
+        for (slot, v) in [
+            (j, Vec3::from_bits(ox, oy, -h)),
+            (n + j, Vec3::from_bits(ox, oy, h)),
+            (2 * n + j, Vec3::from_bits(ix, iy, -h)),
+            (3 * n + j, Vec3::from_bits(ix, iy, h)),
+        ] {
+            if let Some(s) = vertices.get_mut(slot) {
+                *s = v;
+            }
+        }
+    }
+    let mut ii = 0;
+    for j in 0..n {
+        let j1 = (j + 1) % n;
+        let (ob, ot, ib, it) = (0, n, 2 * n, 3 * n);
+        for q in [
+            [ob + j, ob + j1, ot + j1, ot + j], // outer side, facing away from the axis
+            [ib + j, it + j, it + j1, ib + j1], // inner side, facing the axis
+            [ot + j, ot + j1, it + j1, it + j], // top ring, +z
+            [ob + j, ib + j, ib + j1, ob + j1], // bottom ring, −z
+        ] {
+            for x in q {
+                if let Some(s) = indices.get_mut(ii) {
+                    *s = x as u16;
+                }
+                ii += 1;
+            }
+        }
+    }
+    Mesh::new(
+        &vertices[..need.0],
+        &indices[..need.1],
+        PolygonSizes::Uniform(4),
+    )
+}
+
+/// `(vertices, indices)` needed by [`torus`]: `rings·sides` and `4·rings·sides`.
+pub const fn torus_sizes(rings: u16, sides: u16) -> (usize, usize) {
+    let n = rings as usize * sides as usize;
+    (n, 4 * n)
+}
+
+/// A torus about the `y` axis (module doc): `rings ≥ 3` around the axis, `sides ≥ 3` around
+/// the tube, `major > minor > 0`.
+pub fn torus<'a>(
+    rings: u16,
+    sides: u16,
+    major: Coord,
+    minor: Coord,
+    vertices: &'a mut [Vec3],
+    indices: &'a mut [u16],
+) -> Result<Mesh<'a>, MeshError> {
+    if rings < 3 || sides < 3 || minor <= Coord::ZERO || major <= minor {
+        return Err(MeshError::BadParameters);
+    }
+    let need = torus_sizes(rings, sides);
+    check_out(vertices, indices, need)?;
+    let (nr, ns) = (rings as usize, sides as usize);
+    for i in 0..nr {
+        let phi = Angle::from_turns(i as i64, rings as u32);
+        for j in 0..ns {
+            let (rc, y) = polar(
+                minor.to_bits() as i64,
+                Angle::from_turns(j as i64, sides as u32),
+            );
+            let rad = major.to_bits() as i64 + rc as i64;
+            let (x, mz) = polar(rad, phi);
+            if let Some(s) = vertices.get_mut(i * ns + j) {
+                *s = Vec3::from_bits(x, y, -mz);
+            }
+        }
+    }
+    let mut ii = 0;
+    for i in 0..nr {
+        for j in 0..ns {
+            let (i1, j1) = ((i + 1) % nr, (j + 1) % ns);
+            for x in [i * ns + j, i1 * ns + j, i1 * ns + j1, i * ns + j1] {
+                if let Some(s) = indices.get_mut(ii) {
+                    *s = x as u16;
+                }
+                ii += 1;
+            }
+        }
+    }
+    Mesh::new(
+        &vertices[..need.0],
+        &indices[..need.1],
+        PolygonSizes::Uniform(4),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    /// Every face's normal points away from the given "inside" reference.
+    fn outward(m: &Mesh, inside: impl Fn(Vec3) -> Vec3) {
+        for p in m.polygons() {
+            let n = m.face_normal_wide(p);
+            let c = m.vertices()[p[0] as usize];
+            let d = c.sub(inside(c)).bits();
+            let dot: f64 = (0..3).map(|i| n[i] as f64 * d[i] as f64).sum();
+            assert!(dot > 0.0, "face {p:?} points inward");
+        }
+    }
+
+    #[test]
+    fn cube_is_outward() {
+        let m = unit_cube();
+        assert_eq!(m.polygon_count(), 6);
+        outward(&m, |_| Vec3::from_bits(32768, 32768, 32768));
+    }
+
+    #[test]
+    fn sphere_counts_and_orientation() {
+        let (nv, ni) = uv_sphere_sizes(32, 16);
+        assert_eq!((nv, ni / 3), (482, 960));
+        let mut vs = [Vec3::ZERO; 482];
+        let mut is = [0u16; 2880];
+        let m = uv_sphere(32, 16, Coord::ONE, &mut vs, &mut is).unwrap();
+        assert_eq!(m.polygon_count(), 960);
+        outward(&m, |_| Vec3::ZERO);
+        assert_eq!(m.vertices()[0], Vec3::from_int(0, 1, 0));
+        assert_eq!(m.vertices()[481], Vec3::from_int(0, -1, 0));
+        let mut small = [0u16; 10];
+        assert_eq!(
+            uv_sphere(32, 16, Coord::ONE, &mut vs, &mut small),
+            Err(MeshError::OutputTooSmall)
+        );
+        assert_eq!(
+            uv_sphere(2, 16, Coord::ONE, &mut vs, &mut is),
+            Err(MeshError::BadParameters)
+        );
+    }
+
+    #[test]
+    fn hollow_prism_and_torus_orientation() {
+        let mut vs = [Vec3::ZERO; 24];
+        let mut is = [0u16; 96];
+        let m = hollow_prism(
+            6,
+            Coord::ONE,
+            Coord::from_num(0.8),
+            Coord::ONE,
+            &mut vs,
+            &mut is,
+        )
+        .unwrap();
+        assert_eq!(m.polygon_count(), 24);
+        // Inside the material: the point at radius 0.9 on the same azimuth, same height / 2.
+        outward(&m, |c| {
+            let b = c.bits();
+            let r = ((b[0] as f64).hypot(b[1] as f64)).max(1.0);
+            let k = 0.9 * 65536.0 / r;
+            Vec3::from_bits((b[0] as f64 * k) as i32, (b[1] as f64 * k) as i32, b[2] / 2)
+        });
+        let mut vs = [Vec3::ZERO; 96];
+        let mut is = [0u16; 384];
+        let m = torus(
+            12,
+            8,
+            Coord::from_num(2),
+            Coord::from_num(0.5),
+            &mut vs,
+            &mut is,
+        )
+        .unwrap();
+        assert_eq!(m.polygon_count(), 96);
+        outward(&m, |c| {
+            let b = c.bits();
+            let r = (b[0] as f64).hypot(b[2] as f64);
+            let k = 2.0 * 65536.0 / r;
+            Vec3::from_bits((b[0] as f64 * k) as i32, 0, (b[2] as f64 * k) as i32)
+        });
+    }
+}

@@ -1,1 +1,398 @@
-//! Meshes.
+//! Polygon meshes as the course stores them (ch. 1 §4): a vertex table and a polygon table,
+//! both borrowed slices so a mesh can live in flash; face normals, vertex normals, culling.
+//!
+//! Role in the pipeline: the input of the geometry stage. A frame walks
+//! [`Mesh::polygons`], culls back faces, transforms, clips and projects the rest.
+//!
+//! ## Storage
+//! - `vertices: &[Vec3]`: each vertex once (model frame, [`Coord`]).
+//! - `indices: &[u16]`: the polygons' vertex numbers, concatenated.
+//! - [`PolygonSizes`]: either one size for all polygons (`Uniform(3)` for a triangle mesh) or a
+//!   per-polygon `&[u8]` (the course's "number of vertices" column). Polygons have 3 to 255
+//!   vertices and may be non-triangular (they should be planar and convex for the fill to draw
+//!   what the normal describes).
+//!
+//! [`Mesh::new`] validates everything once (sizes, total count, index range, coordinate range),
+//! so later walks cannot fail; they still use checked slicing and never panic.
+//!
+//! ## Orientation and culling
+//! **Front faces are counter-clockwise seen from outside** (SCENES.md; the course uses the
+//! opposite convention in its figures, so its tables are reversed here). The outward normal of
+//! polygon `P_0 … P_{n−1}` is the fan sum `N = Σ (P_i − P_0) × (P_{i+1} − P_0)`, twice the
+//! vector area (exact for any planar polygon, area-weighted by construction). A face is visible
+//! from `Ω` when `(Ω − P)·N > 0` for a point `P` of the face (course ch. 1 §4, fig. 1.14;
+//! edge-on faces, `= 0`, are culled since they cover no area).
+//!
+//! ## Numeric contract
+//! Vertex coordinates are limited to `|c| ≤ 1024` ([`MAX_MESH_COORD_BITS`] = 2^26 raw), so
+//! edge vectors are below 2^27, each cross component below 2^55 and a fan sum over at most 253
+//! triangles below 2^63: [`Mesh::face_normal_wide`] is exact in Q32 `i64`. Culling scales `N`
+//! down to below 2^29 before the dot product with `Ω − P` (`|Ω − P| < 2^32`), so three products
+//! stay below 2^61 each. Vertex normals accumulate in `i32` after a per-mesh shift chosen so
+//! that no vertex's sum can overflow (see [`Mesh::vertex_normals`]).
+
+use super::fixed::Coord;
+use super::vector::{unit_bits, Vec3};
+
+/// Largest raw mesh coordinate magnitude: 2^26 (1024.0 in I16F16).
+pub const MAX_MESH_COORD_BITS: i32 = 1 << 26;
+
+/// What is wrong with a mesh or an output buffer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshError {
+    /// A polygon size is below 3.
+    BadPolygonSize,
+    /// The sizes do not add up to the number of indices.
+    IndexCountMismatch,
+    /// An index is not below the number of vertices.
+    IndexOutOfRange,
+    /// A vertex coordinate exceeds ±1024.
+    CoordinateOutOfRange,
+    /// An output slice is shorter than required.
+    OutputTooSmall,
+    /// A generator's parameters are invalid (too few segments, radii out of order, …) or
+    /// need more than 65 536 vertices.
+    BadParameters,
+}
+
+/// How many vertices each polygon has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PolygonSizes<'a> {
+    /// Every polygon has this many vertices.
+    Uniform(u8),
+    /// Polygon `i` has `sizes[i]` vertices.
+    PerPolygon(&'a [u8]),
+}
+
+/// A borrowed polygon mesh (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Mesh<'a> {
+    vertices: &'a [Vec3],
+    indices: &'a [u16],
+    sizes: PolygonSizes<'a>,
+    polygon_count: usize,
+}
+
+/// Iterator over a mesh's polygons as index slices.
+#[derive(Debug, Clone)]
+pub struct Polygons<'a> {
+    indices: &'a [u16],
+    sizes: PolygonSizes<'a>,
+    next: usize,
+    start: usize,
+    count: usize,
+}
+
+impl<'a> Iterator for Polygons<'a> {
+    type Item = &'a [u16];
+
+    #[inline]
+    fn next(&mut self) -> Option<&'a [u16]> {
+        if self.next >= self.count {
+            return None;
+        }
+        let n = match self.sizes {
+            PolygonSizes::Uniform(n) => n as usize,
+            PolygonSizes::PerPolygon(s) => *s.get(self.next)? as usize,
+        };
+        let poly = self.indices.get(self.start..self.start + n)?;
+        self.start += n;
+        self.next += 1;
+        Some(poly)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let r = self.count - self.next.min(self.count);
+        (r, Some(r))
+    }
+}
+
+/// True when the face with outward normal `normal` through `point` faces the eye at `eye`:
+/// `(eye − point)·normal > 0`. Exact in `i64` for any [`Vec3`] inputs whose `normal` is a unit
+/// (or at least below 2^16 raw per component); per-frame culling with precomputed
+/// [`Mesh::face_normals`].
+#[inline]
+pub fn faces_eye(normal: Vec3, point: Vec3, eye: Vec3) -> bool {
+    let n = normal.bits();
+    let p = point.bits();
+    let e = eye.bits();
+    let d = |i: usize| (e[i] as i64 - p[i] as i64) * (n[i] as i64).clamp(-(1 << 29), 1 << 29);
+    d(0) + d(1) + d(2) > 0
+}
+
+impl<'a> Mesh<'a> {
+    /// A validated mesh.
+    pub fn new(
+        vertices: &'a [Vec3],
+        indices: &'a [u16],
+        sizes: PolygonSizes<'a>,
+    ) -> Result<Mesh<'a>, MeshError> {
+        if vertices
+            .iter()
+            .flat_map(|v| v.bits())
+            .any(|c| c.unsigned_abs() > MAX_MESH_COORD_BITS as u32)
+        {
+            return Err(MeshError::CoordinateOutOfRange);
+        }
+        let polygon_count = match sizes {
+            PolygonSizes::Uniform(n) => {
+                if n < 3 {
+                    return Err(MeshError::BadPolygonSize);
+                }
+                if indices.len() % n as usize != 0 {
+                    return Err(MeshError::IndexCountMismatch);
+                }
+                indices.len() / n as usize
+            }
+            PolygonSizes::PerPolygon(s) => {
+                if s.iter().any(|&n| n < 3) {
+                    return Err(MeshError::BadPolygonSize);
+                }
+                if s.iter().map(|&n| n as usize).sum::<usize>() != indices.len() {
+                    return Err(MeshError::IndexCountMismatch);
+                }
+                s.len()
+            }
+        };
+        if indices.iter().any(|&i| i as usize >= vertices.len()) {
+            return Err(MeshError::IndexOutOfRange);
+        }
+        Ok(Mesh {
+            vertices,
+            indices,
+            sizes,
+            polygon_count,
+        })
+    }
+
+    /// The mesh with no vertices and no polygons.
+    pub const fn empty() -> Mesh<'static> {
+        Mesh {
+            vertices: &[],
+            indices: &[],
+            sizes: PolygonSizes::Uniform(3),
+            polygon_count: 0,
+        }
+    }
+
+    /// A validated triangle mesh (`indices` in threes).
+    pub fn triangles(vertices: &'a [Vec3], indices: &'a [u16]) -> Result<Mesh<'a>, MeshError> {
+        Mesh::new(vertices, indices, PolygonSizes::Uniform(3))
+    }
+
+    /// The vertex table.
+    pub fn vertices(&self) -> &'a [Vec3] {
+        self.vertices
+    }
+
+    /// The concatenated polygon indices.
+    pub fn indices(&self) -> &'a [u16] {
+        self.indices
+    }
+
+    /// The polygon sizes.
+    pub fn sizes(&self) -> PolygonSizes<'a> {
+        self.sizes
+    }
+
+    /// Number of polygons.
+    pub fn polygon_count(&self) -> usize {
+        self.polygon_count
+    }
+
+    /// The polygons, in table order, as index slices.
+    pub fn polygons(&self) -> Polygons<'a> {
+        Polygons {
+            indices: self.indices,
+            sizes: self.sizes,
+            next: 0,
+            start: 0,
+            count: self.polygon_count,
+        }
+    }
+
+    #[inline]
+    fn vertex(&self, i: u16) -> Vec3 {
+        self.vertices.get(i as usize).copied().unwrap_or(Vec3::ZERO)
+    }
+
+    /// `Σ (P_i − P_0) × (P_{i+1} − P_0)`: the outward normal scaled by twice the area, exact,
+    /// raw Q32 (see the module doc for the range).
+    pub fn face_normal_wide(&self, polygon: &[u16]) -> [i64; 3] {
+        let mut n = [0i64; 3];
+        let Some(&first) = polygon.first() else {
+            return n;
+        };
+        let p0 = self.vertex(first);
+        for w in polygon.windows(2).skip(1) {
+            let a = self.vertex(w[0]).sub(p0);
+            let b = self.vertex(w[1]).sub(p0);
+            let c = a.cross_wide(b);
+            for (acc, ci) in n.iter_mut().zip(c) {
+                *acc = acc.saturating_add(ci);
+            }
+        }
+        n
+    }
+
+    /// The unit outward normal of `polygon` (I16F16), or `None` if it has no area.
+    pub fn face_normal(&self, polygon: &[u16]) -> Option<Vec3> {
+        let u = unit_bits(self.face_normal_wide(polygon), 16)?;
+        Some(Vec3::from_bits(u[0], u[1], u[2]))
+    }
+
+    /// Writes each polygon's unit normal into `out` (zero for degenerate polygons).
+    pub fn face_normals(&self, out: &mut [Vec3]) -> Result<(), MeshError> {
+        if out.len() < self.polygon_count {
+            return Err(MeshError::OutputTooSmall);
+        }
+        for (o, p) in out.iter_mut().zip(self.polygons()) {
+            *o = self.face_normal(p).unwrap_or(Vec3::ZERO);
+        }
+        Ok(())
+    }
+
+    /// True when `polygon` faces `eye` (given in the mesh's own frame): `(Ω − P_0)·N > 0`,
+    /// with the exact normal.
+    pub fn is_front_facing(&self, polygon: &[u16], eye: Vec3) -> bool {
+        let Some(&first) = polygon.first() else {
+            return false;
+        };
+        let n = self.face_normal_wide(polygon);
+        let max = n.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+        let shift = (64 - max.leading_zeros()).saturating_sub(29);
+        let p = self.vertex(first).bits();
+        let e = eye.bits();
+        let mut s = 0i64;
+        for i in 0..3 {
+            s += (e[i] as i64 - p[i] as i64) * (n[i] >> shift);
+        }
+        s > 0
+    }
+
+    /// Vertex normals: for each vertex, the sum of the (area-weighted, un-normalised) normals
+    /// of the polygons using it, normalised (SCENES.md's smooth normals); zero for unused
+    /// vertices or sums that cancel. `out` needs at least one slot per vertex.
+    ///
+    /// No scratch memory: `out` first counts each vertex's valence `v`, then holds the sums of
+    /// the face normals shifted right by the smallest `k` for which `v_max·(N_max/2^k + 1)` is
+    /// below 2^31 (no sum can overflow), then the normalised results.
+    pub fn vertex_normals(&self, out: &mut [Vec3]) -> Result<(), MeshError> {
+        let nv = self.vertices.len();
+        let out = out.get_mut(..nv).ok_or(MeshError::OutputTooSmall)?;
+        out.fill(Vec3::ZERO);
+        let mut nmax = 0u64;
+        for poly in self.polygons() {
+            let n = self.face_normal_wide(poly);
+            nmax = nmax.max(n.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0));
+            for &i in poly {
+                if let Some(o) = out.get_mut(i as usize) {
+                    o.x = Coord::from_bits(o.x.to_bits().saturating_add(1));
+                }
+            }
+        }
+        let vmax = out
+            .iter()
+            .map(|o| o.x.to_bits() as u64)
+            .max()
+            .unwrap_or(0)
+            .max(1);
+        let mut k = 0u32;
+        while k < 63 && ((nmax >> k) + 1).saturating_mul(vmax) >= 1 << 31 {
+            k += 1;
+        }
+        out.fill(Vec3::ZERO);
+        for poly in self.polygons() {
+            let n = self.face_normal_wide(poly).map(|c| (c >> k) as i32);
+            for &i in poly {
+                if let Some(o) = out.get_mut(i as usize) {
+                    let b = o.bits();
+                    *o = Vec3::from_bits(
+                        b[0].saturating_add(n[0]),
+                        b[1].saturating_add(n[1]),
+                        b[2].saturating_add(n[2]),
+                    );
+                }
+            }
+        }
+        for o in out.iter_mut() {
+            let b = o.bits();
+            *o = unit_bits([b[0] as i64, b[1] as i64, b[2] as i64], 16)
+                .map(|u| Vec3::from_bits(u[0], u[1], u[2]))
+                .unwrap_or(Vec3::ZERO);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> Vec3 {
+        Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))
+    }
+
+    #[test]
+    fn validation() {
+        let vs = [
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.0, 1.0, 0.0),
+            v(1.0, 1.0, 0.0),
+        ];
+        assert!(Mesh::triangles(&vs, &[0, 1, 2]).is_ok());
+        assert_eq!(
+            Mesh::triangles(&vs, &[0, 1, 4]),
+            Err(MeshError::IndexOutOfRange)
+        );
+        assert_eq!(
+            Mesh::triangles(&vs, &[0, 1]),
+            Err(MeshError::IndexCountMismatch)
+        );
+        assert_eq!(
+            Mesh::new(&vs, &[0, 1], PolygonSizes::Uniform(2)),
+            Err(MeshError::BadPolygonSize)
+        );
+        let sizes = [3u8, 4];
+        let m = Mesh::new(
+            &vs,
+            &[0, 1, 2, 0, 1, 3, 2],
+            PolygonSizes::PerPolygon(&sizes),
+        )
+        .unwrap();
+        let polys: heapless::Vec<&[u16], 4> = m.polygons().collect();
+        assert_eq!(polys.as_slice(), &[&[0u16, 1, 2][..], &[0, 1, 3, 2][..]]);
+        let far = [Vec3::from_int(2000, 0, 0)];
+        assert_eq!(
+            Mesh::triangles(&far, &[]),
+            Err(MeshError::CoordinateOutOfRange)
+        );
+    }
+
+    #[test]
+    fn normals_and_culling() {
+        // CCW seen from +z: normal +z.
+        let vs = [
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(1.0, 1.0, 0.0),
+            v(0.0, 1.0, 0.0),
+        ];
+        let m = Mesh::new(&vs, &[0, 1, 2, 3], PolygonSizes::Uniform(4)).unwrap();
+        let poly = m.polygons().next().unwrap();
+        assert_eq!(m.face_normal_wide(poly), [0, 0, 2 << 32]);
+        assert_eq!(m.face_normal(poly), Some(v(0.0, 0.0, 1.0)));
+        assert!(m.is_front_facing(poly, v(0.3, 0.3, 5.0)));
+        assert!(!m.is_front_facing(poly, v(0.3, 0.3, -5.0)));
+        assert!(!m.is_front_facing(poly, v(5.0, 0.3, 0.0)));
+        assert!(faces_eye(v(0.0, 0.0, 1.0), vs[0], v(100.0, -3.0, 0.001)));
+        let mut vn = [Vec3::ZERO; 4];
+        m.vertex_normals(&mut vn).unwrap();
+        assert!(vn.iter().all(|n| *n == v(0.0, 0.0, 1.0)));
+        assert_eq!(
+            m.vertex_normals(&mut vn[..3]),
+            Err(MeshError::OutputTooSmall)
+        );
+    }
+}
