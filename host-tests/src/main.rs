@@ -16,6 +16,8 @@ enum Command {
     Spans(zscan_host::cli::spans::SpansArgs),
     /// Count instructions of the benchmark cases on the host and Cortex-M (docs/BENCHMARKS.md).
     Bench(zscan_host::cli::bench::BenchArgs),
+    /// Write the standard benchmark scenes as Rust sources (`DIR/<name>.rs`) to `include!`.
+    ExportScenes(zscan_host::cli::export::ExportScenesArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -24,6 +26,7 @@ fn main() -> std::process::ExitCode {
         Command::Lines(a) => zscan_host::cli::lines::run(a),
         Command::Spans(a) => zscan_host::cli::spans::run(a),
         Command::Bench(a) => zscan_host::cli::bench::run(a),
+        Command::ExportScenes(a) => zscan_host::cli::export::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
