@@ -14,6 +14,9 @@
 //! | shading | [`shade`] | incremental integer attribute interpolation (depth, luminance) |
 //! | target | [`target`] | the caller's 8-bit indexed framebuffer, depth buffer, the colour LUT, `DrawTarget` output |
 //!
+//! [`scene`] describes what to draw (meshes in static slices, transforms, intensities) and
+//! [`render`] runs the stages above in order for a whole frame or a band of it.
+//!
 //! ## Conventions (stated once, owned by the modules named)
 //! - **Pixels are lattice points.** Pixel `(x, y)` is the point with integer coordinates `(x, y)`;
 //!   `x` grows to the right, `y` grows **downward** (screen convention). See [`raster`].
@@ -34,5 +37,7 @@ pub mod clip;
 pub mod geometry;
 pub mod project;
 pub mod raster;
+pub mod render;
+pub mod scene;
 pub mod shade;
 pub mod target;

@@ -116,18 +116,21 @@ pub enum DrawError {
 
 /// Writes one span with a depth test: every pixel of `colours`/`depths` (two row slices of
 /// equal length, the span's pixels), with depth `z` and colour `shading` at the first pixel.
+/// Returns the number of pixels written (that passed the test).
 #[inline(always)]
 pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
     colours: &mut [u8],
     depths: &mut [D],
     mut z: Z,
     mut shading: Sh,
-) {
+) -> u32 {
+    let mut written = 0u32;
     if Z::IS_CONSTANT && Sh::IS_CONSTANT {
         // Constant depth and colour: a branch-free select the compiler vectorises.
         let (d, index) = (D::from_depth32(z.value()), shading.index());
-        let select = |c: &mut u8, stored: &mut D| {
+        let mut select = |c: &mut u8, stored: &mut D| {
             let nearer = d < *stored;
+            written += nearer as u32;
             *stored = if nearer { d } else { *stored };
             *c = if nearer { index } else { *c };
         };
@@ -142,25 +145,28 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
         for (c, stored) in cs.into_remainder().iter_mut().zip(zs.into_remainder()) {
             select(c, stored);
         }
-        return;
+        return written;
     }
     for (c, stored) in colours.iter_mut().zip(depths.iter_mut()) {
         let d = D::from_depth32(z.value());
         if d < *stored {
             *stored = d;
             *c = shading.index();
+            written += 1;
         }
         z.step();
         shading.step();
     }
+    written
 }
 
 /// Draws a depth-tested, shaded triangle into a frame and its depth buffer.
 ///
 /// `values[i] = [depth, luminance]` at vertex `i`. Pixels follow the fill rule of
-/// [`polygon`](crate::raster::polygon), limited to the rows both buffers hold. Returns the
-/// number of pixels the triangle covers inside the buffers (whether or not they pass the depth
-/// test). Zero-area triangles draw nothing and return `Ok(0)`.
+/// [`polygon`](crate::raster::polygon), limited to the rows both buffers hold. Returns
+/// `(covered, written)`: the pixels the triangle covers inside the buffers, and those of them
+/// that passed the depth test. Zero-area triangles and triangles wholly outside the buffers
+/// draw nothing and return `Ok((0, 0))` without setting up interpolation.
 pub fn draw_triangle<D: DepthValue, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
@@ -168,10 +174,19 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
     values: [[u32; 2]; 3],
     ramp: LuminanceRamp,
     mode: ShadeMode,
-) -> Result<u32, DrawError> {
+) -> Result<(u32, u32), DrawError> {
+    let window = frame.window().intersect(&Window::new(
+        0,
+        depth.top(),
+        depth.width() as i32,
+        depth.top() + depth.height() as i32,
+    ));
+    if !bounds_meet(&v, &window) {
+        return Ok((0, 0));
+    }
     let plane = match AttributePlane::<2, S>::new(v, values) {
         Ok(p) => p,
-        Err(PlaneError::Degenerate) => return Ok(0),
+        Err(PlaneError::Degenerate) => return Ok((0, 0)),
         Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
     };
     let flat_lum = if plane.is_constant(1) {
@@ -186,13 +201,7 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
         mode
     };
     let const_depth = plane.is_constant(0).then(|| Constant(values[0][0]));
-    let window = frame.window().intersect(&Window::new(
-        0,
-        depth.top(),
-        depth.width() as i32,
-        depth.top() + depth.height() as i32,
-    ));
-    let mut covered = 0u32;
+    let (mut covered, mut written) = (0u32, 0u32);
     fill_triangle(v, &window, |s| {
         let (x0, x1) = (s.x0 as usize, s.x1 as usize);
         covered += (x1 - x0) as u32;
@@ -202,7 +211,7 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
         let (Some(c), Some(z)) = (crow.get_mut(x0..x1), zrow.get_mut(x0..x1)) else {
             return;
         };
-        match (const_depth, mode) {
+        written += match (const_depth, mode) {
             (Some(zc), ShadeMode::Flat) => depth_span(c, z, zc, flat),
             (None, ShadeMode::Flat) => depth_span(c, z, plane.exact(0, s.x0, s.y), flat),
             (Some(zc), ShadeMode::GouraudFast) => depth_span(c, z, zc, fast(&plane, s, ramp)),
@@ -213,10 +222,27 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
             (None, ShadeMode::GouraudExact) => {
                 depth_span(c, z, plane.exact(0, s.x0, s.y), exact(&plane, s, ramp))
             }
-        }
+        };
     })
     .map_err(DrawError::Fill)?;
-    Ok(covered)
+    Ok((covered, written))
+}
+
+/// True when the bounding box of `v` (rounded outward to pixels) meets `window`.
+#[inline(always)]
+fn bounds_meet<const S: u32>(v: &[SubpixelPoint<S>; 3], window: &Window) -> bool {
+    let (x_lo, x_hi) = (
+        v[0].x.min(v[1].x).min(v[2].x),
+        v[0].x.max(v[1].x).max(v[2].x),
+    );
+    let (y_lo, y_hi) = (
+        v[0].y.min(v[1].y).min(v[2].y),
+        v[0].y.max(v[1].y).max(v[2].y),
+    );
+    (x_hi >> S) >= window.x0
+        && (x_lo >> S) < window.x1
+        && (y_hi >> S) >= window.y0
+        && (y_lo >> S) < window.y1
 }
 
 /// Exact Gouraud shading for span `s`.
@@ -316,7 +342,7 @@ mod tests {
         let mut fb = Framebuffer::band(&mut px, 16, 4, 4).unwrap();
         let mut zb = DepthBuffer::band(&mut zs, 16, 4, 4).unwrap();
         zb.clear();
-        let covered = draw_triangle(
+        let (covered, written) = draw_triangle(
             &mut fb,
             &mut zb,
             tri,
@@ -327,6 +353,7 @@ mod tests {
         .unwrap();
         // Rows 4..8 of the triangle x + y < 16 cover 12 + 11 + 10 + 9 pixels.
         assert_eq!(covered, 42);
+        assert_eq!(written, 42);
         // Luminance at (x, y) is exactly 16·x, clamped to 255 by the ramp.
         for y in 4..8 {
             for x in 0..(16 - y) {

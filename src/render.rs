@@ -1,0 +1,356 @@
+//! The frame: geometry → clipping → projection → raster → shading → target, for whole scenes.
+//!
+//! Role in the pipeline: the glue that runs every stage in order. A [`Renderer`] holds what is
+//! fixed for a frame (projector, frustum, view transform). For each [`Object`]:
+//!
+//! 1. **Vertex stage** ([`Renderer::prepare`]), once per vertex: model → observer frame with one
+//!    combined [`Affine3`], the vertex's [`Frustum`] outcode, and, when it is inside the
+//!    frustum (near, far and the guard band), its projection: sub-pixel screen position and
+//!    normalised depth. Results go to a caller-provided scratch slice (no heap), one
+//!    [`PreparedVertex`] per mesh vertex.
+//! 2. **Polygon stage** ([`Renderer::rasterize`]), once per polygon: outcodes all outside one
+//!    plane → rejected; all inside → back-face test on the projected polygon's signed area
+//!    (exact integers) and drawn from the prepared vertices; otherwise → back-face test in the
+//!    observer frame (exact, `i128`), Sutherland–Hodgman against the planes it crosses
+//!    (course exercise 12), projection of the clipped vertices. Polygons are drawn as fans of
+//!    triangles — exact for convex polygons, whose fan triangles tile them with the fill rule.
+//! 3. **Raster** ([`draw_triangle`]): the exact triangle fill with depth test and shading.
+//!
+//! ## Bands
+//! Frame and depth buffer may be a band of rows ([`Framebuffer::band`]): the raster stage
+//! writes only the rows the buffers hold, so drawing a picture band by band, flushing each band
+//! to the display before the next, gives the same pixels as one pass (tested). The vertex stage
+//! runs again for each band (its cost is reported with the benchmarks).
+//!
+//! ## Numeric contract
+//! Mesh coordinates `|c| ≤ 1024` ([`MAX_MESH_COORD_BITS`](crate::geometry::mesh::MAX_MESH_COORD_BITS));
+//! observer-frame positions saturate to the I16F16 range; the frustum's guard band keeps
+//! projected vertices within `±4` screen extents, so triangles stay far below the attribute
+//! interpolation's size limit (`2·area < 2^30` sub-pixel units²). Intensities are `0..=255`.
+//! Culling in the observer frame uses `i128` (edge vectors up to 2^32 raw, cross products up
+//! to 2^65).
+
+use heapless::Vec;
+
+use crate::clip::frustum::{ClipError, ClipVertex, Frustum};
+use crate::geometry::camera::Camera;
+use crate::geometry::matrix::{Affine3, MatrixError};
+use crate::geometry::vector::Vec3;
+use crate::project::{ProjectError, Projector};
+use crate::raster::SubpixelPoint;
+use crate::scene::{Intensities, Object, Scene};
+use crate::shade::span_writer::{draw_triangle, DrawError};
+use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+
+/// Largest polygon (vertex count) the clipping path accepts; each of the 6 planes may add one.
+pub const MAX_POLYGON_VERTICES: usize = 24;
+const CLIP_CAPACITY: usize = MAX_POLYGON_VERTICES + 6;
+
+/// Outcode bit marking a vertex that could not be projected (forces the clipping path).
+const UNPROJECTED: u8 = 0x80;
+
+/// Why a frame or object could not be rendered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RenderError {
+    /// The scratch slice is shorter than the mesh's vertex table.
+    ScratchTooSmall {
+        /// Vertices in the mesh.
+        needed: usize,
+    },
+    /// An intensity table is shorter than the vertex or polygon table it describes.
+    IntensitiesTooShort,
+    /// A polygon has more than [`MAX_POLYGON_VERTICES`] vertices.
+    PolygonTooLarge,
+    /// Composing the object and view transforms overflowed.
+    Transform(MatrixError),
+    /// The camera cannot be used for projection (sub-pixel bits, ranges).
+    Projection(ProjectError),
+    /// Clipping failed (capacity, plane range).
+    Clip(ClipError),
+    /// A triangle was rejected by the raster stage (range or size limits).
+    Draw(DrawError),
+}
+
+impl core::fmt::Display for RenderError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RenderError::ScratchTooSmall { needed } => {
+                write!(f, "scratch holds fewer than the mesh's {needed} vertices")
+            }
+            RenderError::IntensitiesTooShort => {
+                write!(f, "intensity table shorter than its mesh table")
+            }
+            RenderError::PolygonTooLarge => {
+                write!(f, "polygon with more than {MAX_POLYGON_VERTICES} vertices")
+            }
+            RenderError::Transform(e) => write!(f, "transform: {e:?}"),
+            RenderError::Projection(e) => write!(f, "projection: {e:?}"),
+            RenderError::Clip(e) => write!(f, "clipping: {e:?}"),
+            RenderError::Draw(e) => write!(f, "raster: {e:?}"),
+        }
+    }
+}
+
+/// What a frame did, for reports and tests.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Polygons read from the meshes.
+    pub polygons_in: u32,
+    /// Polygons skipped as back faces.
+    pub culled: u32,
+    /// Polygons wholly outside one frustum plane.
+    pub rejected: u32,
+    /// Polygons that went through the 3D clipper.
+    pub clipped: u32,
+    /// Triangles handed to the raster stage with non-zero area.
+    pub triangles_drawn: u32,
+    /// Pixels covered by drawn triangles inside the buffers (depth test passed or not).
+    pub pixels_covered: u32,
+    /// Pixels that passed the depth test and were written.
+    pub pixels_written: u32,
+}
+
+/// One mesh vertex after the vertex stage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PreparedVertex<const S: u32> {
+    /// Observer-frame position.
+    pub view: Vec3,
+    /// Screen position (valid when `outcode == 0`).
+    pub screen: SubpixelPoint<S>,
+    /// Normalised depth (valid when `outcode == 0`).
+    pub depth: u32,
+    /// Frustum outcode: bit `i` set when outside plane `i`; 0 when projected.
+    pub outcode: u8,
+}
+
+impl<const S: u32> Default for PreparedVertex<S> {
+    fn default() -> Self {
+        PreparedVertex {
+            view: Vec3::ZERO,
+            screen: SubpixelPoint::new(0, 0),
+            depth: 0,
+            outcode: 0,
+        }
+    }
+}
+
+/// Everything fixed for a frame: the camera's projector, frustum and view transform.
+#[derive(Debug, Clone, Copy)]
+pub struct Renderer<const S: u32 = 4> {
+    projector: Projector<S>,
+    frustum: Frustum,
+    view: Affine3,
+}
+
+impl<const S: u32> Renderer<S> {
+    /// The renderer of `camera` at `S` sub-pixel bits, with the default guard band.
+    pub fn new(camera: &Camera) -> Result<Self, RenderError> {
+        Ok(Renderer {
+            projector: Projector::new(camera).map_err(RenderError::Projection)?,
+            frustum: Frustum::new::<S>(camera, Frustum::DEFAULT_GUARD)
+                .map_err(RenderError::Clip)?,
+            view: *camera.view_transform(),
+        })
+    }
+
+    /// The vertex stage for `object`: fills `scratch[..vertex count]`.
+    pub fn prepare(
+        &self,
+        object: &Object<'_>,
+        scratch: &mut [PreparedVertex<S>],
+    ) -> Result<(), RenderError> {
+        let vertices = object.mesh.vertices();
+        let scratch = scratch
+            .get_mut(..vertices.len())
+            .ok_or(RenderError::ScratchTooSmall {
+                needed: vertices.len(),
+            })?;
+        let m = object
+            .transform
+            .then(&self.view)
+            .map_err(RenderError::Transform)?;
+        for (out, v) in scratch.iter_mut().zip(vertices) {
+            let view = m.transform_point(*v);
+            let mut outcode = self.frustum.outcode(view);
+            let (mut screen, mut depth) = (SubpixelPoint::new(0, 0), 0);
+            if outcode == 0 {
+                match self.projector.project_point(view) {
+                    Ok((p, d)) => (screen, depth) = (p, d),
+                    Err(_) => outcode = UNPROJECTED,
+                }
+            }
+            *out = PreparedVertex {
+                view,
+                screen,
+                depth,
+                outcode,
+            };
+        }
+        Ok(())
+    }
+
+    /// The polygon stage and raster for `object`, whose vertices `prepare` put in `scratch`.
+    pub fn rasterize<D: DepthValue>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        let mesh = &object.mesh;
+        let prepared =
+            scratch
+                .get(..mesh.vertices().len())
+                .ok_or(RenderError::ScratchTooSmall {
+                    needed: mesh.vertices().len(),
+                })?;
+        match object.intensities {
+            Intensities::PerVertex(t) if t.len() < prepared.len() => {
+                return Err(RenderError::IntensitiesTooShort)
+            }
+            Intensities::PerPolygon(t) if t.len() < mesh.polygon_count() => {
+                return Err(RenderError::IntensitiesTooShort)
+            }
+            _ => {}
+        }
+        let mut draw = |v: [SubpixelPoint<S>; 3], vals: [[u32; 2]; 3], stats: &mut RenderStats| {
+            let (covered, written) =
+                draw_triangle(frame, depth, v, vals, object.ramp, object.shade)
+                    .map_err(RenderError::Draw)?;
+            if covered > 0 || written > 0 {
+                stats.triangles_drawn += 1;
+            }
+            stats.pixels_covered += covered;
+            stats.pixels_written += written;
+            Ok::<(), RenderError>(())
+        };
+        for (pi, poly) in mesh.polygons().enumerate() {
+            stats.polygons_in += 1;
+            if poly.len() > MAX_POLYGON_VERTICES {
+                return Err(RenderError::PolygonTooLarge);
+            }
+            let (mut any, mut all) = (0u8, 0xFFu8);
+            for &i in poly {
+                let c = prepared.get(i as usize).map_or(UNPROJECTED, |p| p.outcode);
+                any |= c;
+                all &= c;
+            }
+            if all & !UNPROJECTED != 0 {
+                stats.rejected += 1;
+                continue;
+            }
+            let vertex = |k: usize| prepared[poly[k] as usize];
+            let corner = |k: usize| {
+                let p = vertex(k);
+                (p.screen, [p.depth, object.intensity(pi, poly[k]) as u32])
+            };
+            if any == 0 {
+                if object.cull_back_faces && screen_area(poly.len(), |k| vertex(k).screen) >= 0 {
+                    stats.culled += 1;
+                    continue;
+                }
+                let (p0, a0) = corner(0);
+                for k in 1..poly.len() - 1 {
+                    let ((p1, a1), (p2, a2)) = (corner(k), corner(k + 1));
+                    draw([p0, p1, p2], [a0, a1, a2], stats)?;
+                }
+                continue;
+            }
+            if object.cull_back_faces && !faces_eye_observer(poly.len(), |k| vertex(k).view) {
+                stats.culled += 1;
+                continue;
+            }
+            stats.clipped += 1;
+            let mut input: Vec<ClipVertex<1>, CLIP_CAPACITY> = Vec::new();
+            for (k, &i) in poly.iter().enumerate() {
+                let l = object.intensity(pi, i) as i32;
+                // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
+                let _ = input.push(ClipVertex::new(vertex(k).view, [l]));
+            }
+            let clipped = self
+                .frustum
+                .clip::<1, CLIP_CAPACITY>(&input)
+                .map_err(RenderError::Clip)?;
+            let mut projected: Vec<(SubpixelPoint<S>, [u32; 2]), CLIP_CAPACITY> = Vec::new();
+            for c in clipped.iter() {
+                let (p, d) = self
+                    .projector
+                    .project_point(c.pos)
+                    .map_err(RenderError::Projection)?;
+                let _ = projected.push((p, [d, c.attrs[0].clamp(0, 255) as u32]));
+            }
+            if projected.len() < 3 {
+                continue;
+            }
+            let (p0, a0) = projected[0];
+            for k in 1..projected.len() - 1 {
+                let ((p1, a1), (p2, a2)) = (projected[k], projected[k + 1]);
+                draw([p0, p1, p2], [a0, a1, a2], stats)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Both stages for one object.
+    pub fn draw_object<D: DepthValue>(
+        &self,
+        object: &Object<'_>,
+        scratch: &mut [PreparedVertex<S>],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        self.prepare(object, scratch)?;
+        self.rasterize(object, scratch, frame, depth, stats)
+    }
+}
+
+/// Twice the signed area of a projected polygon (fan sum, exact in `i64` for coordinates
+/// within the guard band). Front faces (counter-clockwise seen from outside, with `y` up) are
+/// clockwise on a `y`-down screen: negative area.
+fn screen_area<const S: u32>(n: usize, p: impl Fn(usize) -> SubpixelPoint<S>) -> i64 {
+    let o = p(0);
+    let mut sum = 0i64;
+    for k in 1..n - 1 {
+        sum += crate::raster::triangle::cross(o, p(k), p(k + 1));
+    }
+    sum
+}
+
+/// Back-face test in the observer frame (eye at the origin): the face is front-facing when
+/// `(0 − P0)·N > 0` with `N` the outward normal. The observer frame is left-handed (x right,
+/// y up, z forward), so the winding cross product there is `−N`: front ⇔ `P0·Σ cross > 0`.
+fn faces_eye_observer(n: usize, p: impl Fn(usize) -> Vec3) -> bool {
+    let w = |v: Vec3| v.bits().map(|c| c as i128);
+    let o = w(p(0));
+    let mut nrm = [0i128; 3];
+    for k in 1..n - 1 {
+        let (a, b) = (w(p(k)), w(p(k + 1)));
+        let e1 = [a[0] - o[0], a[1] - o[1], a[2] - o[2]];
+        let e2 = [b[0] - o[0], b[1] - o[1], b[2] - o[2]];
+        nrm[0] += e1[1] * e2[2] - e1[2] * e2[1];
+        nrm[1] += e1[2] * e2[0] - e1[0] * e2[2];
+        nrm[2] += e1[0] * e2[1] - e1[1] * e2[0];
+    }
+    // |o| < 2^31, |nrm| < 2^66·n: the dot stays below 2^102.
+    o[0] * nrm[0] + o[1] * nrm[1] + o[2] * nrm[2] > 0
+}
+
+/// Clears `frame` to the scene's background and `depth` to far, then draws every object.
+/// `scratch` must hold at least as many vertices as the largest mesh.
+pub fn render_scene<D: DepthValue, const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    scratch: &mut [PreparedVertex<S>],
+) -> Result<RenderStats, RenderError> {
+    frame.clear(scene.background);
+    depth.clear();
+    let mut stats = RenderStats::default();
+    for object in scene.objects {
+        renderer.draw_object(object, scratch, frame, depth, &mut stats)?;
+    }
+    Ok(stats)
+}
