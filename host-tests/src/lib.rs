@@ -1,6 +1,7 @@
 //! zscan-host: the std side of zscan.
 //!
 //! - [`image`]: writing framebuffers through a LUT to PNG, PGM and PPM.
+//! - [`obj`]: reading Wavefront OBJ meshes (positions and polygons).
 //! - [`reference`]: independent reference implementations (exact rational fill, Bresenham by
 //!   definition, ...), kept apart from the production code they check.
 //! - [`cli`]: the subcommands of the `zscan` tool.
@@ -8,5 +9,6 @@
 
 pub mod cli;
 pub mod image;
+pub mod obj;
 pub mod reference;
 pub mod scenes;

@@ -166,15 +166,21 @@ impl Camera {
         if len2 < 1 << 28 {
             return Err(CameraError::UpParallelToView);
         }
-        let v = unit_bits(vw, LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
-        let v64 = v.map(|c| c as i64);
-        // W = U × V (Q48).
-        let ww = [
-            u64v[1] * v64[2] - u64v[2] * v64[1],
-            u64v[2] * v64[0] - u64v[0] * v64[2],
-            u64v[0] * v64[1] - u64v[1] * v64[0],
-        ];
-        let w = unit_bits(ww, LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
+        let v0 = unit_bits(vw, LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
+        // W = U × V (Q48), then V = W × U again: W is orthogonal to U and to the first V, and
+        // the second V is orthogonal to both, so the basis is orthonormal to rounding (2^-24)
+        // even when V' is nearly parallel to U.
+        let cross = |a: [i64; 3], b: [i64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let w = unit_bits(cross(u64v, v0.map(|c| c as i64)), LINEAR_FRAC)
+            .ok_or(CameraError::UpParallelToView)?;
+        let v = unit_bits(cross(w.map(|c| c as i64), u64v), LINEAR_FRAC)
+            .ok_or(CameraError::UpParallelToView)?;
         let rot = Affine3::from_bits([w, v, u], Vec3::ZERO).map_err(|_| CameraError::OutOfRange)?;
         let t = rot.transform_vector(position);
         // The translation is −R·Ω; refuse positions whose observer-frame image saturated.

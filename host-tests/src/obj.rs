@@ -1,0 +1,230 @@
+//! A Wavefront OBJ reader for the host: vertex positions (`v`) and polygons (`f`) of any vertex
+//! count, in all index forms (`i`, `i/t`, `i//n`, `i/t/n`), negative (relative) indices and
+//! comments. Other statements (`vt`, `vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, …) are skipped.
+//! Errors carry the 1-based line number.
+//!
+//! Output is `f64` positions and 0-based polygon index lists; [`ObjMesh::to_zscan`] converts to
+//! the core's flash-friendly tables ([`zscan::geometry::mesh`]).
+
+use std::fmt;
+use std::path::Path;
+
+use zscan::geometry::fixed::Coord;
+use zscan::geometry::vector::Vec3;
+
+/// A parsed OBJ file.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ObjMesh {
+    /// Vertex positions, in file order.
+    pub vertices: Vec<[f64; 3]>,
+    /// Polygons as 0-based vertex indices, in file order (at least 3 each).
+    pub polygons: Vec<Vec<usize>>,
+}
+
+/// What went wrong, and where.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ObjError {
+    /// 1-based line number (0 for errors not tied to a line, e.g. reading the file).
+    pub line: usize,
+    /// The problem.
+    pub kind: ObjErrorKind,
+}
+
+/// The kinds of [`ObjError`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ObjErrorKind {
+    /// A number could not be parsed (the offending text).
+    BadNumber(String),
+    /// A `v` line with fewer than three coordinates.
+    TooFewCoordinates,
+    /// A coordinate that is NaN or infinite.
+    NonFinite,
+    /// An `f` line with fewer than three vertices.
+    TooFewVertices,
+    /// Index 0, which OBJ does not allow.
+    ZeroIndex,
+    /// An index beyond the vertices defined so far (the index as written).
+    IndexOutOfRange(i64),
+    /// The file could not be read.
+    Io(String),
+}
+
+impl fmt::Display for ObjError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: ", self.line)?;
+        match &self.kind {
+            ObjErrorKind::BadNumber(s) => write!(f, "cannot parse number {s:?}"),
+            ObjErrorKind::TooFewCoordinates => write!(f, "vertex needs x, y and z"),
+            ObjErrorKind::NonFinite => write!(f, "vertex coordinate is not finite"),
+            ObjErrorKind::TooFewVertices => write!(f, "face needs at least 3 vertices"),
+            ObjErrorKind::ZeroIndex => write!(f, "vertex index 0 is not valid (OBJ is 1-based)"),
+            ObjErrorKind::IndexOutOfRange(i) => write!(f, "vertex index {i} out of range"),
+            ObjErrorKind::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for ObjError {}
+
+/// Parses OBJ text.
+pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
+    let mut mesh = ObjMesh::default();
+    for (n, raw) in text.lines().enumerate() {
+        let line = n + 1;
+        let err = |kind| ObjError { line, kind };
+        let content = raw.split('#').next().unwrap_or("");
+        let mut words = content.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let mut c = [0.0f64; 3];
+                for slot in c.iter_mut() {
+                    let w = words
+                        .next()
+                        .ok_or_else(|| err(ObjErrorKind::TooFewCoordinates))?;
+                    *slot = w
+                        .parse::<f64>()
+                        .map_err(|_| err(ObjErrorKind::BadNumber(w.to_string())))?;
+                    if !slot.is_finite() {
+                        return Err(err(ObjErrorKind::NonFinite));
+                    }
+                }
+                mesh.vertices.push(c);
+            }
+            Some("f") => {
+                let mut poly = Vec::new();
+                for w in words {
+                    let first = w.split('/').next().unwrap_or("");
+                    let i: i64 = first
+                        .parse()
+                        .map_err(|_| err(ObjErrorKind::BadNumber(first.to_string())))?;
+                    let count = mesh.vertices.len() as i64;
+                    let idx = match i {
+                        0 => return Err(err(ObjErrorKind::ZeroIndex)),
+                        i if i > 0 && i <= count => i - 1,
+                        i if i < 0 && -i <= count => count + i,
+                        i => return Err(err(ObjErrorKind::IndexOutOfRange(i))),
+                    };
+                    poly.push(idx as usize);
+                }
+                if poly.len() < 3 {
+                    return Err(err(ObjErrorKind::TooFewVertices));
+                }
+                mesh.polygons.push(poly);
+            }
+            _ => {}
+        }
+    }
+    Ok(mesh)
+}
+
+/// Reads and parses an OBJ file.
+pub fn load_obj(path: impl AsRef<Path>) -> Result<ObjMesh, ObjError> {
+    let text = std::fs::read_to_string(path.as_ref()).map_err(|e| ObjError {
+        line: 0,
+        kind: ObjErrorKind::Io(format!("{}: {e}", path.as_ref().display())),
+    })?;
+    parse_obj(&text)
+}
+
+impl ObjMesh {
+    /// Number of triangles after fanning every polygon (`Σ (n − 2)`).
+    pub fn triangle_count(&self) -> usize {
+        self.polygons.iter().map(|p| p.len() - 2).sum()
+    }
+
+    /// Signed volume `Σ P_0·(P_i × P_{i+1})/6` over the fanned polygons: positive when the
+    /// faces wind counter-clockwise seen from outside.
+    pub fn signed_volume(&self) -> f64 {
+        let v = &self.vertices;
+        let mut s = 0.0;
+        for p in &self.polygons {
+            let a = v[p[0]];
+            for w in p[1..].windows(2) {
+                let (b, c) = (v[w[0]], v[w[1]]);
+                s += a[0] * (b[1] * c[2] - b[2] * c[1])
+                    + a[1] * (b[2] * c[0] - b[0] * c[2])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0]);
+            }
+        }
+        s / 6.0
+    }
+
+    /// Axis-aligned bounding box `(min, max)`.
+    pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for v in &self.vertices {
+            for i in 0..3 {
+                lo[i] = lo[i].min(v[i]);
+                hi[i] = hi[i].max(v[i]);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// The core's tables: vertices mapped through `f` and rounded to I16F16 (saturating),
+    /// concatenated indices, per-polygon sizes. `None` if there are more than 65 536 vertices
+    /// or a polygon with more than 255.
+    pub fn to_zscan(
+        &self,
+        f: impl Fn([f64; 3]) -> [f64; 3],
+    ) -> Option<(Vec<Vec3>, Vec<u16>, Vec<u8>)> {
+        if self.vertices.len() > 65_536 || self.polygons.iter().any(|p| p.len() > 255) {
+            return None;
+        }
+        let vs = self
+            .vertices
+            .iter()
+            .map(|&v| {
+                let [x, y, z] = f(v);
+                Vec3::new(
+                    Coord::saturating_from_num(x),
+                    Coord::saturating_from_num(y),
+                    Coord::saturating_from_num(z),
+                )
+            })
+            .collect();
+        let is = self.polygons.iter().flatten().map(|&i| i as u16).collect();
+        let ss = self.polygons.iter().map(|p| p.len() as u8).collect();
+        Some((vs, is, ss))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn forms_negative_indices_comments() {
+        let text = "# a quad and a triangle\nv 0 0 0\nv 1 0 0 # trailing\nv 1 1 0 1.0\nv 0 1 0\n\
+                    vt 0 0\nvn 0 0 1\ng g1\nf 1/1/1 2/1/1 3//1 4\nf -4 -3 -1\n";
+        let m = parse_obj(text).unwrap();
+        assert_eq!(m.vertices.len(), 4);
+        assert_eq!(m.polygons, vec![vec![0, 1, 2, 3], vec![0, 1, 3]]);
+        assert_eq!(m.triangle_count(), 3);
+    }
+
+    #[test]
+    fn errors_have_line_numbers() {
+        let e = parse_obj("v 0 0 0\nv 1 0\n").unwrap_err();
+        assert_eq!((e.line, e.kind), (2, ObjErrorKind::TooFewCoordinates));
+        let e = parse_obj("v 0 0 0\n\nf 1 2 3\n").unwrap_err();
+        assert_eq!((e.line, e.kind), (3, ObjErrorKind::IndexOutOfRange(2)));
+        let e = parse_obj("v 0 0 x\n").unwrap_err();
+        assert_eq!(e.kind, ObjErrorKind::BadNumber("x".into()));
+        let e = parse_obj("v 0 0 0\nf 1 0 1\n").unwrap_err();
+        assert_eq!((e.line, e.kind), (2, ObjErrorKind::ZeroIndex));
+        let e = parse_obj("v 0 0 0\nf 1 1\n").unwrap_err();
+        assert_eq!(e.kind, ObjErrorKind::TooFewVertices);
+        let e = parse_obj("v 0 0 0\nf -2 1 1\n").unwrap_err();
+        assert_eq!(e.kind, ObjErrorKind::IndexOutOfRange(-2));
+        assert_eq!(
+            parse_obj("v nan 0 0").unwrap_err().kind,
+            ObjErrorKind::NonFinite
+        );
+        assert!(load_obj("/nonexistent.obj")
+            .unwrap_err()
+            .to_string()
+            .contains("line 0"));
+    }
+}
