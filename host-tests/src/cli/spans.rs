@@ -19,7 +19,7 @@
 use super::CliError;
 use std::io::{BufWriter, Read, Write};
 use zscan::raster::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
-use zscan::raster::polygon::fill_polygon;
+use zscan::raster::polygon::{fill_polygon, PolygonEdges};
 use zscan::raster::{Span, SubpixelPoint, Window};
 
 /// The largest number of non-horizontal edges a polygon may have.
@@ -69,25 +69,52 @@ pub fn run(args: SpansArgs) -> Result<(), CliError> {
 }
 
 /// Parses `input` and writes the output described in the module doc to `out`. The whole input
-/// is parsed and filled before anything is written, so an error leaves `out` untouched.
+/// is parsed and every polygon checked (capacity) before anything is written, so an input
+/// error leaves `out` untouched; spans are then streamed to `out` as the fill emits them.
 pub fn write_spans(input: &str, subpixel_bits: u32, out: &mut impl Write) -> Result<(), CliError> {
     let polygons = parse_polygons(input, subpixel_bits)?;
-    let mut all = Vec::with_capacity(polygons.len());
+    let context = |k: usize, p: &InputPolygon, e: String| {
+        format!(
+            "polygon {k} (starting at line {}, {} vertices): {e}",
+            p.line,
+            p.vertices.len()
+        )
+    };
     for (k, p) in polygons.iter().enumerate() {
-        let spans = polygon_spans(&p.vertices, subpixel_bits).map_err(|e| {
-            format!(
-                "polygon {k} (starting at line {}, {} vertices): {e}",
-                p.line,
-                p.vertices.len()
-            )
-        })?;
-        all.push(spans);
+        check_polygon(&p.vertices, subpixel_bits).map_err(|e| context(k, p, e))?;
     }
     let werr = |e: std::io::Error| format!("cannot write output: {e}");
-    for (k, spans) in all.iter().enumerate() {
+    for (k, p) in polygons.iter().enumerate() {
         writeln!(out, "polygon {k}").map_err(werr)?;
-        for s in spans {
-            writeln!(out, "{} {} {}", s.y, s.x0, s.x1 - 1).map_err(werr)?;
+        let mut io_error: Option<std::io::Error> = None;
+        let mut write = |s: Span| {
+            if io_error.is_none() {
+                if let Err(e) = writeln!(out, "{} {} {}", s.y, s.x0, s.x1 - 1) {
+                    io_error = Some(e);
+                }
+            }
+        };
+        // The fill emits maximal spans in row order, left to right; merging touching ones
+        // again costs nothing and keeps the output maximal whatever the fill's span split.
+        let mut pending: Option<Span> = None;
+        for_each_span(
+            &p.vertices,
+            subpixel_bits,
+            &mut |s| match pending.as_mut() {
+                Some(last) if last.y == s.y && last.x1 == s.x0 => last.x1 = s.x1,
+                _ => {
+                    if let Some(prev) = pending.replace(s) {
+                        write(prev);
+                    }
+                }
+            },
+        )
+        .map_err(|e| context(k, p, e))?;
+        if let Some(prev) = pending {
+            write(prev);
+        }
+        if let Some(e) = io_error {
+            return Err(werr(e).into());
         }
     }
     Ok(())
@@ -209,47 +236,80 @@ pub fn parse_coord(token: &str, subpixel_bits: u32) -> Result<i32, String> {
     Ok(units as i32)
 }
 
-/// The covered spans of one polygon (vertices in units of `2^-S` pixel, `S` given at run time),
-/// half-open, sorted by row then column, adjacent runs merged.
-pub fn polygon_spans(vertices: &[(i32, i32)], subpixel_bits: u32) -> Result<Vec<Span>, String> {
-    macro_rules! dispatch {
-        ($($s:literal)*) => {
-            match subpixel_bits {
-                $($s => fill_at::<$s>(vertices),)*
-                _ => Err(format!(
-                    "--subpixel-bits {subpixel_bits} is larger than the maximum {MAX_SUBPIXEL_BITS}"
-                )),
-            }
-        };
-    }
-    dispatch!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+/// Calls `$f::<S>($args)` for the run-time `S` in `0..=MAX_SUBPIXEL_BITS`.
+macro_rules! dispatch {
+    ($bits:expr, $f:ident $args:tt) => {
+        dispatch!(@arms $bits, $f $args; 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+    };
+    (@arms $bits:expr, $f:ident $args:tt; $($s:literal)*) => {
+        match $bits {
+            $($s => $f::<$s> $args,)*
+            bits => Err(format!(
+                "--subpixel-bits {bits} is larger than the maximum {MAX_SUBPIXEL_BITS}"
+            )),
+        }
+    };
 }
 
-/// [`polygon_spans`] for a compile-time `S`.
-fn fill_at<const S: u32>(vertices: &[(i32, i32)]) -> Result<Vec<Span>, String> {
-    let points: Vec<SubpixelPoint<S>> = vertices
+/// Checks that a polygon (vertices in units of `2^-S` pixel) can be filled: coordinates in
+/// range and at most [`MAX_EDGES`] non-horizontal edges.
+pub fn check_polygon(vertices: &[(i32, i32)], subpixel_bits: u32) -> Result<(), String> {
+    dispatch!(subpixel_bits, check_at(vertices))
+}
+
+/// Calls `emit` with the covered spans of one polygon (vertices in units of `2^-S` pixel),
+/// half-open, in row order and left to right, as the library's fill emits them.
+pub fn for_each_span(
+    vertices: &[(i32, i32)],
+    subpixel_bits: u32,
+    emit: &mut dyn FnMut(Span),
+) -> Result<(), String> {
+    dispatch!(subpixel_bits, fill_at(vertices, emit))
+}
+
+/// The covered spans of one polygon (vertices in units of `2^-S` pixel, `S` given at run time),
+/// half-open, sorted by row then column, touching runs merged.
+pub fn polygon_spans(vertices: &[(i32, i32)], subpixel_bits: u32) -> Result<Vec<Span>, String> {
+    let mut spans: Vec<Span> = Vec::new();
+    for_each_span(vertices, subpixel_bits, &mut |s| match spans.last_mut() {
+        Some(last) if last.y == s.y && last.x1 == s.x0 => last.x1 = s.x1,
+        _ => spans.push(s),
+    })?;
+    spans.sort_unstable_by_key(|s| (s.y, s.x0));
+    Ok(spans)
+}
+
+fn to_points<const S: u32>(vertices: &[(i32, i32)]) -> Vec<SubpixelPoint<S>> {
+    vertices
         .iter()
         .map(|&(x, y)| SubpixelPoint::new(x, y))
-        .collect();
-    let mut spans: Vec<Span> = Vec::new();
+        .collect()
+}
+
+/// [`check_polygon`] for a compile-time `S`.
+fn check_at<const S: u32>(vertices: &[(i32, i32)]) -> Result<(), String> {
+    PolygonEdges::<MAX_EDGES>::build(&to_points::<S>(vertices))
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
+/// [`for_each_span`] for a compile-time `S`.
+fn fill_at<const S: u32>(
+    vertices: &[(i32, i32)],
+    emit: &mut dyn FnMut(Span),
+) -> Result<(), String> {
+    let points = to_points::<S>(vertices);
     if points.is_empty() {
-        return Ok(spans);
+        return Ok(());
     }
-    // The bounding box in pixels (floor of the minimum, one past the floor of the maximum).
+    // The bounding box in pixels (floor of the minimum, one past the floor of the maximum):
+    // no covered pixel lies outside it, so the output is the unclipped coverage.
     let min_x = points.iter().map(|p| p.x).min().unwrap_or(0) >> S;
     let max_x = points.iter().map(|p| p.x).max().unwrap_or(0) >> S;
     let min_y = points.iter().map(|p| p.y).min().unwrap_or(0) >> S;
     let max_y = points.iter().map(|p| p.y).max().unwrap_or(0) >> S;
     let window = Window::new(min_x, min_y, max_x + 1, max_y + 1);
-    fill_polygon::<S, MAX_EDGES>(&points, &window, |s| match spans.last_mut() {
-        Some(last) if last.y == s.y && last.x1 == s.x0 => last.x1 = s.x1,
-        _ => spans.push(s),
-    })
-    .map_err(|e| e.to_string())?;
-    // The fill emits in row order, left to right; sort anyway so the output contract does not
-    // depend on it.
-    spans.sort_unstable_by_key(|s| (s.y, s.x0));
-    Ok(spans)
+    fill_polygon::<S, MAX_EDGES>(&points, &window, emit).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]
