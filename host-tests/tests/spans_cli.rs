@@ -246,6 +246,31 @@ fn bad_input_names_the_line() {
     }
     let err = failure_stderr(&run_stdin(&["--subpixel-bits", "0"], &zig));
     assert!(err.contains("1024") && err.contains("line 1"), "{err}");
+    // The same after a valid polygon: nothing printed, the error names polygon 1 at line 5.
+    let input = format!("0 0\n4 0\n0 4\n\n{zig}");
+    let err = failure_stderr(&run_stdin(&["--subpixel-bits", "0"], &input));
+    assert!(err.contains("polygon 1") && err.contains("line 5"), "{err}");
+    // 1024 non-horizontal edges (plus horizontal ones, which do not count) are accepted:
+    // a comb of 512 teeth, each tooth one horizontal edge and two vertical ones.
+    let mut comb = String::new();
+    for i in 0..512 {
+        comb.push_str(&format!(
+            "{} 0\n{} 0\n{} 3\n{} 3\n",
+            4 * i,
+            4 * i + 2,
+            4 * i + 2,
+            4 * i + 4
+        ));
+    }
+    let out = ok_stdout(&run_stdin(&["--subpixel-bits", "0"], &comb));
+    let v: Vec<(i64, i64)> = (0..512)
+        .flat_map(|i| [(4 * i, 0), (4 * i + 2, 0), (4 * i + 2, 3), (4 * i + 4, 3)])
+        .collect();
+    let mut want = String::from("polygon 0\n");
+    for sp in reference::covered_spans(&v, 0) {
+        want.push_str(&format!("{} {} {}\n", sp.y, sp.x0, sp.x1 - 1));
+    }
+    assert_eq!(out, want);
     // At the largest coordinates, accepted.
     let big = "268435455 268435455\n268435450 268435455\n268435455 268435450\n";
     let out = ok_stdout(&run_stdin(&["--subpixel-bits", "0"], big));
