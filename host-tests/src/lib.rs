@@ -8,6 +8,7 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod core_render;
 pub mod image;
 pub mod obj;
 pub mod reference;

@@ -1,0 +1,210 @@
+//! Rendering a host [`Scene`](crate::scenes::Scene) with the zscan core.
+//!
+//! Floats exist only here, in set-up: vertex positions are rounded once to I16F16, the camera
+//! is built from the rounded eye/target/up and an angle in 2^32 units per turn, and the
+//! per-corner intensities become a per-vertex table (when every corner of a vertex agrees,
+//! as on the sphere and bunny), a per-polygon table (flat faces, as on the quad and cube) or,
+//! failing both, a triangle soup with its own vertices. Everything per frame runs in the core.
+
+use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
+use zscan::geometry::fixed::Coord;
+use zscan::geometry::mesh::{Mesh, PolygonSizes};
+use zscan::geometry::trig::Angle;
+use zscan::geometry::vector::Vec3;
+use zscan::render::{render_scene, PreparedVertex, RenderStats, Renderer};
+use zscan::scene::{Intensities, Object, Scene as CoreScene};
+use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
+use zscan::target::{DepthBuffer, DepthValue, Framebuffer};
+
+use crate::scenes::Scene;
+
+/// Sub-pixel bits the host renders with (the core's default).
+pub const S: u32 = 4;
+
+/// A scene converted to the core's integer tables.
+#[derive(Debug, Clone)]
+pub struct CoreMesh {
+    /// Vertex table (I16F16).
+    pub vertices: Vec<Vec3>,
+    /// Triangle indices, three per triangle.
+    pub indices: Vec<u16>,
+    /// Intensity table (per vertex or per polygon, see `per_vertex`).
+    pub intensities: Vec<u8>,
+    /// True when `intensities` is per vertex, false when per polygon.
+    pub per_vertex: bool,
+    /// The camera.
+    pub camera: Camera,
+}
+
+/// I16F16 from `f64`, rounded to nearest, saturating.
+pub fn coord(v: f64) -> Coord {
+    Coord::saturating_from_num(v)
+}
+
+fn vec3(v: [f64; 3]) -> Vec3 {
+    Vec3::new(coord(v[0]), coord(v[1]), coord(v[2]))
+}
+
+/// The core camera of a host camera.
+pub fn core_camera(c: &crate::scenes::Camera) -> Result<Camera, String> {
+    let turns = c.fov_y / std::f64::consts::TAU;
+    let lens = Lens {
+        fov: Angle::from_turns((turns * (1u64 << 31) as f64).round() as i64, 1 << 31),
+        axis: FovAxis::Vertical,
+        near: coord(c.near),
+        far: coord(c.far),
+    };
+    let w = u16::try_from(c.width).map_err(|_| "viewport width above 65535".to_string())?;
+    let h = u16::try_from(c.height).map_err(|_| "viewport height above 65535".to_string())?;
+    let mut vp = Viewport::new(w, h);
+    vp.principal_x = coord(c.principal.0);
+    vp.principal_y = coord(c.principal.1);
+    Camera::look_at(vec3(c.eye), vec3(c.target), vec3(c.up), lens, vp)
+        .map_err(|e| format!("camera: {e:?}"))
+}
+
+/// Converts a host scene (see the module doc for the intensity tables).
+pub fn to_core(scene: &Scene) -> Result<CoreMesh, String> {
+    let camera = core_camera(&scene.camera)?;
+    let nv = scene.vertices.len();
+    // Per-vertex if every corner of each vertex agrees.
+    let mut per_vertex: Vec<Option<u8>> = vec![None; nv];
+    let mut consistent = true;
+    for (t, tri) in scene.triangles.iter().enumerate() {
+        for c in 0..3 {
+            let l = scene.intensities[t][c];
+            match per_vertex[tri[c]] {
+                None => per_vertex[tri[c]] = Some(l),
+                Some(x) if x != l => consistent = false,
+                _ => {}
+            }
+        }
+    }
+    let flat = scene
+        .intensities
+        .iter()
+        .all(|i| i[0] == i[1] && i[1] == i[2]);
+    let (vertices, indices, intensities, per_vertex): (Vec<[f64; 3]>, Vec<usize>, Vec<u8>, bool) =
+        if consistent {
+            let table = per_vertex.iter().map(|l| l.unwrap_or(0)).collect();
+            (
+                scene.vertices.clone(),
+                scene.triangles.iter().flatten().copied().collect(),
+                table,
+                true,
+            )
+        } else if flat {
+            let table = scene.intensities.iter().map(|i| i[0]).collect();
+            (
+                scene.vertices.clone(),
+                scene.triangles.iter().flatten().copied().collect(),
+                table,
+                false,
+            )
+        } else {
+            let verts = scene
+                .triangles
+                .iter()
+                .flat_map(|t| t.map(|i| scene.vertices[i]))
+                .collect();
+            let table = scene.intensities.iter().flatten().copied().collect();
+            (
+                (verts),
+                (0..3 * scene.triangles.len()).collect(),
+                table,
+                true,
+            )
+        };
+    if vertices.len() > u16::MAX as usize + 1 {
+        return Err(format!(
+            "{} vertices: the core indexes at most 65536",
+            vertices.len()
+        ));
+    }
+    Ok(CoreMesh {
+        vertices: vertices.into_iter().map(vec3).collect(),
+        indices: indices.into_iter().map(|i| i as u16).collect(),
+        intensities,
+        per_vertex,
+        camera,
+    })
+}
+
+/// A frame rendered by the core.
+#[derive(Debug, Clone)]
+pub struct CoreFrame<D> {
+    /// Palette indices (grey ramp: the luminance), row-major.
+    pub pixels: Vec<u8>,
+    /// Depth samples, row-major (`D::FAR` where nothing was drawn).
+    pub depth: Vec<D>,
+    /// Frame statistics (summed over bands).
+    pub stats: RenderStats,
+}
+
+impl CoreMesh {
+    /// The core mesh view.
+    pub fn mesh(&self) -> Result<Mesh<'_>, String> {
+        Mesh::new(&self.vertices, &self.indices, PolygonSizes::Uniform(3))
+            .map_err(|e| format!("mesh: {e:?}"))
+    }
+
+    /// The object with the grey ramp and the given shading.
+    pub fn object(&self, shade: ShadeMode) -> Result<Object<'_>, String> {
+        let mut o = Object::new(self.mesh()?);
+        o.intensities = if self.per_vertex {
+            Intensities::PerVertex(&self.intensities)
+        } else {
+            Intensities::PerPolygon(&self.intensities)
+        };
+        o.shade = shade;
+        o.ramp = LuminanceRamp::GREY;
+        Ok(o)
+    }
+
+    /// Renders the frame, in one pass (`band_rows = None`) or band by band.
+    pub fn render<D: DepthValue>(
+        &self,
+        shade: ShadeMode,
+        band_rows: Option<u16>,
+    ) -> Result<CoreFrame<D>, String> {
+        let vp = *self.camera.viewport();
+        let (w, h) = (vp.width, vp.height);
+        let object = self.object(shade)?;
+        let objects = [object];
+        let scene = CoreScene {
+            camera: self.camera,
+            objects: &objects,
+            background: 0,
+        };
+        let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
+        let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
+        let mut pixels = vec![0u8; w as usize * h as usize];
+        let mut depth = vec![D::FAR; w as usize * h as usize];
+        let mut stats = RenderStats::default();
+        let band = band_rows.unwrap_or(h).clamp(1, h);
+        let mut top = 0u16;
+        while top < h {
+            let rows = band.min(h - top);
+            let range = top as usize * w as usize..(top + rows) as usize * w as usize;
+            let mut fb = Framebuffer::band(&mut pixels[range.clone()], w, rows, top)
+                .map_err(|e| e.to_string())?;
+            let mut zb =
+                DepthBuffer::band(&mut depth[range], w, rows, top).map_err(|e| e.to_string())?;
+            let s = render_scene(&renderer, &scene, &mut fb, &mut zb, &mut scratch)
+                .map_err(|e| e.to_string())?;
+            stats.polygons_in += s.polygons_in;
+            stats.culled += s.culled;
+            stats.rejected += s.rejected;
+            stats.clipped += s.clipped;
+            stats.triangles_drawn += s.triangles_drawn;
+            stats.pixels_covered += s.pixels_covered;
+            stats.pixels_written += s.pixels_written;
+            top += rows;
+        }
+        Ok(CoreFrame {
+            pixels,
+            depth,
+            stats,
+        })
+    }
+}
