@@ -766,6 +766,98 @@ fn watertight<const S: u32>(seed: u64, n: usize) {
     assert!(strips > n / 4, "only {strips} strips of {n}");
 }
 
+/// Meshes with coordinates up to ±MAX_COORD, watched through small windows: a fan of huge
+/// triangles (windows on its spokes, the edges shared by two triangles) and small meshes moved
+/// into the corners of the range.
+fn huge_meshes<const S: u32>(seed: u64, n: usize) {
+    let m = MAX_COORD as i64;
+    let f = 1i64 << S;
+    let mut rng = Rng(seed);
+    let mut fans = 0;
+    for i in 0..n {
+        // Points along the boundary of the square [−m, m]², its corners included, in order.
+        let mut pos: Vec<i64> = (0..4).map(|k| 2 * m * k).collect();
+        for _ in 0..rng.range(0, 8) {
+            pos.push(rng.range(0, 8 * m - 1));
+        }
+        pos.sort_unstable();
+        pos.dedup();
+        let outline: Vec<V> = pos
+            .iter()
+            .map(|&p| {
+                let (side, d) = (p / (2 * m), p % (2 * m));
+                let mut q = match side {
+                    0 => (-m + d, -m),
+                    1 => (m, -m + d),
+                    2 => (m - d, m),
+                    _ => (-m, m - d),
+                };
+                // Some points pulled inwards (the fan stays valid if every triangle does).
+                if rng.chance(30) {
+                    q = (q.0 - q.0.signum() * rng.range(0, m / 3), q.1);
+                }
+                q
+            })
+            .collect();
+        let c = (rng.range(-m / 2, m / 2), rng.range(-m / 2, m / 2));
+        let k = outline.len();
+        let tris: Vec<Tri> = (0..k)
+            .map(|j| [c, outline[j], outline[(j + 1) % k]])
+            .collect();
+        if tris.iter().any(|t| cross(t[0], t[1], t[2]) <= 0) {
+            continue;
+        }
+        fans += 1;
+        for _ in 0..4 {
+            let t = &tris[rng.range(0, k as i64 - 1) as usize];
+            let (a, b) = if rng.chance(70) {
+                (t[0], t[1])
+            } else {
+                (t[1], t[2])
+            };
+            let u = rng.unit();
+            let px = ((a.0 as f64 + u * (b.0 - a.0) as f64) / f as f64).floor() as i64;
+            let py = ((a.1 as f64 + u * (b.1 - a.1) as f64) / f as f64).floor() as i64;
+            let w = Window::new(
+                (px - 10) as i32,
+                (py - 10) as i32,
+                (px + 10) as i32,
+                (py + 10) as i32,
+            );
+            check_mesh::<S>(&tris, &outline, &w, &format!("S={S} huge fan {i}"));
+        }
+        // A small grid moved into a corner of the range.
+        let (t, o) = grid(&mut rng, f);
+        let (x0, y0, x1, y1) = (
+            o.iter().map(|p| p.0).min().unwrap(),
+            o.iter().map(|p| p.1).min().unwrap(),
+            o.iter().map(|p| p.0).max().unwrap(),
+            o.iter().map(|p| p.1).max().unwrap(),
+        );
+        let d = match i % 4 {
+            0 => (m - x1, m - y1),
+            1 => (-m - x0, m - y1),
+            2 => (m - x1, -m - y0),
+            _ => (-m - x0, -m - y0),
+        };
+        let mv = |p: &V| (p.0 + d.0, p.1 + d.1);
+        let t: Vec<Tri> = t
+            .iter()
+            .map(|t| [mv(&t[0]), mv(&t[1]), mv(&t[2])])
+            .collect();
+        let o: Vec<V> = o.iter().map(mv).collect();
+        check_mesh_windows::<S>(&t, &o, &mut rng, &format!("S={S} corner grid {i}"));
+    }
+    assert!(fans > n / 2, "only {fans} huge fans of {n}");
+}
+
+#[test]
+fn meshes_at_extreme_coordinates_are_watertight() {
+    huge_meshes::<0>(0xB16_0000, 60);
+    huge_meshes::<4>(0xB16_0004, 60);
+    huge_meshes::<16>(0xB16_0016, 60);
+}
+
 #[test]
 fn meshes_are_watertight_integer() {
     watertight::<0>(0xA5A5_5A5A_1234_4321, 250);
@@ -800,13 +892,22 @@ fn extreme<const S: u32>(seed: u64, n: usize) {
     for _ in 0..n {
         let k = rng.range(3, 7) as usize;
         let v: Vec<V> = (0..k).map(|_| (pick(&mut rng), pick(&mut rng))).collect();
-        for _ in 0..3 {
-            // A pixel on (or next to) a random edge.
-            let i = rng.range(0, k as i64 - 1) as usize;
-            let (a, b) = (v[i], v[(i + 1) % k]);
-            let t = rng.unit();
-            let px = ((a.0 as f64 + t * (b.0 - a.0) as f64) / (1u64 << S) as f64).floor() as i64;
-            let py = ((a.1 as f64 + t * (b.1 - a.1) as f64) / (1u64 << S) as f64).floor() as i64;
+        for j in 0..4 {
+            let (px, py) = if j < 3 {
+                // A pixel on (or next to) a random edge.
+                let i = rng.range(0, k as i64 - 1) as usize;
+                let (a, b) = (v[i], v[(i + 1) % k]);
+                let t = rng.unit();
+                let f = (1u64 << S) as f64;
+                (
+                    ((a.0 as f64 + t * (b.0 - a.0) as f64) / f).floor() as i64,
+                    ((a.1 as f64 + t * (b.1 - a.1) as f64) / f).floor() as i64,
+                )
+            } else {
+                // Anywhere: deep inside, or far outside the polygon.
+                let r = m >> S;
+                (rng.range(-r, r), rng.range(-r, r))
+            };
             let w = Window::new(
                 (px - 12) as i32,
                 (py - 12) as i32,
