@@ -27,7 +27,8 @@
 //!   bit 2 (bit set = `+`); each face split along the diagonal through its lowest-index corner.
 //! - sphere: azimuth grows by the right-hand rule about `+y`: segment `j` of ring `k` is at
 //!   `(sin θ cos φ, cos θ, −sin θ sin φ)` with `θ = πk/16`, `φ = 2πj/32`.
-//! - bunny: the mesh file's `v`/`f` lines are read as stored (1-based faces, outward winding).
+//! - bunny: the mesh is read with [`crate::obj::load_obj`] as stored (outward winding), polygons
+//!   fanned as `(0, i, i+1)` (the file holds triangles only).
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
@@ -122,11 +123,11 @@ impl Camera {
     /// `(0, π)`, a non-empty screen.
     pub fn validate(&self) -> Result<(), String> {
         let fwd = sub(self.target, self.eye);
-        if !(dot(fwd, fwd) > 0.0) {
+        if !dot(fwd, fwd).is_finite() || dot(fwd, fwd) <= 0.0 {
             return Err("camera eye and target coincide".into());
         }
         let side = cross(normalize(fwd), self.up);
-        if !(dot(side, side) > 1e-24) {
+        if dot(side, side).is_nan() || dot(side, side) <= 1e-24 {
             return Err("camera up vector is parallel to the view direction".into());
         }
         if !(self.near > 0.0 && self.far > self.near && self.far.is_finite()) {
@@ -350,9 +351,15 @@ pub fn bunny_path() -> PathBuf {
 /// then faces the camera), centred again, fitted to 0.70. Smooth vertex-normal lighting.
 pub fn bunny() -> Result<Scene, String> {
     let path = bunny_path();
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("cannot read the bunny mesh {}: {e}", path.display()))?;
-    let (raw, triangles) = parse_obj(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mesh =
+        crate::obj::load_obj(&path).map_err(|e| format!("bunny mesh {}: {e}", path.display()))?;
+    let raw = mesh.vertices;
+    // Polygons fanned as (0, i, i + 1); the bunny's are all triangles already.
+    let triangles: Vec<[usize; 3]> = mesh
+        .polygons
+        .iter()
+        .flat_map(|p| (1..p.len() - 1).map(move |i| [p[0], p[i], p[i + 1]]))
+        .collect();
     let centred = centre_bounding_box(&raw);
     let rot = rot_y(90f64.to_radians());
     let turned: Vec<Vec3> = centred.iter().map(|&v| mat_vec(rot, v)).collect();
@@ -360,55 +367,6 @@ pub fn bunny() -> Result<Scene, String> {
     let s = fit_scale(&placed, &Camera::standard(), 0.70);
     let vertices = placed.iter().map(|&v| scale(v, s)).collect();
     Ok(finish_smooth("bunny", vertices, triangles, s))
-}
-
-/// Reads the `v x y z` and `f a b c` lines of an OBJ file (1-based indices, optional `/…`
-/// suffixes; polygons are fanned). Other lines are ignored.
-fn parse_obj(text: &str) -> Result<(Vec<Vec3>, Vec<[usize; 3]>), String> {
-    let mut vertices = Vec::new();
-    let mut faces = Vec::new();
-    for (n, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let c: Vec<f64> = words
-                    .take(3)
-                    .map(|w| w.parse::<f64>())
-                    .collect::<Result<_, _>>()
-                    .map_err(|e| format!("line {}: bad vertex: {e}", n + 1))?;
-                if c.len() != 3 {
-                    return Err(format!("line {}: a vertex needs 3 coordinates", n + 1));
-                }
-                vertices.push([c[0], c[1], c[2]]);
-            }
-            Some("f") => {
-                let idx: Vec<usize> = words
-                    .map(|w| {
-                        let first = w.split('/').next().unwrap_or("");
-                        match first.parse::<usize>() {
-                            Ok(i) if i >= 1 => Ok(i - 1),
-                            _ => Err(format!("line {}: bad face index {w:?}", n + 1)),
-                        }
-                    })
-                    .collect::<Result<_, _>>()?;
-                if idx.len() < 3 {
-                    return Err(format!("line {}: a face needs 3 vertices", n + 1));
-                }
-                for i in 1..idx.len() - 1 {
-                    faces.push([idx[0], idx[i], idx[i + 1]]);
-                }
-            }
-            _ => {}
-        }
-    }
-    if let Some(bad) = faces.iter().flatten().find(|&&i| i >= vertices.len()) {
-        return Err(format!(
-            "face index {} past the {} vertices",
-            bad + 1,
-            vertices.len()
-        ));
-    }
-    Ok((vertices, faces))
 }
 
 /// The per-corner intensity of SCENES.md for a unit normal `n`:
