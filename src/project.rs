@@ -26,10 +26,11 @@
 //!    reciprocal `r ≈ 2^62/z_n ∈ (2^30, 2^31]` is found from one 32-bit division (16 bits)
 //!    and two Newton steps with 32×32→64 multiplies ([`reciprocal`]); `r` is within 2 units
 //!    below the exact quotient (relative error < 2^-29).
-//! 2. For each axis, `k = f·r` (focal in Q16 pixels, `f < 2^31`, so `k < 2^62`) is normalised to
-//!    31 bits, `k_n ∈ [2^30, 2^31)`, and the offset is `x·k_n` (`|x·k_n| < 2^62`) shifted right by
-//!    `45 + m − n − S ≥ 0` with rounding. Relative error ≲ 2^-29, i.e. far below 2^-S pixel
-//!    for any offset inside the raster's range.
+//! 2. For each axis the focal length (Q16 pixels, `f < 2^31`) is stored normalised,
+//!    `f = f_m·2^-e` with `f_m ∈ [2^30, 2^31)`; per vertex `k = (f_m·r) >> 31 ∈ (2^29, 2^31]`
+//!    (one 32×32→64 multiply), and the offset is `x·k` (`|x·k| ≤ 2^62`, a second multiply)
+//!    shifted right by `47 + e − S − n ≥ 0` with rounding. Relative error ≲ 2^-28, far below
+//!    2^-S pixel for any offset inside the raster's range.
 //! 3. Depth: `K = K_m·2^e` with a 32-bit mantissa; `K/z = K_m·r·2^(e+n−62)` (`K_m·r < 2^63`),
 //!    and `D = A − K/z`, clamped to `[0, 2^32 − 1]`. Tested error against `f64`: a few units of
 //!    2^-32 of the range (invisible in either buffer width).
@@ -95,9 +96,12 @@ pub fn reciprocal(z: u32) -> (u32, u32) {
 /// Everything the per-vertex projection needs, precomputed from a [`Camera`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Projector<const S: u32> {
-    /// Focal lengths, Q16 pixels, `1 ≤ f < 2^31`.
-    fx: u32,
-    fy: u32,
+    /// Focal lengths normalised: `f = f_m·2^-e` (Q16 pixels), `f_m ∈ [2^30, 2^31)`.
+    fx_m: u32,
+    fy_m: u32,
+    /// Per-axis shift base `47 + e − S` (module doc, step 2).
+    fx_shift: u32,
+    fy_shift: u32,
     /// Principal point in sub-pixel units.
     i0: i32,
     j0: i32,
@@ -137,9 +141,19 @@ impl<const S: u32> Projector<S> {
         } else {
             (km, ke)
         };
+        // Camera guarantees 1 ≤ f < 2^31 (raw Q16 pixels).
+        let fx = camera.focal_x().to_bits().max(1) as u32;
+        let fy = camera.focal_y().to_bits().max(1) as u32;
+        let (ex, ey) = (fx.leading_zeros() - 1, fy.leading_zeros() - 1);
+        if a >= 1 << 61 {
+            // far/(far − near) ≥ 2^29: near and far practically equal.
+            return Err(ProjectError::OutOfRange);
+        }
         Ok(Projector {
-            fx: camera.focal_x().to_bits() as u32,
-            fy: camera.focal_y().to_bits() as u32,
+            fx_m: fx << ex,
+            fy_m: fy << ey,
+            fx_shift: 47 + ex - S,
+            fy_shift: 47 + ey - S,
             i0: i0 as i32,
             j0: j0 as i32,
             near,
@@ -165,12 +179,12 @@ impl<const S: u32> Projector<S> {
         SubpixelPoint::new(self.i0, self.j0)
     }
 
+    /// `f·c/z` in sub-pixel units: `k = (f_m·r) >> 31 ∈ (2^29, 2^31]`, `|c·k| ≤ 2^62`,
+    /// shifted right by `shift − n` (≥ 0 because `n ≤ 31`, `e ≥ 0`, `S ≤ 16`) with rounding.
     #[inline(always)]
-    fn offset(f: u32, c: i32, r: u32, n: u32) -> i64 {
-        let k = f as u64 * r as u64; // < 2^62, > 0
-        let m = k.leading_zeros(); // ≥ 2
-        let kn = ((k << m) >> 33) as i64; // [2^30, 2^31)
-        shr_round(c as i64 * kn, 45 + m - n - S)
+    fn offset(f_m: u32, shift: u32, c: i32, r: u32, n: u32) -> i64 {
+        let k = ((f_m as u64 * r as u64) >> 31) as i64;
+        shr_round(c as i64 * k, shift - n)
     }
 
     /// Screen position and depth of an observer-frame point with `z ≥ near`.
@@ -181,8 +195,8 @@ impl<const S: u32> Projector<S> {
             return Err(ProjectError::BehindNearPlane);
         }
         let (r, n) = reciprocal(z as u32);
-        let sx = self.i0 as i64 + Self::offset(self.fx, x, r, n);
-        let sy = self.j0 as i64 - Self::offset(self.fy, y, r, n);
+        let sx = self.i0 as i64 + Self::offset(self.fx_m, self.fx_shift, x, r, n);
+        let sy = self.j0 as i64 - Self::offset(self.fy_m, self.fy_shift, y, r, n);
         let lim = MAX_COORD as i64;
         if sx.abs() > lim || sy.abs() > lim {
             return Err(ProjectError::OutOfRange);
@@ -340,7 +354,7 @@ mod tests {
                 y_raw as f64 / 65536.0,
                 z_raw as f64 / 65536.0,
             );
-            let fx = p.fx as f64 / 65536.0;
+            let fx = camera().focal_x().to_num::<f64>();
             let sx = (159.5 + fx * x / z) * 16.0;
             let sy = (119.5 - fx * y / z) * 16.0;
             match p.project_point(q) {

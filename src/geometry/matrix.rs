@@ -45,6 +45,9 @@ pub struct Affine3 {
     m: [[i32; 3]; 3],
     /// Translation, raw I16F16.
     t: [i32; 3],
+    /// `t·2^24 + 2^23`: the translation in Q40 with the rounding bias folded in, so that
+    /// [`transform_point`](Affine3::transform_point) rounds with a plain shift (derived from `t`).
+    t_wide: [i64; 3],
 }
 
 const ONE: i32 = 1 << LINEAR_FRAC;
@@ -56,11 +59,22 @@ impl Default for Affine3 {
 }
 
 impl Affine3 {
+    /// The transform from raw parts (callers have checked the ranges).
+    const fn raw(m: [[i32; 3]; 3], t: [i32; 3]) -> Affine3 {
+        const BIAS: i64 = 1 << (LINEAR_FRAC - 1);
+        Affine3 {
+            m,
+            t,
+            t_wide: [
+                ((t[0] as i64) << LINEAR_FRAC) + BIAS,
+                ((t[1] as i64) << LINEAR_FRAC) + BIAS,
+                ((t[2] as i64) << LINEAR_FRAC) + BIAS,
+            ],
+        }
+    }
+
     /// The identity transform.
-    pub const IDENTITY: Affine3 = Affine3 {
-        m: [[ONE, 0, 0], [0, ONE, 0], [0, 0, ONE]],
-        t: [0, 0, 0],
-    };
+    pub const IDENTITY: Affine3 = Affine3::raw([[ONE, 0, 0], [0, ONE, 0], [0, 0, ONE]], [0, 0, 0]);
 
     /// The transform with linear rows `rows` (raw I8F24) and translation `t`; entries beyond
     /// ±64 are [`MatrixError::OutOfRange`].
@@ -72,10 +86,7 @@ impl Affine3 {
         {
             return Err(MatrixError::OutOfRange);
         }
-        Ok(Affine3 {
-            m: rows,
-            t: t.bits(),
-        })
+        Ok(Affine3::raw(rows, t.bits()))
     }
 
     /// The transform with linear rows `rows` and translation `t` (checked like [`from_bits`](Affine3::from_bits)).
@@ -100,10 +111,7 @@ impl Affine3 {
 
     /// The translation by `t`.
     pub const fn translation(t: Vec3) -> Affine3 {
-        Affine3 {
-            m: Affine3::IDENTITY.m,
-            t: t.bits(),
-        }
+        Affine3::raw(Affine3::IDENTITY.m, t.bits())
     }
 
     /// Scaling by `(sx, sy, sz)` about the origin; factors beyond ±64 are an error.
@@ -116,10 +124,10 @@ impl Affine3 {
         {
             return Err(MatrixError::OutOfRange);
         }
-        Ok(Affine3 {
-            m: [[x as i32, 0, 0], [0, y as i32, 0], [0, 0, z as i32]],
-            t: [0; 3],
-        })
+        Ok(Affine3::raw(
+            [[x as i32, 0, 0], [0, y as i32, 0], [0, 0, z as i32]],
+            [0; 3],
+        ))
     }
 
     /// Uniform scaling by `s` about the origin; `|s| > 64` is an error.
@@ -136,28 +144,19 @@ impl Affine3 {
     /// Rotation by `a` about the x axis: `y' = c·y − s·z`, `z' = s·y + c·z`.
     pub fn rotation_x(a: Angle) -> Affine3 {
         let (s, c) = Affine3::trig24(a);
-        Affine3 {
-            m: [[ONE, 0, 0], [0, c, -s], [0, s, c]],
-            t: [0; 3],
-        }
+        Affine3::raw([[ONE, 0, 0], [0, c, -s], [0, s, c]], [0; 3])
     }
 
     /// Rotation by `a` about the y axis: `z' = c·z − s·x`, `x' = s·z + c·x`.
     pub fn rotation_y(a: Angle) -> Affine3 {
         let (s, c) = Affine3::trig24(a);
-        Affine3 {
-            m: [[c, 0, s], [0, ONE, 0], [-s, 0, c]],
-            t: [0; 3],
-        }
+        Affine3::raw([[c, 0, s], [0, ONE, 0], [-s, 0, c]], [0; 3])
     }
 
     /// Rotation by `a` about the z axis: `x' = c·x − s·y`, `y' = s·x + c·y`.
     pub fn rotation_z(a: Angle) -> Affine3 {
         let (s, c) = Affine3::trig24(a);
-        Affine3 {
-            m: [[c, -s, 0], [s, c, 0], [0, 0, ONE]],
-            t: [0; 3],
-        }
+        Affine3::raw([[c, -s, 0], [s, c, 0], [0, 0, ONE]], [0; 3])
     }
 
     /// Rotation by `a` about the axis through the origin along `axis` (any length; it is
@@ -192,7 +191,7 @@ impl Affine3 {
                 *e = shr_round(v, 30 - LINEAR_FRAC) as i32; // |v| ≤ 2^30·(1 + small) → fits
             }
         }
-        Ok(Affine3 { m, t: [0; 3] })
+        Ok(Affine3::raw(m, [0; 3]))
     }
 
     /// The product `self · rhs` (applies `rhs` first), or [`MatrixError::OutOfRange`].
@@ -220,7 +219,7 @@ impl Affine3 {
             let v = shr_round(acc, LINEAR_FRAC);
             *ti = i32::try_from(v).map_err(|_| MatrixError::OutOfRange)?;
         }
-        Ok(Affine3 { m, t })
+        Ok(Affine3::raw(m, t))
     }
 
     /// `next ∘ self`: the transform that applies `self`, then `next`.
@@ -234,22 +233,19 @@ impl Affine3 {
         let p = p.bits();
         let row = |i: usize| {
             let r = &self.m[i];
-            let acc = ((self.t[i] as i64) << LINEAR_FRAC)
+            // Q40 sum with the rounding bias already in t_wide: a plain shift rounds to nearest.
+            let acc = self.t_wide[i]
                 + r[0] as i64 * p[0] as i64
                 + r[1] as i64 * p[1] as i64
                 + r[2] as i64 * p[2] as i64;
-            saturate_i32(shr_round(acc, LINEAR_FRAC))
+            saturate_i32(acc >> LINEAR_FRAC)
         };
         Vec3::from_bits(row(0), row(1), row(2))
     }
 
     /// `M·v` (no translation), rounded to nearest, saturating.
     pub fn transform_vector(&self, v: Vec3) -> Vec3 {
-        Affine3 {
-            m: self.m,
-            t: [0; 3],
-        }
-        .transform_point(v)
+        Affine3::raw(self.m, [0; 3]).transform_point(v)
     }
 
     /// The inverse of a rigid transform (rotation + translation): `p = Rᵀ·(p' − t)`.
@@ -281,7 +277,7 @@ impl Affine3 {
             *ti =
                 i32::try_from(shr_round(acc, LINEAR_FRAC)).map_err(|_| MatrixError::OutOfRange)?;
         }
-        Ok(Affine3 { m, t })
+        Ok(Affine3::raw(m, t))
     }
 }
 
