@@ -73,7 +73,7 @@ fn every_short_line_matches_the_definition_both_ways() {
 
 #[test]
 fn random_long_lines_match_the_definition() {
-    let mut rng = Rng(0x5eed_1);
+    let mut rng = Rng(0x5eed1);
     for i in 0..400 {
         // Long lines (up to 20 000 pixels) placed anywhere in ±2^30.
         let span = if i % 4 == 0 { 20_000 } else { 3_000 };

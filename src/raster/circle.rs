@@ -241,8 +241,7 @@ pub fn draw_circle(
         put(fb, cx, cy);
         return Ok(());
     }
-    for k in 0..8 {
-        let (sx, sy, swap) = REFLECTIONS[k];
+    for (k, &(sx, sy, swap)) in REFLECTIONS.iter().enumerate() {
         // The octant column x moves the screen coordinate `along` by `sign · x`.
         let (along, sign, lo, hi) = if swap {
             (cy, sy, wy0, wy1)
