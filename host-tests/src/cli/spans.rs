@@ -28,10 +28,12 @@ pub const MAX_EDGES: usize = 1024;
 /// Arguments of `zscan spans`.
 #[derive(clap::Args, Debug)]
 pub struct SpansArgs {
-    /// Fractional bits of vertex coordinates.
+    /// Fractional bits S of vertex coordinates (0..=16): every coordinate must be a multiple
+    /// of 2^-S pixel.
     #[arg(long, default_value_t = 4)]
     pub subpixel_bits: u32,
-    /// Input file; standard input when absent.
+    /// Input file: one vertex `x y` per line (pixels, decimals allowed), a blank line between
+    /// polygons, `#` comments; standard input when absent.
     pub file: Option<std::path::PathBuf>,
 }
 
