@@ -551,6 +551,54 @@ mod tests {
     }
 
     #[test]
+    fn clipping_at_the_ends_of_the_longest_lines() {
+        // n = 2^31 and a close to n: the set-up products reach 2^63 (debug builds check
+        // overflow). The pixels near p1 are computed independently by walking the reversed
+        // line from p1 (same pixels by symmetry) for a few steps.
+        let m = MAX_COORD;
+        let lines = [
+            ((-m, -m), (m, m)),
+            ((-m, m), (m, -m)),
+            ((-m, -m), (m, m - 1)),
+            ((m, m - 1), (-m, -m)),
+            ((-m, m), (m - 1, -m)),
+            ((m, -m + 1), (-m, m)),
+            ((-m, 0), (m, 1)),
+        ];
+        for ((x0, y0), (x1, y1)) in lines {
+            let (p0, p1) = (Point::new(x0, y0), Point::new(x1, y1));
+            for ends in [Ends::Closed, Ends::HalfOpen] {
+                // A 5×5 window around p1, one around p0, and each end alone.
+                for (c, far, r) in [(p1, p0, 2), (p0, p1, 2), (p1, p0, 0), (p0, p1, 0)] {
+                    // r = 0: the single pixel at the end, where 2·n·k reaches 2^63 exactly.
+                    let w = Window::new(c.x - r, c.y - r, c.x + r + 1, c.y + r + 1);
+                    let mut want: heapless::Vec<(i32, i32), 64> = if c == p1 {
+                        let mut v: heapless::Vec<(i32, i32), 64> = Bresenham::new(p1, p0)
+                            .take(8)
+                            .filter(|p| w.contains(p.x, p.y))
+                            .map(|p| (p.x, p.y))
+                            .collect();
+                        v.reverse();
+                        v
+                    } else {
+                        Bresenham::new(p0, p1)
+                            .take(8)
+                            .filter(|p| w.contains(p.x, p.y))
+                            .map(|p| (p.x, p.y))
+                            .collect()
+                    };
+                    if ends == Ends::HalfOpen && want.last() == Some(&(p1.x, p1.y)) {
+                        want.pop();
+                    }
+                    let got = pts(Bresenham::clipped(p0, p1, ends, &w).unwrap());
+                    assert_eq!(got, want, "{p0:?}→{p1:?} {ends:?} near {c:?} (far {far:?})");
+                    assert!(!got.is_empty() || ends == Ends::HalfOpen);
+                }
+            }
+        }
+    }
+
+    #[test]
     fn far_lines_cost_nothing() {
         let w = Window::new(0, 0, 320, 240);
         let it = Bresenham::clipped(
