@@ -456,3 +456,47 @@ fn pattern_draws_exactly_the_reference_pixels() {
     let lit = buf.iter().filter(|&&p| p != 0).count();
     assert!(lit > 3000, "{lit}");
 }
+
+#[test]
+fn draw_line_into_bands_writes_exactly_the_clipped_pixels() {
+    let mut rng = Rng(2024);
+    for i in 0..1500 {
+        let (w, h, top) = (
+            rng.range(1, 48) as u16,
+            rng.range(1, 24) as u16,
+            rng.range(0, 40) as u16,
+        );
+        let lim = if i % 2 == 0 { 80 } else { MAX_COORD as i64 };
+        let p0 = (rng.range(-lim, lim), rng.range(-lim, lim));
+        // Often through the band: aim p1 through a pixel of it, far beyond.
+        let p1 = if i % 3 == 0 {
+            (rng.range(-lim, lim), rng.range(-lim, lim))
+        } else {
+            let (tx, ty) = (
+                rng.range(0, w as i64 - 1),
+                top as i64 + rng.range(0, h as i64 - 1),
+            );
+            let k = rng.range(1, 3);
+            (
+                (tx + k * (tx - p0.0)).clamp(-(MAX_COORD as i64), MAX_COORD as i64),
+                (ty + k * (ty - p0.1)).clamp(-(MAX_COORD as i64), MAX_COORD as i64),
+            )
+        };
+        let mut buf = vec![0u8; w as usize * h as usize];
+        let mut fb = Framebuffer::band(&mut buf, w, h, top).unwrap();
+        draw_line(&mut fb, pt(p0), pt(p1), 3).unwrap();
+        let window = fb.window();
+        let want: BTreeSet<(i64, i64)> = reference::clipped_line_pixels(p0, p1, true, win(&window))
+            .into_iter()
+            .collect();
+        let mut got = BTreeSet::new();
+        for (y, row) in fb.rows() {
+            for (x, &v) in row.iter().enumerate() {
+                if v == 3 {
+                    got.insert((x as i64, y as i64));
+                }
+            }
+        }
+        assert_eq!(got, want, "{p0:?}→{p1:?} band {w}×{h}@{top}");
+    }
+}

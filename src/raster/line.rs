@@ -420,15 +420,35 @@ pub fn draw_line_with_ends(
     index: u8,
 ) -> Result<(), LineError> {
     let window = fb.window();
+    // Consecutive pixels on one row (an x-major line's runs) are written as one span, so the
+    // row is looked up once per run, not once per pixel.
+    let mut run: Option<(i32, i32, i32)> = None; // (row, min x, max x)
     for p in Bresenham::clipped(p0, p1, ends, &window)? {
-        // Every pixel is inside the window; the lookups still cannot panic.
-        if let (Some(row), Ok(x)) = (fb.row_mut(p.y), usize::try_from(p.x)) {
-            if let Some(px) = row.get_mut(x) {
-                *px = index;
+        run = match run {
+            Some((y, lo, hi)) if y == p.y => Some((y, lo.min(p.x), hi.max(p.x))),
+            other => {
+                if let Some(r) = other {
+                    fill_run(fb, r, index);
+                }
+                Some((p.y, p.x, p.x))
             }
-        }
+        };
+    }
+    if let Some(r) = run {
+        fill_run(fb, r, index);
     }
     Ok(())
+}
+
+/// Writes `index` at row `y`, columns `lo..=hi`. Every pixel of a clipped line is inside the
+/// window; the checked look-ups still make an out-of-range run a no-op instead of a panic.
+#[inline]
+fn fill_run(fb: &mut Framebuffer<'_>, (y, lo, hi): (i32, i32, i32), index: u8) {
+    if let (Some(row), Ok(lo), Ok(hi)) = (fb.row_mut(y), usize::try_from(lo), usize::try_from(hi)) {
+        if let Some(span) = row.get_mut(lo..=hi) {
+            span.fill(index);
+        }
+    }
 }
 
 /// Draws the polyline through `points` (each joint once: half-open segments, then the last
