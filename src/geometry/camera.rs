@@ -351,6 +351,38 @@ impl Camera {
     }
 }
 
+/// `f32` set-up helpers (`float-setup` feature): conversions happen once, here; the camera
+/// itself stays integer.
+#[cfg(feature = "float-setup")]
+impl Lens {
+    /// A lens from a field of view in degrees and near/far distances (saturating to I16F16;
+    /// NaN becomes 0, which [`Camera::new`] then rejects).
+    pub fn from_f32(fov_degrees: f32, axis: FovAxis, near: f32, far: f32) -> Lens {
+        let c = |v: f32| Coord::saturating_from_num(if v.is_nan() { 0.0 } else { v });
+        Lens {
+            fov: Angle::from_degrees_f32(fov_degrees),
+            axis,
+            near: c(near),
+            far: c(far),
+        }
+    }
+}
+
+#[cfg(feature = "float-setup")]
+impl Camera {
+    /// [`Camera::look_at`] from `f32` coordinates (set-up only).
+    pub fn look_at_f32(
+        eye: [f32; 3],
+        target: [f32; 3],
+        up: [f32; 3],
+        lens: Lens,
+        viewport: Viewport,
+    ) -> Result<Camera, CameraError> {
+        let v = |a: [f32; 3]| Vec3::from_f32(a[0], a[1], a[2]);
+        Camera::look_at(v(eye), v(target), v(up), lens, viewport)
+    }
+}
+
 /// Course exercise 5 with a circular field of view: the distance `D = R / sin(φ/2)` at which a
 /// sphere of radius `R` just fills a view cone of opening `fov`, and the eye position
 /// `centre − D·U` looking along `view_dir`. Errors for a zero direction, a field of view not
@@ -417,6 +449,22 @@ mod tests {
         assert!((cam.focal_y().to_num::<f64>() - f).abs() < 2.0 / 65536.0);
         assert_eq!(cam.focal_x(), cam.focal_y());
         assert_eq!(cam.viewport().principal_x, Coord::from_num(159.5));
+    }
+
+    #[cfg(feature = "float-setup")]
+    #[test]
+    fn float_setup_builders() {
+        let lens = Lens::from_f32(60.0, FovAxis::Vertical, 0.5, 10.0);
+        assert_eq!(lens, super::tests::lens());
+        let cam = Camera::look_at_f32(
+            [0.0, 0.0, 3.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            lens,
+            Viewport::new(320, 240),
+        )
+        .unwrap();
+        assert_eq!(cam.forward(), v(0.0, 0.0, -1.0));
     }
 
     #[test]

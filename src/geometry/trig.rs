@@ -81,16 +81,17 @@ impl Angle {
         sin_cos(self).1
     }
 
-    /// An angle from degrees in `f32` (set-up only, `float-setup` feature); non-finite gives zero.
+    /// An angle from degrees in `f32` (set-up only, `float-setup` feature), rounded to
+    /// 1/1024 degree first so that whole and common fractional degrees are exact (60.0 gives
+    /// the same angle as `from_degrees(60)`); non-finite input gives zero.
     #[cfg(feature = "float-setup")]
     pub fn from_degrees_f32(deg: f32) -> Angle {
         use micromath::F32Ext;
         if !deg.is_finite() {
             return Angle(0);
         }
-        let turns = (deg / 360.0).fract();
-        let turns = if turns < 0.0 { turns + 1.0 } else { turns };
-        Angle((turns * 4_294_967_296.0) as u64 as u32)
+        let d = deg % 360.0; // exact in f32
+        Angle::from_degrees_ratio(F32Ext::round(d * 1024.0) as i64, 1024)
     }
 }
 
