@@ -461,7 +461,9 @@ pub fn draw_polyline(
     index: u8,
 ) -> Result<(), LineError> {
     for pair in points.windows(2) {
-        draw_line_half_open(fb, pair[0], pair[1], index)?;
+        if let [a, b] = *pair {
+            draw_line_half_open(fb, a, b, index)?;
+        }
     }
     if let Some(&last) = points.last() {
         draw_line(fb, last, last, index)?;
