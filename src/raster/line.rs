@@ -232,8 +232,8 @@ impl Bresenham {
     /// The part of the line from `p0` to `p1` inside `window`: exactly the pixels of
     /// [`Bresenham::with_ends`]`(p0, p1, ends)` that `window` contains, in the same order.
     ///
-    /// O(1) set-up (outcodes, then at most three `u64` divisions and one remainder). Errors when a coordinate of `p0`
-    /// or `p1` is beyond `±`[`MAX_COORD`].
+    /// O(1) set-up (outcodes, then at most three `u64` divisions and one remainder).
+    /// Errors when a coordinate of `p0` or `p1` is beyond `±`[`MAX_COORD`].
     pub fn clipped(
         p0: Point,
         p1: Point,
