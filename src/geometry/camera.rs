@@ -102,7 +102,7 @@ impl Viewport {
     /// `width × height` square pixels with the principal point at the picture's centre,
     /// `((width − 1)/2, (height − 1)/2)` (pixel-centred sampling on lattice pixels).
     pub fn new(width: u16, height: u16) -> Viewport {
-        let half = |n: u16| Coord::from_bits(((n as i32 - 1) << 16) / 2);
+        let half = |n: u16| Coord::from_bits((n as i32 - 1) << 15); // (n − 1)/2, ≤ 32 767
         Viewport {
             width,
             height,
@@ -429,6 +429,12 @@ mod tests {
             near: Coord::from_num(0.5),
             far: Coord::from_num(10),
         }
+    }
+
+    #[test]
+    fn viewport_extremes() {
+        assert_eq!(Viewport::new(65535, 0).principal_x, Coord::from_num(32767));
+        assert_eq!(Viewport::new(65535, 0).principal_y, Coord::from_num(-0.5));
     }
 
     #[test]

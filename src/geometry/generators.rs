@@ -28,7 +28,7 @@
 //!   `(i, j)` = `i·sides + j` at azimuth `φ_i = 2π·i/rings` (toward `−z`, as the sphere) and tube
 //!   angle `θ_j = 2π·j/sides`: `((R + r cos θ) cos φ, r sin θ, −(R + r cos θ) sin φ)`; quads.
 
-use super::fixed::{shr_round, Coord};
+use super::fixed::{saturate_i32, shr_round, Coord};
 use super::mesh::{Mesh, MeshError, PolygonSizes};
 use super::trig::{sin_cos_bits, Angle};
 use super::vector::Vec3;
@@ -68,10 +68,10 @@ pub fn unit_cube() -> Mesh<'static> {
     .unwrap_or_else(|_| Mesh::empty())
 }
 
-/// `r·cos a`, `r·sin a` in raw I16F16 (`r` raw, `|r| ≤ 2^31`).
+/// `r·cos a`, `r·sin a` in raw I16F16 (`r` raw, `|r| ≤ 2^32`), saturating.
 fn polar(r: i64, a: Angle) -> (i32, i32) {
     let (s, c) = sin_cos_bits(a);
-    let f = |t: i32| shr_round(r * t as i64, 30) as i32; // |r·t| ≤ 2^61
+    let f = |t: i32| saturate_i32(shr_round(r * t as i64, 30)); // |r·t| ≤ 2^62
     (f(c), f(s))
 }
 
@@ -83,6 +83,17 @@ fn check_out(vertices: &[Vec3], indices: &[u16], need: (usize, usize)) -> Result
         return Err(MeshError::OutputTooSmall);
     }
     Ok(())
+}
+
+/// The filled prefixes of the output slices, as shared borrows for the returned mesh.
+fn finished<'a>(
+    vertices: &'a mut [Vec3],
+    indices: &'a mut [u16],
+    need: (usize, usize),
+) -> Result<(&'a [Vec3], &'a [u16]), MeshError> {
+    let vs = vertices.get(..need.0).ok_or(MeshError::OutputTooSmall)?;
+    let is = indices.get(..need.1).ok_or(MeshError::OutputTooSmall)?;
+    Ok((vs, is))
 }
 
 /// `(vertices, indices)` needed by [`uv_sphere`]: `2 + (rings − 1)·segments` and
@@ -124,7 +135,7 @@ pub fn uv_sphere<'a>(
         let (y, radial) = polar(r, Angle::from_turns(k as i64, 2 * rings as u32));
         for j in 0..ns {
             let (x, mz) = polar(radial as i64, Angle::from_turns(j as i64, segments as u32));
-            put(Vec3::from_bits(x, y, -mz));
+            put(Vec3::from_bits(x, y, mz.saturating_neg()));
         }
     }
     put(Vec3::from_bits(0, -(r as i32), 0));
@@ -151,7 +162,8 @@ pub fn uv_sphere<'a>(
     for j in 0..ns {
         tri(at(nr - 1, j), south, at(nr - 1, j + 1));
     }
-    Mesh::triangles(&vertices[..need.0], &indices[..need.1])
+    let (vs, is) = finished(vertices, indices, need)?;
+    Mesh::triangles(vs, is)
 }
 
 /// `(vertices, indices)` needed by [`hollow_prism`]: `4·sides` and `16·sides` (4n quads).
@@ -210,11 +222,8 @@ pub fn hollow_prism<'a>(
             }
         }
     }
-    Mesh::new(
-        &vertices[..need.0],
-        &indices[..need.1],
-        PolygonSizes::Uniform(4),
-    )
+    let (vs, is) = finished(vertices, indices, need)?;
+    Mesh::new(vs, is, PolygonSizes::Uniform(4))
 }
 
 /// `(vertices, indices)` needed by [`torus`]: `rings·sides` and `4·rings·sides`.
@@ -249,7 +258,7 @@ pub fn torus<'a>(
             let rad = major.to_bits() as i64 + rc as i64;
             let (x, mz) = polar(rad, phi);
             if let Some(s) = vertices.get_mut(i * ns + j) {
-                *s = Vec3::from_bits(x, y, -mz);
+                *s = Vec3::from_bits(x, y, mz.saturating_neg());
             }
         }
     }
@@ -265,11 +274,8 @@ pub fn torus<'a>(
             }
         }
     }
-    Mesh::new(
-        &vertices[..need.0],
-        &indices[..need.1],
-        PolygonSizes::Uniform(4),
-    )
+    let (vs, is) = finished(vertices, indices, need)?;
+    Mesh::new(vs, is, PolygonSizes::Uniform(4))
 }
 
 #[cfg(test)]
@@ -286,6 +292,28 @@ mod tests {
             let dot: f64 = (0..3).map(|i| n[i] as f64 * d[i] as f64).sum();
             assert!(dot > 0.0, "face {p:?} points inward");
         }
+    }
+
+    #[test]
+    fn huge_sizes_are_errors() {
+        let mut vs = [Vec3::ZERO; 96];
+        let mut is = [0u16; 384];
+        assert_eq!(
+            uv_sphere(8, 4, Coord::MAX, &mut vs, &mut is),
+            Err(MeshError::CoordinateOutOfRange)
+        );
+        assert_eq!(
+            torus(12, 8, Coord::MAX, Coord::from_num(30000), &mut vs, &mut is),
+            Err(MeshError::CoordinateOutOfRange)
+        );
+        assert_eq!(
+            hollow_prism(6, Coord::MAX, Coord::ONE, Coord::MAX, &mut vs, &mut is),
+            Err(MeshError::CoordinateOutOfRange)
+        );
+        assert_eq!(
+            uv_sphere(u16::MAX, u16::MAX, Coord::ONE, &mut vs, &mut is),
+            Err(MeshError::BadParameters)
+        );
     }
 
     #[test]
