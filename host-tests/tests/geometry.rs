@@ -504,6 +504,69 @@ fn extreme_inputs_never_panic() {
         let _ = frame_sphere(p, q.x, q, Angle(pick(&mut r) as u32));
         let _ = Affine3::rotation_axis(p, Angle(q.x.to_bits() as u32)).map(|m| m.mul(&m));
     }
+    // Random cameras: projector and frustum construction, and the projection of clipped
+    // polygons, never panic.
+    for _ in 0..20_000 {
+        let p = Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r));
+        let q = Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r));
+        let lens = Lens {
+            fov: Angle(pick(&mut r) as u32),
+            axis: [FovAxis::Vertical, FovAxis::Horizontal, FovAxis::Diagonal]
+                [(r.next() % 3) as usize],
+            near: Coord::from_bits(pick(&mut r)),
+            far: Coord::from_bits(pick(&mut r)),
+        };
+        let mut vp = Viewport::new(r.next() as u16, r.next() as u16);
+        vp.pixel_width = r.next() as u16;
+        vp.pixel_height = r.next() as u16;
+        vp.principal_x = Coord::from_bits(pick(&mut r));
+        if let Ok(cam) = Camera::new(p, q, v([0.0, 1.0, 0.0]), lens, vp) {
+            let pr = Projector::<4>::new(&cam);
+            let pr16 = Projector::<16>::new(&cam);
+            for fr in [
+                Frustum::new::<4>(&cam, 4),
+                Frustum::new::<16>(&cam, u16::MAX),
+            ] {
+                if let Ok(fr) = fr {
+                    let tri = [0, 1, 2].map(|_| {
+                        ClipVertex::new(
+                            Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r)),
+                            [pick(&mut r)],
+                        )
+                    });
+                    if let Ok(out) = fr.clip::<1, 9>(&tri) {
+                        for c in &out {
+                            if let Ok(pr) = &pr {
+                                let _ = pr.project(c);
+                            }
+                            if let Ok(pr) = &pr16 {
+                                let _ = pr.project(c);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let _ = Camera::framing_sphere(p, q.x, q, p, lens, vp);
+    }
+    // Random meshes in range: normals, culling, vertex normals.
+    for _ in 0..2_000 {
+        let n = 3 + (r.next() % 20) as usize;
+        let lim = 1 << 26;
+        let vs: Vec<Vec3> = (0..n)
+            .map(|_| Vec3::from_bits(pick(&mut r) % lim, pick(&mut r) % lim, pick(&mut r) % lim))
+            .collect();
+        let is: Vec<u16> = (0..3 * n).map(|_| (r.next() % n as u64) as u16).collect();
+        let m = Mesh::triangles(&vs, &is).unwrap();
+        let mut vn = vec![Vec3::ZERO; n];
+        m.vertex_normals(&mut vn).unwrap();
+        let mut fnrm = vec![Vec3::ZERO; n];
+        m.face_normals(&mut fnrm).unwrap();
+        let eye = Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r));
+        for p in m.polygons() {
+            let _ = m.is_front_facing(p, eye);
+        }
+    }
     // Points clipped at the guard band project; wild points are errors, never wrong values.
     let wild = Vec3::from_bits(i32::MAX, i32::MIN, 1 << 15);
     assert_eq!(proj16.project_point(wild), Err(ProjectError::OutOfRange));
