@@ -42,6 +42,8 @@
 //! `|DX|, DY < 2^29`, `|num| < 2^59` and `den < 2^45`: the set-up fits `i64`. The incremental
 //! state fits `i32` (`0 ≤ k < DY < 2^29`, `k + r < 2^30`), and so do the ends (`|x| ≤ 2^28`).
 
+use super::euclid::{div_floor_i32, div_floor_i64};
+
 /// The largest coordinate magnitude (in sub-pixel units) the raster stage accepts.
 pub const MAX_COORD: i32 = (1 << 28) - 1;
 
@@ -110,7 +112,7 @@ impl Edge {
     /// `xD` for a right edge. Meaningful for rows the edge covers.
     pub fn end_at<const S: u32>(&self, y: i32, side: EdgeSide) -> i32 {
         let (n, den) = self.biased_numerator::<S>(y, side);
-        n.div_euclid(den) as i32
+        div_floor_i64(n, den).0 as i32
     }
 }
 
@@ -168,8 +170,8 @@ impl DivisionWalker {
     /// Steps 5.1–5.2 of `Parcours`: `(Q, N) ← div_euclid(N, Δy); x ← x + Q`.
     #[inline(always)]
     fn divide(&mut self) {
-        let q = self.n.div_euclid(self.den);
-        self.n = self.n.rem_euclid(self.den);
+        let (q, n) = div_floor_i64(self.n, self.den);
+        self.n = n;
         self.x += q as i32;
     }
 }
@@ -194,15 +196,16 @@ impl EdgeWalker for IncrementalWalker {
     #[inline]
     fn start<const S: u32>(edge: &Edge, side: EdgeSide, y: i32) -> Self {
         let (n, den) = edge.biased_numerator::<S>(y, side);
-        let x = n.div_euclid(den) as i32;
-        let rem = n.rem_euclid(den); // 0 ≤ rem < F·DY
+        let (x, rem) = div_floor_i64(n, den); // 0 ≤ rem < F·DY
+        let x = x as i32;
         let dx = edge.x1 - edge.x0;
         let dy = edge.y1 - edge.y0;
+        let (q, r) = div_floor_i32(dx, dy);
         IncrementalWalker {
             x,
             k: (rem >> S) as i32,
-            q: dx.div_euclid(dy),
-            r: dx.rem_euclid(dy),
+            q,
+            r,
             dy,
         }
     }

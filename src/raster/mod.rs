@@ -10,12 +10,13 @@
 //! - **Spans are half-open**: a [`Span`] covers `x0 ≤ x < x1` on row `y`.
 //! - **Sub-pixel vertices**: [`SubpixelPoint<S>`] holds coordinates in units of `2^-S` pixel.
 //!
-//! Modules: [`line`] (Bresenham), [`circle`] (midpoint circle), [`edge_walker`] (TIPE's
+//! Modules: [`line`](mod@line) (Bresenham), [`circle`] (midpoint circle), [`edge_walker`] (TIPE's
 //! `Parcours`: exact edge stepping by Euclidean division), [`polygon`] (TIPE's `Remplissage`
 //! for arbitrary polygons), [`triangle`] (the fast path with the same coverage).
 
 pub mod circle;
 pub mod edge_walker;
+pub mod euclid;
 pub mod line;
 pub mod polygon;
 pub mod triangle;
@@ -79,7 +80,7 @@ pub struct Span {
 /// A screen point in fixed point with `S` fractional bits: the pixel-unit coordinates are
 /// `x / 2^S` and `y / 2^S`. `S = 0` is TIPE's integer lattice; `S = 4` (1/16 pixel) is the default.
 ///
-/// Range: the fill accepts `|x|, |y| ≤ `[`polygon::MAX_COORD`] (that is `2^28 - 1` units,
+/// Range: the fill accepts `|x|, |y| ≤ `[`edge_walker::MAX_COORD`] (that is `2^28 - 1` units,
 /// ±16.7 M pixels at `S = 4`); see [`polygon`] for why nothing overflows in that range.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SubpixelPoint<const S: u32> {

@@ -34,6 +34,7 @@
 //!   `M` at a covered pixel is bounded by `D·2^32 < 2^62`; it is evaluated with wrapping
 //!   products, exact because the true result is in range.
 
+use crate::raster::euclid::div_floor_i64;
 use crate::raster::SubpixelPoint;
 
 /// Why an attribute plane could not be set up.
@@ -160,12 +161,9 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             gy[i] = sign * (a2 * dx1 - a1 * dx2);
             // One pixel right adds 2·gx·F to 2M + D: quotient ⌊gx·F / D⌋ (mod 2^32), remainder
             // 2·(gx·F mod D). Split gx = D·g1 + g0 so no product exceeds 2^46.
-            let (g1, g0) = (gx[i].div_euclid(d), gx[i].rem_euclid(d));
-            let g0f = g0 << S;
-            step_x[i] = (
-                (g1.wrapping_mul(f) + g0f / d) as u32,
-                (2 * (g0f % d)) as u32,
-            );
+            let (g1, g0) = div_floor_i64(gx[i], d);
+            let (q0, r0) = div_floor_i64(g0 << S, d);
+            step_x[i] = ((g1.wrapping_mul(f) + q0) as u32, (2 * r0) as u32);
         }
         Ok(AttributePlane {
             origin: v[0],
@@ -193,9 +191,10 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     pub fn exact(&self, i: usize, x: i32, y: i32) -> Exact {
         let two_d = 2 * self.d;
         let t = 2 * self.m(i, x, y) + self.d;
+        let (q, rem) = div_floor_i64(t, two_d);
         Exact {
-            value: self.base[i].wrapping_add(t.div_euclid(two_d) as u32),
-            rem: t.rem_euclid(two_d) as u32,
+            value: self.base[i].wrapping_add(q as u32),
+            rem: rem as u32,
             q: self.step_x[i].0,
             r: self.step_x[i].1,
             two_d: two_d as u32,

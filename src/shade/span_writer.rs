@@ -101,7 +101,7 @@ pub enum ShadeMode {
     Flat,
     /// Vertex luminances interpolated exactly (every pixel the correctly rounded value).
     GouraudExact,
-    /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see [`Dda`](super::attributes::Dda)).
+    /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see [`Dda`]).
     GouraudFast,
 }
 
@@ -128,22 +128,30 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
     if Z::IS_CONSTANT && Sh::IS_CONSTANT {
         // Constant depth and colour: a branch-free select the compiler vectorises.
         let (d, index) = (D::from_depth32(z.value()), shading.index());
-        let mut select = |c: &mut u8, stored: &mut D| {
+        let select = |c: &mut u8, stored: &mut D| {
             let nearer = d < *stored;
-            written += nearer as u32;
             *stored = if nearer { d } else { *stored };
             *c = if nearer { index } else { *c };
+            nearer as u32
         };
-        // Blocks of 16 pixels with a fixed trip count vectorise; the tail runs one by one.
+        // Blocks of 16 pixels: when the whole block is farther (the common case on a fresh
+        // buffer), two block fills; otherwise the per-pixel select. The all-farther test has a
+        // fixed trip count and no early exit, so it compiles to a few vector compares.
         let mut cs = colours.chunks_exact_mut(16);
         let mut zs = depths.chunks_exact_mut(16);
         for (cb, zb) in (&mut cs).zip(&mut zs) {
-            for i in 0..16 {
-                select(&mut cb[i], &mut zb[i]);
+            if zb.iter().fold(true, |all, s| all & (d < *s)) {
+                zb.fill(d);
+                cb.fill(index);
+                written += 16;
+            } else {
+                for (c, stored) in cb.iter_mut().zip(zb.iter_mut()) {
+                    written += select(c, stored);
+                }
             }
         }
         for (c, stored) in cs.into_remainder().iter_mut().zip(zs.into_remainder()) {
-            select(c, stored);
+            written += select(c, stored);
         }
         return written;
     }

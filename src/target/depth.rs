@@ -59,7 +59,12 @@ impl<'a, D: DepthValue> DepthBuffer<'a, D> {
     }
 
     /// Wraps `samples` as the band of rows `top..top + height`.
-    pub fn band(samples: &'a mut [D], width: u16, height: u16, top: u16) -> Result<Self, TargetError> {
+    pub fn band(
+        samples: &'a mut [D],
+        width: u16,
+        height: u16,
+        top: u16,
+    ) -> Result<Self, TargetError> {
         let mut d = Self::new(samples, width, height)?;
         d.top = top as i32;
         Ok(d)

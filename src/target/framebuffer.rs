@@ -81,7 +81,12 @@ impl<'a> Framebuffer<'a> {
 
     /// The rectangle of absolute pixel coordinates this buffer holds, half-open.
     pub fn window(&self) -> Window {
-        Window::new(0, self.top, self.width as i32, self.top + self.height as i32)
+        Window::new(
+            0,
+            self.top,
+            self.width as i32,
+            self.top + self.height as i32,
+        )
     }
 
     /// Row `y` (absolute) as a slice of `width` indices, or `None` outside the buffer.

@@ -96,7 +96,10 @@ impl<C: Copy + From<Rgb888>> Lut<C> {
             for s in 0..l {
                 let scale = |c: u8| ((c as u32 * (s + 1) + l / 2) / l) as u8;
                 let c = Rgb888::new(scale(base.r()), scale(base.g()), scale(base.b()));
-                lut.set((first as usize + m * levels as usize + s as usize) as u8, C::from(c));
+                lut.set(
+                    (first as usize + m * levels as usize + s as usize) as u8,
+                    C::from(c),
+                );
             }
         }
         Ok(lut)
@@ -104,10 +107,15 @@ impl<C: Copy + From<Rgb888>> Lut<C> {
 }
 
 /// The index of `shade` (0..levels) of `material` in a palette built by [`Lut::shaded`].
-/// Shades beyond the ramp saturate at its brightest entry.
+/// Shades beyond the ramp saturate at its brightest entry; `levels = 0` (no ramp) gives `first`
+/// plus nothing for the shade.
 #[inline(always)]
 pub const fn shaded_index(first: u8, levels: u8, material: u8, shade: u8) -> u8 {
-    let s = if shade >= levels { levels - 1 } else { shade };
+    let s = if shade >= levels {
+        levels.saturating_sub(1)
+    } else {
+        shade
+    };
     first
         .wrapping_add(material.wrapping_mul(levels))
         .wrapping_add(s)

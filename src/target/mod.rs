@@ -64,6 +64,8 @@ impl core::fmt::Display for TargetError {
     }
 }
 
+impl core::error::Error for TargetError {}
+
 /// Checks a `width × height` buffer with `stride` against a slice length; returns the length needed.
 pub(crate) fn check_layout(
     len: usize,
