@@ -523,25 +523,24 @@ fn extreme_inputs_never_panic() {
         if let Ok(cam) = Camera::new(p, q, v([0.0, 1.0, 0.0]), lens, vp) {
             let pr = Projector::<4>::new(&cam);
             let pr16 = Projector::<16>::new(&cam);
-            for fr in [
+            let frustums = [
                 Frustum::new::<4>(&cam, 4),
                 Frustum::new::<16>(&cam, u16::MAX),
-            ] {
-                if let Ok(fr) = fr {
-                    let tri = [0, 1, 2].map(|_| {
-                        ClipVertex::new(
-                            Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r)),
-                            [pick(&mut r)],
-                        )
-                    });
-                    if let Ok(out) = fr.clip::<1, 9>(&tri) {
-                        for c in &out {
-                            if let Ok(pr) = &pr {
-                                let _ = pr.project(c);
-                            }
-                            if let Ok(pr) = &pr16 {
-                                let _ = pr.project(c);
-                            }
+            ];
+            for fr in frustums.into_iter().flatten() {
+                let tri = [0, 1, 2].map(|_| {
+                    ClipVertex::new(
+                        Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r)),
+                        [pick(&mut r)],
+                    )
+                });
+                if let Ok(out) = fr.clip::<1, 9>(&tri) {
+                    for c in &out {
+                        if let Ok(pr) = &pr {
+                            let _ = pr.project(c);
+                        }
+                        if let Ok(pr) = &pr16 {
+                            let _ = pr.project(c);
                         }
                     }
                 }
