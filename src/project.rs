@@ -38,8 +38,9 @@
 //!    nearest at set-up, `K/z` to nearest per vertex from the (slightly low) reciprocal, so `D`
 //!    errs a few units high: measured against `f64` over dense sweeps of `z` for near/far =
 //!    0.5/10, 0.1/1000 and 1/2, at most 6 units of the 2^32 range (`D(near)` is 1 to 4, not 0;
-//!    `D(far) = 2^32 − 1`). Invisible in either buffer width; it is monotonic enough that
-//!    surfaces further apart than the `Δz` above still order correctly.
+//!    `D(far) = 2^32 − 1`). That is far below one step of a 16-bit buffer (2^16 units) and
+//!    comparable to the 32-bit `Δz` above: surfaces closer than a few `Δz_32` may order either
+//!    way.
 //!
 //! Cost, measured on a Cortex-M4 (QEMU `mps2-an386`, `-icount`, release build, SCENES.md's
 //! sphere, 482 vertices): **≈ 207 instructions per vertex** for
