@@ -60,14 +60,15 @@ pub fn zscan_bench_host_region(
 /// call); returns the pixels reported and the framebuffer checksum.
 pub fn run_case(case: &cases::Case) -> (u32, u32) {
     let mut pixels = vec![0u8; cases::FB_LEN];
-    let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT)
-        .expect("the buffer has the cases' size");
-    fb.clear(0);
-    std::hint::black_box((case.run)(std::hint::black_box(&mut fb)));
-    fb.clear(0);
-    let run = std::hint::black_box(case.run);
-    let px = zscan_bench_host_region(run, std::hint::black_box(&mut fb));
-    drop(fb);
+    let px = {
+        let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT)
+            .expect("the buffer has the cases' size");
+        fb.clear(0);
+        std::hint::black_box((case.run)(std::hint::black_box(&mut fb)));
+        fb.clear(0);
+        let run = std::hint::black_box(case.run);
+        zscan_bench_host_region(run, std::hint::black_box(&mut fb))
+    };
     (px, cases::fnv1a(&pixels))
 }
 
