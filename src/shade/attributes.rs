@@ -70,6 +70,23 @@ pub struct Exact {
     two_d: u32,
 }
 
+impl Exact {
+    /// Moves by a precomputed quotient and remainder (`r < 2D`), carrying once.
+    #[inline(always)]
+    pub fn advance(&mut self, (q, r): (u32, u32)) {
+        let t = self.rem + r;
+        let carry = (t >= self.two_d) as u32;
+        self.rem = t - carry * self.two_d;
+        self.value = self.value.wrapping_add(q).wrapping_add(carry);
+    }
+
+    /// The remainder of the value's numerator, `0 ≤ rem < 2D` (the value's exact fraction is
+    /// `rem / 2D − 1/2`, its rounding residue).
+    pub fn remainder(&self) -> (u32, u32) {
+        (self.rem, self.two_d)
+    }
+}
+
 impl Interpolant for Exact {
     #[inline(always)]
     fn value(&self) -> u32 {
@@ -78,10 +95,74 @@ impl Interpolant for Exact {
 
     #[inline(always)]
     fn step(&mut self) {
-        let t = self.rem + self.r; // both < 2^31: no overflow
-        let carry = (t >= self.two_d) as u32;
-        self.rem = t - carry * self.two_d;
-        self.value = self.value.wrapping_add(self.q).wrapping_add(carry);
+        self.advance((self.q, self.r)); // rem, r < 2^31: the sum cannot overflow
+    }
+}
+
+/// Exact values at the successive span starts of one triangle, carried from row to row.
+///
+/// Consecutive spans of a triangle start on consecutive rows, and their starts move by the
+/// left edge's slope: `q` or `q + 1` pixels. The move `(dx, +1)` is divided once per distinct
+/// `dx` (two are cached) and then applied with one add and one carry per attribute, so a row
+/// costs no division. Any other start (first span, a jump) is evaluated directly.
+#[derive(Debug)]
+pub struct RowStarts<'p, const N: usize, const S: u32> {
+    plane: &'p AttributePlane<N, S>,
+    /// The previous span start (`y = i32::MIN` before the first).
+    x: i32,
+    y: i32,
+    values: [Exact; N],
+    /// Two cached moves: `dx` and the per-attribute `(q, r)` of `(dx, +1)`.
+    dx: [i32; 2],
+    moves: [[(u32, u32); N]; 2],
+}
+
+impl<'p, const N: usize, const S: u32> RowStarts<'p, N, S> {
+    /// Starts with no previous span.
+    pub fn new(plane: &'p AttributePlane<N, S>) -> Self {
+        let none = Exact {
+            value: 0,
+            rem: 0,
+            q: 0,
+            r: 0,
+            two_d: 1,
+        };
+        RowStarts {
+            plane,
+            x: 0,
+            y: i32::MIN,
+            values: [none; N],
+            dx: [i32::MIN; 2],
+            moves: [[(0, 0); N]; 2],
+        }
+    }
+
+    /// The exact values at `(x, y)` (a covered pixel), ready to step right.
+    #[inline]
+    pub fn at(&mut self, x: i32, y: i32) -> [Exact; N] {
+        let dx = x.wrapping_sub(self.x);
+        if self.y.wrapping_add(1) == y && dx.unsigned_abs() <= 1 << 15 {
+            let slot = if self.dx[0] == dx {
+                0
+            } else if self.dx[1] == dx {
+                1
+            } else {
+                // Replace the older entry: slot 1 moves to 0, the new move goes to 1.
+                self.dx[0] = self.dx[1];
+                self.moves[0] = self.moves[1];
+                self.dx[1] = dx;
+                self.moves[1] = self.plane.row_move(dx);
+                1
+            };
+            for (e, m) in self.values.iter_mut().zip(self.moves[slot]) {
+                e.advance(m);
+            }
+        } else {
+            self.values = core::array::from_fn(|i| self.plane.exact(i, x, y));
+        }
+        self.x = x;
+        self.y = y;
+        self.values
     }
 }
 
@@ -133,6 +214,9 @@ pub struct AttributePlane<const N: usize, const S: u32> {
     d: i64,
     /// Per attribute, `(q, r)` of one pixel step right.
     step_x: [(u32, u32); N],
+    /// Per attribute, `gx = D·g1 + g0` and `gy = D·h1 + h0` (`0 ≤ g0, h0 < D`): lets a move
+    /// by `(dx, 1)` be divided with products below 2^51 ([`AttributePlane::row_move`]).
+    split: [(i64, i64, i64, i64); N],
 }
 
 impl<const N: usize, const S: u32> AttributePlane<N, S> {
@@ -153,6 +237,7 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
         let mut gx = [0i64; N];
         let mut gy = [0i64; N];
         let mut step_x = [(0u32, 0u32); N];
+        let mut split = [(0i64, 0i64, 0i64, 0i64); N];
         let f = 1i64 << S;
         for i in 0..N {
             let a1 = values[1][i] as i64 - values[0][i] as i64;
@@ -164,6 +249,8 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             let (g1, g0) = div_floor_i64(gx[i], d);
             let (q0, r0) = div_floor_i64(g0 << S, d);
             step_x[i] = ((g1.wrapping_mul(f) + q0) as u32, (2 * r0) as u32);
+            let (h1, h0) = div_floor_i64(gy[i], d);
+            split[i] = (g1, g0, h1, h0);
         }
         Ok(AttributePlane {
             origin: v[0],
@@ -172,6 +259,7 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             gy,
             d,
             step_x,
+            split,
         })
     }
 
@@ -211,6 +299,20 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             acc: (start + (1 << 15)) as u32,
             inc: inc as u32,
         }
+    }
+
+    /// `(q, r)` per attribute of the move from pixel `(x, y)` to `(x + dx, y + 1)`, for
+    /// `|dx| ≤ 2^15`: `2F·(gx·dx + gy)` divided by `2D`, via the split of `gx` and `gy`.
+    #[inline]
+    pub fn row_move(&self, dx: i32) -> [(u32, u32); N] {
+        let dx = dx as i64;
+        core::array::from_fn(|i| {
+            let (g1, g0, h1, h0) = self.split[i];
+            // F·(g0·dx + h0): |g0·dx| < 2^45, so below 2^47 · 2^S.
+            let (q, r) = div_floor_i64((g0 * dx + h0) << S, self.d);
+            let whole = (g1.wrapping_mul(dx).wrapping_add(h1)).wrapping_shl(S);
+            (whole.wrapping_add(q) as u32, (2 * r) as u32)
+        })
     }
 
     /// All values at pixel `(x, y)`, exactly rounded.
@@ -278,6 +380,38 @@ mod tests {
             .unwrap();
         }
         assert!(checked > 100_000, "{checked}");
+    }
+
+    #[test]
+    fn row_starts_equal_direct_evaluation() {
+        let mut seed = 0x1234_5678_9ABC_DEF0u64;
+        let mut rnd = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let window = crate::raster::Window::new(-5, -5, 80, 80);
+        let mut rows = 0;
+        for _ in 0..300 {
+            let v = [0; 3]
+                .map(|_| SubpixelPoint::<4>::new(rnd(1400) as i32 - 100, rnd(1400) as i32 - 100));
+            let a = [0; 3].map(|_| [rnd(1 << 32) as u32, rnd(256) as u32]);
+            let Ok(plane) = AttributePlane::<2, 4>::new(v, a) else {
+                continue;
+            };
+            let mut starts = RowStarts::new(&plane);
+            crate::raster::triangle::fill_triangle(v, &window, |s| {
+                let got = starts.at(s.x0, s.y);
+                for (i, g) in got.iter().enumerate() {
+                    let want = plane.exact(i, s.x0, s.y);
+                    assert_eq!((g.value(), g.remainder()), (want.value(), want.remainder()));
+                }
+                rows += 1;
+            })
+            .unwrap();
+        }
+        assert!(rows > 2000, "{rows}");
     }
 
     #[test]

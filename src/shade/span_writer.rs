@@ -14,7 +14,7 @@
 //! normalised depth of the projection stage, stored through [`DepthValue::from_depth32`];
 //! luminance is `0..=255` (values above saturate in the ramp).
 
-use super::attributes::{AttributePlane, Constant, Dda, Exact, Interpolant, PlaneError};
+use super::attributes::{AttributePlane, Constant, Dda, Interpolant, PlaneError, RowStarts};
 use crate::raster::polygon::FillError;
 use crate::raster::triangle::fill_triangle;
 use crate::raster::{Span, SubpixelPoint, Window};
@@ -210,6 +210,7 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
     };
     let const_depth = plane.is_constant(0).then(|| Constant(values[0][0]));
     let (mut covered, mut written) = (0u32, 0u32);
+    let mut starts = RowStarts::new(&plane);
     fill_triangle(v, &window, |s| {
         let (x0, x1) = (s.x0 as usize, s.x1 as usize);
         covered += (x1 - x0) as u32;
@@ -219,17 +220,22 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
         let (Some(c), Some(z)) = (crow.get_mut(x0..x1), zrow.get_mut(x0..x1)) else {
             return;
         };
+        if let (Some(zc), ShadeMode::Flat) = (const_depth, mode) {
+            written += depth_span(c, z, zc, flat);
+            return;
+        }
+        let [ze, le] = starts.at(s.x0, s.y);
+        let gouraud = Gouraud {
+            luminance: le,
+            ramp,
+        };
         written += match (const_depth, mode) {
             (Some(zc), ShadeMode::Flat) => depth_span(c, z, zc, flat),
-            (None, ShadeMode::Flat) => depth_span(c, z, plane.exact(0, s.x0, s.y), flat),
+            (None, ShadeMode::Flat) => depth_span(c, z, ze, flat),
             (Some(zc), ShadeMode::GouraudFast) => depth_span(c, z, zc, fast(&plane, s, ramp)),
-            (Some(zc), ShadeMode::GouraudExact) => depth_span(c, z, zc, exact(&plane, s, ramp)),
-            (None, ShadeMode::GouraudFast) => {
-                depth_span(c, z, plane.exact(0, s.x0, s.y), fast(&plane, s, ramp))
-            }
-            (None, ShadeMode::GouraudExact) => {
-                depth_span(c, z, plane.exact(0, s.x0, s.y), exact(&plane, s, ramp))
-            }
+            (Some(zc), ShadeMode::GouraudExact) => depth_span(c, z, zc, gouraud),
+            (None, ShadeMode::GouraudFast) => depth_span(c, z, ze, fast(&plane, s, ramp)),
+            (None, ShadeMode::GouraudExact) => depth_span(c, z, ze, gouraud),
         };
     })
     .map_err(DrawError::Fill)?;
@@ -251,15 +257,6 @@ fn bounds_meet<const S: u32>(v: &[SubpixelPoint<S>; 3], window: &Window) -> bool
         && (x_lo >> S) < window.x1
         && (y_hi >> S) >= window.y0
         && (y_lo >> S) < window.y1
-}
-
-/// Exact Gouraud shading for span `s`.
-#[inline(always)]
-fn exact<const S: u32>(p: &AttributePlane<2, S>, s: Span, ramp: LuminanceRamp) -> Gouraud<Exact> {
-    Gouraud {
-        luminance: p.exact(1, s.x0, s.y),
-        ramp,
-    }
 }
 
 /// Fast (16.16 DDA) Gouraud shading for span `s`.
