@@ -240,7 +240,7 @@ impl<const S: u32> Renderer<S> {
                 stats.rejected += 1;
                 continue;
             }
-            let vertex = |k: usize| prepared[poly[k] as usize];
+            let vertex = |k: usize| &prepared[poly[k] as usize];
             let corner = |k: usize| {
                 let p = vertex(k);
                 (p.screen, [p.depth, object.intensity(pi, poly[k]) as u32])
