@@ -14,7 +14,8 @@
 //!   plugin prints `qemu-icount: region <k> <instructions>` to stderr, `k` = case index.
 //! - **SysTick**: with `-icount shift=0` on `mps2-an386`, SysTick (core clock) ticks once per
 //!   40 guest instructions, so `systick_instructions` has a resolution of 40 instructions
-//!   (±40 per reading). On QEMU's `microbit` it may not tick at all (the field is then 0).
+//!   (±40 per reading). On QEMU's `microbit` (16 MHz) it ticks once per 62.5 instructions
+//!   (resolution 63).
 //!
 //! Both include the constant harness overhead; subtract the `empty` case (case 0).
 //!
@@ -82,8 +83,14 @@ fn spin(n: u32) {
 
 /// SysTick reload: the full 24 bits.
 const RELOAD: u32 = 0x00FF_FFFF;
-/// Guest instructions per SysTick tick under `-icount shift=0` (mps2-an386).
-const INSTRUCTIONS_PER_TICK: u32 = 40;
+/// Guest instructions per SysTick tick under `-icount shift=0`, times 2 (QEMU's virtual clock
+/// runs one instruction per ns; SysTick counts the board's core clock): 40 on mps2-an386
+/// (25 MHz), 62.5 on microbit (16 MHz). The hard-float build runs on mps2-an386, the
+/// thumbv6m build on microbit.
+#[cfg(target_abi = "eabihf")]
+const TWICE_INSTRUCTIONS_PER_TICK: u32 = 80;
+#[cfg(not(target_abi = "eabihf"))]
+const TWICE_INSTRUCTIONS_PER_TICK: u32 = 125;
 
 #[entry]
 fn main() -> ! {
@@ -98,7 +105,7 @@ fn main() -> ! {
     hprintln!(
         "zscan-bench begin cases={} systick_resolution={}",
         cases::CASES.len(),
-        INSTRUCTIONS_PER_TICK
+        TWICE_INSTRUCTIONS_PER_TICK.div_ceil(2)
     );
     for (i, case) in cases::CASES.iter().enumerate() {
         let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT)
@@ -123,7 +130,7 @@ fn main() -> ! {
             case.name,
             px,
             sum,
-            ticks * INSTRUCTIONS_PER_TICK
+            ticks * TWICE_INSTRUCTIONS_PER_TICK / 2
         );
     }
     // Self-test of the counter: two regions around a loop of exactly 2 instructions per
