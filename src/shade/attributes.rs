@@ -80,6 +80,12 @@ impl Exact {
         self.value = self.value.wrapping_add(q).wrapping_add(carry);
     }
 
+    /// The longest run of pixels an [`ExactRun`] started from this plane's values keeps
+    /// correctly rounded: `⌊(2^32 − 1) / 2D⌋` (at least 2, since `2D < 2^31`).
+    pub fn run_limit(&self) -> u32 {
+        u32::MAX / self.two_d
+    }
+
     /// The remainder of the value's numerator, `0 ≤ rem < 2D` (the value's exact fraction is
     /// `rem / 2D − 1/2`, its rounding residue).
     pub fn remainder(&self) -> (u32, u32) {
@@ -96,6 +102,53 @@ impl Interpolant for Exact {
     #[inline(always)]
     fn step(&mut self) {
         self.advance((self.q, self.r)); // rem, r < 2^31: the sum cannot overflow
+    }
+}
+
+/// The exact interpolant as one 32.32 fixed-point accumulator: one add per pixel, and still
+/// correctly rounded on runs of at most `2^32 / 2D − 1` pixels ([`Exact::run_limit`]).
+///
+/// Why: the exact value is `⌊V⌋` with `V = T / 2D`, whose fraction is a multiple of `1/2D`.
+/// Starting from `V` rounded **up** to 2^-32 and adding the step rounded up to 2^-32, after `k`
+/// steps the accumulator exceeds `V` by less than `(k + 1)·2^-32`, which stays below `1/2D` —
+/// too little to reach the next integer — while `(k + 1)·2D < 2^32`. Span loops use it when
+/// every span of a triangle is that short (all triangles of the standard sphere and bunny) and
+/// fall back to [`Exact`] otherwise.
+#[derive(Debug, Clone, Copy)]
+pub struct ExactRun {
+    acc: u64,
+    inc: u64,
+}
+
+impl ExactRun {
+    /// The 32.32 step of `e` (per triangle: it does not depend on the start).
+    #[inline]
+    pub fn step_of(e: &Exact) -> u64 {
+        let two_d = e.two_d as u64;
+        ((e.q as u64) << 32).wrapping_add(((e.r as u64) << 32).div_ceil(two_d))
+    }
+
+    /// Starts at the exact state `e` with the step `inc` of [`ExactRun::step_of`].
+    #[inline(always)]
+    pub fn start(e: &Exact, inc: u64) -> Self {
+        // rem < 2D, so the rounded-up fraction stays below 2^32.
+        let frac = ((e.rem as u64) << 32).div_ceil(e.two_d as u64);
+        ExactRun {
+            acc: ((e.value as u64) << 32) | frac,
+            inc,
+        }
+    }
+}
+
+impl Interpolant for ExactRun {
+    #[inline(always)]
+    fn value(&self) -> u32 {
+        (self.acc >> 32) as u32
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.acc = self.acc.wrapping_add(self.inc);
     }
 }
 
@@ -138,8 +191,23 @@ impl<'p, const N: usize, const S: u32> RowStarts<'p, N, S> {
     }
 
     /// The exact values at `(x, y)` (a covered pixel), ready to step right.
+    ///
+    /// Where a 64-bit division is one instruction (64-bit targets) the values are evaluated
+    /// directly, which counts fewer instructions than the carried form; on 32-bit targets,
+    /// where it is a library call of about a hundred instructions, they are carried from the
+    /// previous row. Both give the same values (tested).
     #[inline]
     pub fn at(&mut self, x: i32, y: i32) -> [Exact; N] {
+        if cfg!(target_pointer_width = "64") {
+            core::array::from_fn(|i| self.plane.exact(i, x, y))
+        } else {
+            self.carried(x, y)
+        }
+    }
+
+    /// [`RowStarts::at`] by carrying the previous row's values (the 32-bit targets' form).
+    #[inline]
+    pub fn carried(&mut self, x: i32, y: i32) -> [Exact; N] {
         let dx = x.wrapping_sub(self.x);
         if self.y.wrapping_add(1) == y && dx.unsigned_abs() <= 1 << 15 {
             let slot = if self.dx[0] == dx {
@@ -320,6 +388,11 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
         core::array::from_fn(|i| self.exact(i, x, y).value())
     }
 
+    /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
+    pub fn run_limit(&self) -> u32 {
+        u32::MAX / (2 * self.d) as u32
+    }
+
     /// The attribute values at vertex 0 (the values everywhere for a constant attribute).
     pub fn vertex0_values(&self) -> [u32; N] {
         self.base
@@ -402,7 +475,7 @@ mod tests {
             };
             let mut starts = RowStarts::new(&plane);
             crate::raster::triangle::fill_triangle(v, &window, |s| {
-                let got = starts.at(s.x0, s.y);
+                let got = starts.carried(s.x0, s.y);
                 for (i, g) in got.iter().enumerate() {
                     let want = plane.exact(i, s.x0, s.y);
                     assert_eq!((g.value(), g.remainder()), (want.value(), want.remainder()));
@@ -412,6 +485,38 @@ mod tests {
             .unwrap();
         }
         assert!(rows > 2000, "{rows}");
+    }
+
+    #[test]
+    fn exact_runs_stay_exact_up_to_their_limit() {
+        let mut seed = 0x0F0F_1234_5555_AAAAu64;
+        let mut rnd = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let mut pixels = 0u64;
+        for i in 0..3000 {
+            // Small and large triangles: limits from a few pixels to thousands.
+            let m = [64u64, 1024, 16384][i % 3];
+            let v = [0; 3].map(|_| SubpixelPoint::<4>::new(rnd(m) as i32, rnd(m) as i32));
+            let a = [0; 3].map(|_| [rnd(1 << 32) as u32]);
+            let Ok(plane) = AttributePlane::<1, 4>::new(v, a) else {
+                continue;
+            };
+            let (x, y) = (rnd(m >> 4) as i32, rnd(m >> 4) as i32);
+            let mut exact = plane.exact(0, x, y);
+            let limit = exact.run_limit().min(5000);
+            let mut run = ExactRun::start(&exact, ExactRun::step_of(&exact));
+            for _ in 0..limit {
+                assert_eq!(run.value(), exact.value(), "{v:?} {a:?} limit {limit}");
+                run.step();
+                exact.step();
+                pixels += 1;
+            }
+        }
+        assert!(pixels > 100_000, "{pixels}");
     }
 
     #[test]

@@ -112,6 +112,18 @@ impl<'a, D: DepthValue> DepthBuffer<'a, D> {
         self.samples.get_mut(s..s + self.width as usize)
     }
 
+    /// Samples `x0..x1` of row `y` (absolute), or `None` unless `x0 ≤ x1 ≤ width` and the row
+    /// is held. One range check: what the raster's span loops use.
+    #[inline(always)]
+    pub fn span_mut(&mut self, y: i32, x0: usize, x1: usize) -> Option<&mut [D]> {
+        let r = y.wrapping_sub(self.top) as u32;
+        if r >= self.height as u32 || x1 > self.width as usize || x0 > x1 {
+            return None;
+        }
+        let start = r as usize * self.width as usize;
+        self.samples.get_mut(start + x0..start + x1)
+    }
+
     /// The sample at `(x, y)`, or `None` outside.
     pub fn get(&self, x: i32, y: i32) -> Option<D> {
         if x < 0 {

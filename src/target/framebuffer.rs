@@ -103,6 +103,18 @@ impl<'a> Framebuffer<'a> {
         self.pixels.get_mut(start..start + w)
     }
 
+    /// Pixels `x0..x1` of row `y` (absolute), or `None` unless `x0 ≤ x1 ≤ width` and the row is
+    /// held. One range check: what the raster's span loops use.
+    #[inline(always)]
+    pub fn span_mut(&mut self, y: i32, x0: usize, x1: usize) -> Option<&mut [u8]> {
+        let r = y.wrapping_sub(self.top) as u32; // rows above `top` wrap to huge values
+        if r >= self.height as u32 || x1 > self.width as usize || x0 > x1 {
+            return None;
+        }
+        let start = r as usize * self.stride;
+        self.pixels.get_mut(start + x0..start + x1)
+    }
+
     #[inline]
     fn row_start(&self, y: i32) -> Option<usize> {
         let r = y.checked_sub(self.top)?;
