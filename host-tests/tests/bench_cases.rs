@@ -55,8 +55,9 @@ fn pixel_counts_match_the_pixels_drawn() {
         assert!(px >= set, "{name}");
     }
     assert_eq!(draw(case("line_short")).0, 256 * 9);
-    // Every case: at least as many writes as pixels set, and something drawn.
-    for c in &cases::CASES[1..] {
+    // Every line case: at least as many writes as pixels set, and something drawn. (Other
+    // cases may count covered pixels, clear the frame or draw nothing, so they are not checked.)
+    for c in cases::CASES.iter().filter(|c| c.name.starts_with("line_")) {
         let (px, pixels) = draw(c);
         let set = pixels.iter().filter(|&&p| p != 0).count() as u32;
         assert!(set > 0 && px >= set, "{}: {px} written, {set} set", c.name);
