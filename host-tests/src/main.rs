@@ -18,6 +18,8 @@ enum Command {
     Bench(zscan_host::cli::bench::BenchArgs),
     /// Write the standard benchmark scenes as Rust sources (`DIR/<name>.rs`) to `include!`.
     ExportScenes(zscan_host::cli::export::ExportScenesArgs),
+    /// Render a scene described in TOML (see host-tests/scenes/example.toml) to an image.
+    Render(zscan_host::cli::render::RenderArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -27,6 +29,7 @@ fn main() -> std::process::ExitCode {
         Command::Spans(a) => zscan_host::cli::spans::run(a),
         Command::Bench(a) => zscan_host::cli::bench::run(a),
         Command::ExportScenes(a) => zscan_host::cli::export::run(a),
+        Command::Render(a) => zscan_host::cli::render::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod export;
 pub mod lines;
+pub mod render;
 pub mod spans;
 
 /// The error type of the subcommands: a message for the user.

@@ -1,0 +1,1047 @@
+//! `zscan render`: draws a scene described in TOML with the zscan core.
+//!
+//! `zscan render SCENE.toml -o out.png [--depth-out depth.png] [--stats stats.json]
+//! [--bands ROWS]`. The commented example `host-tests/scenes/example.toml` uses every key; in
+//! short:
+//!
+//! | section | keys (defaults) |
+//! |---|---|
+//! | `[camera]` | `eye` (`[0,0,3]`), `target` (`[0,0,0]`), `up` (`[0,1,0]`), `fov_deg` (60), `fov_axis` = `"vertical"` \| `"horizontal"` \| `"diagonal"`, `near` (0.5), `far` (10) |
+//! | `[viewport]` | `width` (320), `height` (240), `principal` (`[(w−1)/2, (h−1)/2]`, pixels are lattice points), `pixel_aspect` = `[r_x, r_y]` (`[1,1]`) |
+//! | `[render]` | `depth_bits` = 16 \| 32 (16), `subpixel_bits` (4, the only value accepted), `background` palette index (0), `shade` = `"flat"` \| `"gouraud"` \| `"gouraud-fast"` (`"gouraud"`), `cull` back faces (true) |
+//! | `[light]` | `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
+//! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
+//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material`, `shade`, `cull` |
+//!
+//! Generators (the core's [`zscan::geometry::generators`], buffers allocated here):
+//! `"cube"` (the unit cube `[0,1]³`, no parameters; `center = true` makes it `[−½,½]³`),
+//! `"sphere"` (`segments` 32, `rings` 16, `radius` 1), `"torus"` (`rings` 24, `sides` 12,
+//! `major` 1, `minor` 0.35), `"prism"` (the hollow prism: `sides` 6, `outer` 1, `inner` 0.8,
+//! `half_height` 1) and, host-side, `"quad"` (`size = [w, h]`, default `[2, 2]`: the rectangle
+//! centred at the origin in the `xy` plane facing `+z`).
+//!
+//! ## Placement
+//! Every vertex `v` of an object becomes `v' = T + Rz·Rx·Ry·(S·(v − c))`: `c` the centre of the
+//! bounding box when `center = true` (else 0), `S` the scale (`scale = s` or `[sx, sy, sz]`),
+//! then the rotations of `rotate_deg = [ax, ay, az]` in the order **Y, then X, then Z**
+//! (degrees, right-hand rule; SCENES.md's cube is `rotate_deg = [20, 30, 0]`), then
+//! `translate = T`. The placement is done here in `f64` and the world positions are rounded
+//! once to the core's I16F16 (the object's core transform is the identity).
+//!
+//! ## Lighting
+//! The core has no lighting stage yet (a later issue), so intensities are computed here, in
+//! `f64`, with SCENES.md's model: `round(255·clamp(ka + kd·max(0, N·L), 0, 1))` with `L` the
+//! normalised `[light] direction`. Objects shaded `"flat"` use face normals and a per-polygon
+//! table; Gouraud objects use vertex normals (normalised sums of the un-normalised fan
+//! triangle cross products of the polygons around the vertex) and a per-vertex table.
+//! Normals come from the placed mesh.
+//!
+//! ## Output
+//! The frame (8-bit indices) goes through the LUT to the image (`.png`, `.ppm`, `.pgm` by
+//! extension). The depth image is 8-bit grey: the nearest depth drawn is 255, the farthest
+//! drawn 32, linearly in the stored depth, and the background 0. The stats JSON holds the
+//! core's [`RenderStats`] (with `--bands`, summed over the bands: the per-polygon counts then
+//! repeat once per band, the pixel counts add up to the frame's), the host's triangle count,
+//! frame size, bands and depth bits.
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use embedded_graphics::pixelcolor::Rgb888;
+use serde::Deserialize;
+use toml::Spanned;
+use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
+use zscan::geometry::generators;
+use zscan::geometry::mesh::{Mesh, PolygonSizes};
+use zscan::geometry::trig::Angle;
+use zscan::geometry::vector::Vec3;
+use zscan::render::{render_scene, PreparedVertex, RenderStats, Renderer};
+use zscan::scene::{Intensities, Object, Scene};
+use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
+use zscan::target::{DepthBuffer, DepthValue, Framebuffer, Lut};
+
+use super::CliError;
+use crate::core_render::coord;
+
+/// Arguments of `zscan render`.
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// The scene description (TOML; see host-tests/scenes/example.toml).
+    pub scene: PathBuf,
+    /// Output image (.png, .ppm or .pgm).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Also write the depth buffer as a grey PNG (near bright, background black).
+    #[arg(long)]
+    pub depth_out: Option<PathBuf>,
+    /// Write frame statistics as JSON.
+    #[arg(long)]
+    pub stats: Option<PathBuf>,
+    /// Render in bands of ROWS rows (the pixels are the same as one pass).
+    #[arg(long, value_name = "ROWS")]
+    pub bands: Option<u16>,
+}
+
+/// The sub-pixel bits `zscan render` uses (the core's default; the only value accepted).
+pub const SUBPIXEL_BITS: u32 = 4;
+
+/// A scene file as read from TOML.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// `[camera]`.
+    #[serde(default)]
+    pub camera: CameraSection,
+    /// `[viewport]`.
+    #[serde(default)]
+    pub viewport: ViewportSection,
+    /// `[render]`.
+    #[serde(default)]
+    pub render: RenderSection,
+    /// `[light]`.
+    #[serde(default)]
+    pub light: LightSection,
+    /// `[lut]`.
+    #[serde(default)]
+    pub lut: LutSection,
+    /// `[[object]]` entries.
+    #[serde(default, rename = "object")]
+    pub objects: Vec<Spanned<ObjectSection>>,
+}
+
+/// `[camera]`: a look-at camera.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CameraSection {
+    /// Eye position (world).
+    pub eye: [f64; 3],
+    /// Point looked at.
+    pub target: [f64; 3],
+    /// Approximate up direction.
+    pub up: [f64; 3],
+    /// Full field of view in degrees.
+    pub fov_deg: f64,
+    /// Which extent the field of view spans.
+    pub fov_axis: FovAxisKey,
+    /// Near plane distance.
+    pub near: f64,
+    /// Far plane distance.
+    pub far: f64,
+}
+
+impl Default for CameraSection {
+    fn default() -> Self {
+        CameraSection {
+            eye: [0.0, 0.0, 3.0],
+            target: [0.0; 3],
+            up: [0.0, 1.0, 0.0],
+            fov_deg: 60.0,
+            fov_axis: FovAxisKey::Vertical,
+            near: 0.5,
+            far: 10.0,
+        }
+    }
+}
+
+/// `fov_axis` values.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FovAxisKey {
+    /// Top to bottom.
+    Vertical,
+    /// Left to right.
+    Horizontal,
+    /// Corner to corner.
+    Diagonal,
+}
+
+/// `[viewport]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ViewportSection {
+    /// Width in pixels.
+    pub width: u16,
+    /// Height in pixels.
+    pub height: u16,
+    /// Principal point in pixels (default the picture's centre).
+    pub principal: Option<[f64; 2]>,
+    /// Physical pixel shape `[r_x, r_y]`.
+    pub pixel_aspect: [u16; 2],
+}
+
+impl Default for ViewportSection {
+    fn default() -> Self {
+        ViewportSection {
+            width: 320,
+            height: 240,
+            principal: None,
+            pixel_aspect: [1, 1],
+        }
+    }
+}
+
+/// `[render]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RenderSection {
+    /// Depth sample width, 16 or 32.
+    pub depth_bits: u32,
+    /// Sub-pixel bits (only 4 is supported).
+    pub subpixel_bits: u32,
+    /// Palette index of the background.
+    pub background: u8,
+    /// Default shading of the objects.
+    pub shade: ShadeKey,
+    /// Default back-face culling of the objects.
+    pub cull: bool,
+}
+
+impl Default for RenderSection {
+    fn default() -> Self {
+        RenderSection {
+            depth_bits: 16,
+            subpixel_bits: SUBPIXEL_BITS,
+            background: 0,
+            shade: ShadeKey::Gouraud,
+            cull: true,
+        }
+    }
+}
+
+/// `shade` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShadeKey {
+    /// One index per triangle, face normals.
+    Flat,
+    /// Exact Gouraud, vertex normals.
+    Gouraud,
+    /// Fast (16.16) Gouraud, vertex normals.
+    GouraudFast,
+}
+
+impl ShadeKey {
+    fn mode(self) -> ShadeMode {
+        match self {
+            ShadeKey::Flat => ShadeMode::Flat,
+            ShadeKey::Gouraud => ShadeMode::GouraudExact,
+            ShadeKey::GouraudFast => ShadeMode::GouraudFast,
+        }
+    }
+}
+
+/// `[light]`: one directional light, SCENES.md's model.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LightSection {
+    /// Direction towards the light (world).
+    pub direction: [f64; 3],
+    /// Ambient term.
+    pub ka: f64,
+    /// Diffuse term.
+    pub kd: f64,
+}
+
+impl Default for LightSection {
+    fn default() -> Self {
+        LightSection {
+            direction: [1.0, 1.0, 1.0],
+            ka: 0.1,
+            kd: 0.9,
+        }
+    }
+}
+
+/// `[lut]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LutSection {
+    /// Grey ramp or shaded palette.
+    pub kind: LutKind,
+    /// Base colours of the materials (shaded).
+    pub colours: Vec<[u8; 3]>,
+    /// Shade levels per material (shaded).
+    pub levels: u8,
+    /// Index of material 0's darkest shade (shaded; default 1).
+    pub first: Option<u8>,
+    /// `[index, r, g, b]` entries set after building the table.
+    pub entries: Vec<[u8; 4]>,
+}
+
+impl Default for LutSection {
+    fn default() -> Self {
+        LutSection {
+            kind: LutKind::Grey,
+            colours: Vec::new(),
+            levels: 32,
+            first: None,
+            entries: Vec::new(),
+        }
+    }
+}
+
+/// `kind` of `[lut]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LutKind {
+    /// Index = grey level; every material is the grey ramp.
+    Grey,
+    /// `first + material·levels + shade`.
+    Shaded,
+}
+
+/// A uniform or per-axis scale.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(untagged)]
+pub enum ScaleKey {
+    /// Uniform.
+    Uniform(f64),
+    /// `[sx, sy, sz]`.
+    Axes([f64; 3]),
+}
+
+impl Default for ScaleKey {
+    fn default() -> Self {
+        ScaleKey::Uniform(1.0)
+    }
+}
+
+/// One `[[object]]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectSection {
+    /// `"cube"`, `"sphere"`, `"torus"`, `"prism"` or `"quad"`.
+    pub generator: Option<Spanned<String>>,
+    /// OBJ file, relative to the scene file.
+    pub obj: Option<Spanned<String>>,
+    /// A mesh shipped with the repository (`"bunny"`).
+    pub builtin: Option<Spanned<String>>,
+    /// Sphere segments.
+    pub segments: Option<u16>,
+    /// Sphere rings, or torus rings around the axis.
+    pub rings: Option<u16>,
+    /// Sphere radius.
+    pub radius: Option<f64>,
+    /// Torus or prism sides.
+    pub sides: Option<u16>,
+    /// Torus major radius.
+    pub major: Option<f64>,
+    /// Torus minor radius.
+    pub minor: Option<f64>,
+    /// Prism outer circumradius.
+    pub outer: Option<f64>,
+    /// Prism inner circumradius.
+    pub inner: Option<f64>,
+    /// Prism half height.
+    pub half_height: Option<f64>,
+    /// Quad size `[w, h]`.
+    pub size: Option<[f64; 2]>,
+    /// Centre the bounding box at the origin first.
+    #[serde(default)]
+    pub center: bool,
+    /// Scale.
+    #[serde(default)]
+    pub scale: ScaleKey,
+    /// Rotations in degrees about x, y, z (applied Y, X, Z).
+    #[serde(default)]
+    pub rotate_deg: [f64; 3],
+    /// Translation.
+    #[serde(default)]
+    pub translate: [f64; 3],
+    /// Material index (shaded LUT).
+    #[serde(default)]
+    pub material: u8,
+    /// Shading (default `[render] shade`).
+    pub shade: Option<ShadeKey>,
+    /// Back-face culling (default `[render] cull`).
+    pub cull: Option<bool>,
+}
+
+/// A mesh in `f64` on the host: positions and polygons (counter-clockwise outward).
+#[derive(Debug, Clone, Default)]
+pub struct HostMesh {
+    /// Positions.
+    pub vertices: Vec<[f64; 3]>,
+    /// Polygons as vertex indices.
+    pub polygons: Vec<Vec<usize>>,
+}
+
+/// An object ready for the core: rounded tables and its shading.
+#[derive(Debug, Clone)]
+pub struct PreparedObject {
+    /// World positions, I16F16.
+    pub vertices: Vec<Vec3>,
+    /// Polygon indices, concatenated.
+    pub indices: Vec<u16>,
+    /// Polygon sizes (all equal: `uniform` is `Some`).
+    pub sizes: Vec<u8>,
+    /// The common polygon size, if any.
+    pub uniform: Option<u8>,
+    /// Intensities, per vertex (Gouraud) or per polygon (flat).
+    pub intensities: Vec<u8>,
+    /// Shading.
+    pub shade: ShadeKey,
+    /// Palette ramp.
+    pub ramp: LuminanceRamp,
+    /// Back-face culling.
+    pub cull: bool,
+}
+
+impl PreparedObject {
+    fn object(&self) -> Result<Object<'_>, String> {
+        let sizes = match self.uniform {
+            Some(n) => PolygonSizes::Uniform(n),
+            None => PolygonSizes::PerPolygon(&self.sizes),
+        };
+        let mesh = Mesh::new(&self.vertices, &self.indices, sizes).map_err(|e| {
+            format!("mesh: {e:?} (world coordinates must stay within ±1024)")
+        })?;
+        let mut o = Object::new(mesh);
+        o.intensities = if self.shade == ShadeKey::Flat {
+            Intensities::PerPolygon(&self.intensities)
+        } else {
+            Intensities::PerVertex(&self.intensities)
+        };
+        o.shade = self.shade.mode();
+        o.ramp = self.ramp;
+        o.cull_back_faces = self.cull;
+        Ok(o)
+    }
+}
+
+/// A scene loaded and converted: the camera, the objects, the LUT.
+#[derive(Debug, Clone)]
+pub struct LoadedScene {
+    /// The core camera.
+    pub camera: Camera,
+    /// The objects.
+    pub objects: Vec<PreparedObject>,
+    /// Colour table.
+    pub lut: Lut<Rgb888>,
+    /// Background index.
+    pub background: u8,
+    /// 16 or 32.
+    pub depth_bits: u32,
+    /// Triangles of the meshes (a polygon of `n` vertices counts `n − 2`).
+    pub triangles_in: u64,
+}
+
+/// 1-based line of byte offset `at` in `text`.
+fn line_of(text: &str, at: usize) -> usize {
+    text[..at.min(text.len())].matches('\n').count() + 1
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn normalize(v: [f64; 3]) -> Option<[f64; 3]> {
+    let l = dot(v, v).sqrt();
+    (l > 0.0 && l.is_finite()).then(|| [v[0] / l, v[1] / l, v[2] / l])
+}
+
+fn finite(v: &[f64]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+/// The mesh of a core generator, read back into `f64` (exact: I16F16 values).
+fn from_core(mesh: Mesh<'_>) -> HostMesh {
+    let f = |v: &Vec3| v.bits().map(|b| b as f64 / 65536.0);
+    HostMesh {
+        vertices: mesh.vertices().iter().map(f).collect(),
+        polygons: mesh
+            .polygons()
+            .map(|p| p.iter().map(|&i| i as usize).collect())
+            .collect(),
+    }
+}
+
+fn positive(name: &str, v: f64) -> Result<zscan::geometry::fixed::Coord, String> {
+    if !(v.is_finite() && v > 0.0 && v <= 1024.0) {
+        return Err(format!("`{name}` must be in (0, 1024], got {v}"));
+    }
+    Ok(coord(v))
+}
+
+/// Builds the generator's mesh (buffers sized by the core's `*_sizes`).
+fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
+    let allowed: &[&str] = match name {
+        "cube" => &[],
+        "sphere" => &["segments", "rings", "radius"],
+        "torus" => &["rings", "sides", "major", "minor"],
+        "prism" => &["sides", "outer", "inner", "half_height"],
+        "quad" => &["size"],
+        other => {
+            return Err(format!(
+                "unknown generator {other:?} (expected \"cube\", \"sphere\", \"torus\", \"prism\" or \"quad\")"
+            ))
+        }
+    };
+    let given = [
+        ("segments", o.segments.is_some()),
+        ("rings", o.rings.is_some()),
+        ("radius", o.radius.is_some()),
+        ("sides", o.sides.is_some()),
+        ("major", o.major.is_some()),
+        ("minor", o.minor.is_some()),
+        ("outer", o.outer.is_some()),
+        ("inner", o.inner.is_some()),
+        ("half_height", o.half_height.is_some()),
+        ("size", o.size.is_some()),
+    ];
+    for (key, set) in given {
+        if set && !allowed.contains(&key) {
+            return Err(format!("key `{key}` does not apply to generator {name:?}"));
+        }
+    }
+    let bad = |e| format!("generator {name:?}: {e:?} (check its parameters)");
+    match name {
+        "cube" => Ok(from_core(generators::unit_cube())),
+        "sphere" => {
+            let (s, r) = (o.segments.unwrap_or(32), o.rings.unwrap_or(16));
+            let radius = positive("radius", o.radius.unwrap_or(1.0))?;
+            let (nv, ni) = generators::uv_sphere_sizes(s, r);
+            let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
+            generators::uv_sphere(s, r, radius, &mut vs, &mut is)
+                .map(from_core)
+                .map_err(bad)
+        }
+        "torus" => {
+            let (r, s) = (o.rings.unwrap_or(24), o.sides.unwrap_or(12));
+            let major = positive("major", o.major.unwrap_or(1.0))?;
+            let minor = positive("minor", o.minor.unwrap_or(0.35))?;
+            let (nv, ni) = generators::torus_sizes(r, s);
+            let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
+            generators::torus(r, s, major, minor, &mut vs, &mut is)
+                .map(from_core)
+                .map_err(bad)
+        }
+        "prism" => {
+            let s = o.sides.unwrap_or(6);
+            let outer = positive("outer", o.outer.unwrap_or(1.0))?;
+            let inner = positive("inner", o.inner.unwrap_or(0.8))?;
+            let hh = positive("half_height", o.half_height.unwrap_or(1.0))?;
+            let (nv, ni) = generators::hollow_prism_sizes(s);
+            let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
+            generators::hollow_prism(s, outer, inner, hh, &mut vs, &mut is)
+                .map(from_core)
+                .map_err(bad)
+        }
+        _ => {
+            let [w, h] = o.size.unwrap_or([2.0, 2.0]);
+            if !(finite(&[w, h]) && w > 0.0 && h > 0.0) {
+                return Err(format!("quad `size` must be positive, got [{w}, {h}]"));
+            }
+            let (x, y) = (w / 2.0, h / 2.0);
+            Ok(HostMesh {
+                vertices: vec![[-x, -y, 0.0], [x, -y, 0.0], [x, y, 0.0], [-x, y, 0.0]],
+                polygons: vec![vec![0, 1, 2, 3]],
+            })
+        }
+    }
+}
+
+fn rot_x(a: f64, v: [f64; 3]) -> [f64; 3] {
+    let (s, c) = a.sin_cos();
+    [v[0], c * v[1] - s * v[2], s * v[1] + c * v[2]]
+}
+
+fn rot_y(a: f64, v: [f64; 3]) -> [f64; 3] {
+    let (s, c) = a.sin_cos();
+    [c * v[0] + s * v[2], v[1], -s * v[0] + c * v[2]]
+}
+
+fn rot_z(a: f64, v: [f64; 3]) -> [f64; 3] {
+    let (s, c) = a.sin_cos();
+    [c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]]
+}
+
+/// Applies the placement of the module doc in place.
+fn place(mesh: &mut HostMesh, o: &ObjectSection) -> Result<(), String> {
+    let s = match o.scale {
+        ScaleKey::Uniform(s) => [s; 3],
+        ScaleKey::Axes(a) => a,
+    };
+    if !finite(&s) || s.contains(&0.0) {
+        return Err(format!("`scale` must be finite and non-zero, got {s:?}"));
+    }
+    if !finite(&o.rotate_deg) || !finite(&o.translate) {
+        return Err("`rotate_deg` and `translate` must be finite".into());
+    }
+    let c = if o.center && !mesh.vertices.is_empty() {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for v in &mesh.vertices {
+            for k in 0..3 {
+                lo[k] = lo[k].min(v[k]);
+                hi[k] = hi[k].max(v[k]);
+            }
+        }
+        [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0)
+    } else {
+        [0.0; 3]
+    };
+    let [ax, ay, az] = o.rotate_deg.map(f64::to_radians);
+    for v in &mut mesh.vertices {
+        let p = sub(*v, c);
+        let p = [p[0] * s[0], p[1] * s[1], p[2] * s[2]];
+        let p = rot_z(az, rot_x(ax, rot_y(ay, p)));
+        *v = [0, 1, 2].map(|k| p[k] + o.translate[k]);
+    }
+    // A mirroring scale turns the winding inside out: restore counter-clockwise outward.
+    if s[0] * s[1] * s[2] < 0.0 {
+        for p in &mut mesh.polygons {
+            p.reverse();
+        }
+    }
+    Ok(())
+}
+
+/// The un-normalised normal of a polygon: the sum of its fan triangles' cross products.
+fn polygon_cross(vs: &[[f64; 3]], p: &[usize]) -> [f64; 3] {
+    let o = vs[p[0]];
+    let mut n = [0.0; 3];
+    for k in 1..p.len() - 1 {
+        let c = cross(sub(vs[p[k]], o), sub(vs[p[k + 1]], o));
+        n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+    }
+    n
+}
+
+/// SCENES.md's intensity of a unit normal (or none: ambient only).
+fn intensity(n: Option<[f64; 3]>, light: [f64; 3], ka: f64, kd: f64) -> u8 {
+    let d = n.map_or(0.0, |n| dot(n, light).max(0.0));
+    ((ka + kd * d).clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// Intensity tables of the module doc: per polygon (flat) or per vertex.
+fn intensities(mesh: &HostMesh, flat: bool, light: &LightSection) -> Vec<u8> {
+    let l = normalize(light.direction).unwrap_or([0.0; 3]);
+    let (ka, kd) = (light.ka, light.kd);
+    if flat {
+        mesh.polygons
+            .iter()
+            .map(|p| intensity(normalize(polygon_cross(&mesh.vertices, p)), l, ka, kd))
+            .collect()
+    } else {
+        let mut sum = vec![[0.0; 3]; mesh.vertices.len()];
+        for p in &mesh.polygons {
+            let o = mesh.vertices[p[0]];
+            for k in 1..p.len() - 1 {
+                let (b, c) = (mesh.vertices[p[k]], mesh.vertices[p[k + 1]]);
+                let n = cross(sub(b, o), sub(c, o));
+                for &i in &[p[0], p[k], p[k + 1]] {
+                    sum[i] = [sum[i][0] + n[0], sum[i][1] + n[1], sum[i][2] + n[2]];
+                }
+            }
+        }
+        sum.into_iter()
+            .map(|n| intensity(normalize(n), l, ka, kd))
+            .collect()
+    }
+}
+
+/// Loads the mesh source of one object.
+fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, String> {
+    let at = |s: &Spanned<String>| line_of(text, s.span().start);
+    let sources = [&o.generator, &o.obj, &o.builtin]
+        .iter()
+        .filter(|s| s.is_some())
+        .count();
+    if sources != 1 {
+        return Err(format!(
+            "needs exactly one of `generator`, `obj` or `builtin` (found {sources})"
+        ));
+    }
+    if let Some(g) = &o.generator {
+        return generate(g.get_ref(), o).map_err(|e| format!("line {}: {e}", at(g)));
+    }
+    let (path, key) = if let Some(p) = &o.obj {
+        (dir.join(p.get_ref()), p)
+    } else {
+        let b = o.builtin.as_ref().ok_or("no mesh source")?;
+        match b.get_ref().as_str() {
+            "bunny" => (crate::scenes::bunny_path(), b),
+            other => {
+                return Err(format!(
+                    "line {}: unknown builtin {other:?} (expected \"bunny\")",
+                    at(b)
+                ))
+            }
+        }
+    };
+    let mesh = crate::obj::load_obj(&path)
+        .map_err(|e| format!("line {}: {}: {e}", at(key), path.display()))?;
+    if mesh.polygons.is_empty() {
+        return Err(format!("line {}: {}: no faces", at(key), path.display()));
+    }
+    Ok(HostMesh {
+        vertices: mesh.vertices,
+        polygons: mesh.polygons,
+    })
+}
+
+/// Rounds a placed, lit mesh into the core's tables.
+fn prepare(
+    mesh: &HostMesh,
+    intensities: Vec<u8>,
+    shade: ShadeKey,
+    ramp: LuminanceRamp,
+    cull: bool,
+) -> Result<PreparedObject, String> {
+    if mesh.vertices.len() > 65_536 {
+        return Err(format!(
+            "{} vertices: the core indexes at most 65536",
+            mesh.vertices.len()
+        ));
+    }
+    let max = zscan::render::MAX_POLYGON_VERTICES;
+    let mut sizes = Vec::with_capacity(mesh.polygons.len());
+    let mut indices = Vec::new();
+    for p in &mesh.polygons {
+        if p.len() > max {
+            return Err(format!(
+                "a polygon has {} vertices (at most {max})",
+                p.len()
+            ));
+        }
+        sizes.push(p.len() as u8);
+        indices.extend(p.iter().map(|&i| i as u16));
+    }
+    let uniform = sizes
+        .first()
+        .copied()
+        .filter(|&n| sizes.iter().all(|&m| m == n));
+    let mut vertices = Vec::with_capacity(mesh.vertices.len());
+    for v in &mesh.vertices {
+        if !finite(v) || v.iter().any(|c| c.abs() > 1024.0) {
+            return Err(format!(
+                "world position {v:?} outside the core's mesh range (|coordinate| ≤ 1024)"
+            ));
+        }
+        vertices.push(Vec3::new(coord(v[0]), coord(v[1]), coord(v[2])));
+    }
+    Ok(PreparedObject {
+        vertices,
+        indices,
+        sizes,
+        uniform,
+        intensities,
+        shade,
+        ramp,
+        cull,
+    })
+}
+
+fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String> {
+    if !(c.fov_deg.is_finite() && c.fov_deg > 0.0 && c.fov_deg < 180.0) {
+        return Err(format!(
+            "[camera] fov_deg must be strictly between 0 and 180, got {}",
+            c.fov_deg
+        ));
+    }
+    if !(c.near.is_finite() && c.near > 0.0 && c.far.is_finite() && c.far > c.near) {
+        return Err(format!(
+            "[camera] needs 0 < near < far, got near = {}, far = {}",
+            c.near, c.far
+        ));
+    }
+    if ![c.eye, c.target, c.up].iter().all(|p| finite(p)) {
+        return Err("[camera] eye, target and up must be finite".into());
+    }
+    if v.width == 0 || v.height == 0 {
+        return Err("[viewport] width and height must be positive".into());
+    }
+    if v.pixel_aspect.contains(&0) {
+        return Err("[viewport] pixel_aspect entries must be positive".into());
+    }
+    let lens = Lens {
+        fov: Angle::from_turns((c.fov_deg / 360.0 * (1u64 << 31) as f64).round() as i64, 1 << 31),
+        axis: match c.fov_axis {
+            FovAxisKey::Vertical => FovAxis::Vertical,
+            FovAxisKey::Horizontal => FovAxis::Horizontal,
+            FovAxisKey::Diagonal => FovAxis::Diagonal,
+        },
+        near: coord(c.near),
+        far: coord(c.far),
+    };
+    let mut vp = Viewport::new(v.width, v.height);
+    if let Some([px, py]) = v.principal {
+        if !finite(&[px, py]) {
+            return Err("[viewport] principal must be finite".into());
+        }
+        vp.principal_x = coord(px);
+        vp.principal_y = coord(py);
+    }
+    vp.pixel_width = v.pixel_aspect[0];
+    vp.pixel_height = v.pixel_aspect[1];
+    let p = |a: [f64; 3]| Vec3::new(coord(a[0]), coord(a[1]), coord(a[2]));
+    Camera::look_at(p(c.eye), p(c.target), p(c.up), lens, vp)
+        .map_err(|e| format!("[camera]: cannot build the camera: {e:?}"))
+}
+
+fn build_lut(l: &LutSection) -> Result<(Lut<Rgb888>, Vec<LuminanceRamp>), String> {
+    let (mut lut, ramps) = match l.kind {
+        LutKind::Grey => (Lut::grey_ramp(), vec![LuminanceRamp::GREY]),
+        LutKind::Shaded => {
+            if l.colours.is_empty() {
+                return Err("[lut] kind = \"shaded\" needs `colours = [[r, g, b], ...]`".into());
+            }
+            let first = l.first.unwrap_or(1);
+            let bases: Vec<Rgb888> = l
+                .colours
+                .iter()
+                .map(|c| Rgb888::new(c[0], c[1], c[2]))
+                .collect();
+            let lut = Lut::shaded(&bases, l.levels, first).map_err(|e| format!("[lut]: {e}"))?;
+            let ramps = (0..bases.len())
+                .map(|m| LuminanceRamp {
+                    first: (first as usize + m * l.levels as usize) as u8,
+                    levels: l.levels as u16,
+                })
+                .collect();
+            (lut, ramps)
+        }
+    };
+    for e in &l.entries {
+        lut.set(e[0], Rgb888::new(e[1], e[2], e[3]));
+    }
+    Ok((lut, ramps))
+}
+
+/// Parses and converts a scene file's text; `path` names it in messages and anchors `obj`
+/// paths.
+pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
+    let name = path.display();
+    let file: SceneFile = toml::from_str(text).map_err(|e| format!("{name}: {e}"))?;
+    if file.render.subpixel_bits != SUBPIXEL_BITS {
+        return Err(format!(
+            "{name}: [render] subpixel_bits: only {SUBPIXEL_BITS} is supported, got {}",
+            file.render.subpixel_bits
+        ));
+    }
+    if file.render.depth_bits != 16 && file.render.depth_bits != 32 {
+        return Err(format!(
+            "{name}: [render] depth_bits must be 16 or 32, got {}",
+            file.render.depth_bits
+        ));
+    }
+    if !finite(&[file.light.ka, file.light.kd]) || normalize(file.light.direction).is_none() {
+        return Err(format!(
+            "{name}: [light] needs a finite non-zero direction and finite ka, kd"
+        ));
+    }
+    let camera = build_camera(&file.camera, &file.viewport).map_err(|e| format!("{name}: {e}"))?;
+    let (lut, ramps) = build_lut(&file.lut).map_err(|e| format!("{name}: {e}"))?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mut objects = Vec::new();
+    let mut triangles_in = 0u64;
+    for (k, spanned) in file.objects.iter().enumerate() {
+        let o = spanned.get_ref();
+        let line = line_of(text, spanned.span().start);
+        let err = |e: String| format!("{name}: object {} (line {line}): {e}", k + 1);
+        let mut mesh = object_mesh(o, dir, text).map_err(err)?;
+        place(&mut mesh, o).map_err(err)?;
+        let ramp = match file.lut.kind {
+            LutKind::Grey => LuminanceRamp::GREY,
+            LutKind::Shaded => *ramps.get(o.material as usize).ok_or_else(|| {
+                err(format!(
+                    "material {} but [lut] has {} colours",
+                    o.material,
+                    ramps.len()
+                ))
+            })?,
+        };
+        let shade = o.shade.unwrap_or(file.render.shade);
+        let table = intensities(&mesh, shade == ShadeKey::Flat, &file.light);
+        triangles_in += mesh
+            .polygons
+            .iter()
+            .map(|p| p.len().saturating_sub(2) as u64)
+            .sum::<u64>();
+        let cull = o.cull.unwrap_or(file.render.cull);
+        objects.push(prepare(&mesh, table, shade, ramp, cull).map_err(err)?);
+    }
+    Ok(LoadedScene {
+        camera,
+        objects,
+        lut,
+        background: file.render.background,
+        depth_bits: file.render.depth_bits,
+        triangles_in,
+    })
+}
+
+/// Reads, parses and converts a scene file.
+pub fn load_scene(path: &Path) -> Result<LoadedScene, String> {
+    let text = fs::read_to_string(path)
+        .map_err(|e| format!("{}: cannot read scene: {e}", path.display()))?;
+    load_scene_str(&text, path)
+}
+
+/// A rendered frame.
+#[derive(Debug, Clone)]
+pub struct Frame<D> {
+    /// Palette indices, row-major.
+    pub pixels: Vec<u8>,
+    /// Depth samples, row-major (`D::FAR` where nothing was drawn).
+    pub depth: Vec<D>,
+    /// Core statistics, summed over bands.
+    pub stats: RenderStats,
+    /// Number of bands drawn.
+    pub bands: u32,
+}
+
+impl LoadedScene {
+    /// Renders the frame with the core, in one pass or in bands of `band_rows` rows.
+    pub fn render<D: DepthValue>(&self, band_rows: Option<u16>) -> Result<Frame<D>, String> {
+        let vp = *self.camera.viewport();
+        let (w, h) = (vp.width, vp.height);
+        let objects = self
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(k, o)| o.object().map_err(|e| format!("object {}: {e}", k + 1)))
+            .collect::<Result<Vec<_>, _>>()?;
+        let scene = Scene {
+            camera: self.camera,
+            objects: &objects,
+            background: self.background,
+        };
+        let renderer =
+            Renderer::<SUBPIXEL_BITS>::new(&self.camera).map_err(|e| format!("camera: {e}"))?;
+        let most = self.objects.iter().map(|o| o.vertices.len()).max();
+        let mut scratch = vec![PreparedVertex::default(); most.unwrap_or(0)];
+        let n = w as usize * h as usize;
+        let (mut pixels, mut depth) = (vec![self.background; n], vec![D::FAR; n]);
+        let mut stats = RenderStats::default();
+        let band = band_rows.unwrap_or(h).clamp(1, h);
+        let (mut top, mut bands) = (0u16, 0u32);
+        while top < h {
+            let rows = band.min(h - top);
+            let range = top as usize * w as usize..(top + rows) as usize * w as usize;
+            let mut fb = Framebuffer::band(&mut pixels[range.clone()], w, rows, top)
+                .map_err(|e| format!("frame: {e:?}"))?;
+            let mut zb = DepthBuffer::band(&mut depth[range], w, rows, top)
+                .map_err(|e| format!("depth buffer: {e:?}"))?;
+            let s = render_scene(&renderer, &scene, &mut fb, &mut zb, &mut scratch)
+                .map_err(|e| format!("render: {e}"))?;
+            stats.polygons_in += s.polygons_in;
+            stats.culled += s.culled;
+            stats.rejected += s.rejected;
+            stats.clipped += s.clipped;
+            stats.triangles_drawn += s.triangles_drawn;
+            stats.pixels_covered += s.pixels_covered;
+            stats.pixels_written += s.pixels_written;
+            top += rows;
+            bands += 1;
+        }
+        Ok(Frame {
+            pixels,
+            depth,
+            stats,
+            bands,
+        })
+    }
+}
+
+/// The depth image of the module doc: nearest 255, farthest drawn 32, background 0.
+pub fn depth_to_grey<D: DepthValue + Into<u64>>(depth: &[D]) -> Vec<u8> {
+    let far: u64 = D::FAR.into();
+    let drawn = depth.iter().map(|&d| d.into()).filter(|&d| d != far);
+    let (lo, hi) = drawn.fold((u64::MAX, 0), |(lo, hi), d| (lo.min(d), hi.max(d)));
+    depth
+        .iter()
+        .map(|&d| {
+            let d: u64 = d.into();
+            if d == far {
+                0
+            } else if hi == lo {
+                255
+            } else {
+                (255 - ((d - lo) as u128 * 223 / (hi - lo) as u128) as u64) as u8
+            }
+        })
+        .collect()
+}
+
+fn write_grey_png(path: &Path, w: u16, h: u16, data: &[u8]) -> Result<(), String> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let file =
+        fs::File::create(path).map_err(|e| format!("{}: cannot create: {e}", path.display()))?;
+    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w as u32, h as u32);
+    enc.set_color(png::ColorType::Grayscale);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut wr = enc
+        .write_header()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    wr.write_image_data(data)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    wr.finish().map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn finish<D: DepthValue + Into<u64>>(
+    args: &RenderArgs,
+    scene: &LoadedScene,
+) -> Result<(), CliError> {
+    let frame = scene.render::<D>(args.bands)?;
+    let vp = *scene.camera.viewport();
+    let (w, h) = (vp.width, vp.height);
+    let mut pixels = frame.pixels.clone();
+    let fb = Framebuffer::new(&mut pixels, w, h).map_err(|e| format!("frame: {e:?}"))?;
+    crate::image::write_image(&args.output, &fb, &scene.lut).map_err(|e| e.0)?;
+    if let Some(p) = &args.depth_out {
+        write_grey_png(p, w, h, &depth_to_grey(&frame.depth))?;
+    }
+    if let Some(p) = &args.stats {
+        let s = frame.stats;
+        let json = serde_json::json!({
+            "width": w,
+            "height": h,
+            "bands": frame.bands,
+            "band_rows": args.bands.unwrap_or(h).clamp(1, h),
+            "depth_bits": D::BITS,
+            "subpixel_bits": SUBPIXEL_BITS,
+            "objects": scene.objects.len(),
+            "triangles_in": scene.triangles_in,
+            "polygons_in": s.polygons_in,
+            "culled": s.culled,
+            "rejected": s.rejected,
+            "clipped": s.clipped,
+            "triangles_drawn": s.triangles_drawn,
+            "pixels_covered": s.pixels_covered,
+            "pixels_written": s.pixels_written,
+        });
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        let text = serde_json::to_string_pretty(&json)?;
+        fs::write(p, text + "\n").map_err(|e| format!("{}: {e}", p.display()))?;
+    }
+    Ok(())
+}
+
+/// Runs `zscan render`.
+pub fn run(args: RenderArgs) -> Result<(), CliError> {
+    if args.bands == Some(0) {
+        return Err("--bands: a band needs at least one row".into());
+    }
+    let scene = load_scene(&args.scene)?;
+    match scene.depth_bits {
+        16 => finish::<u16>(&args, &scene),
+        _ => finish::<u32>(&args, &scene),
+    }
+}
