@@ -18,6 +18,8 @@
 //!
 //! The harness clears the framebuffer to index 0 before each call, calls the case once to warm
 //! up, clears again, then measures one call between the region markers.
+use zscan::raster::edge_walker::{DivisionWalker, IncrementalWalker};
+use zscan::shade::span_writer::ShadeMode;
 use zscan::target::Framebuffer;
 
 /// Framebuffer width of every case.
@@ -65,6 +67,62 @@ pub const CASES: &[Case] = &[
     Case {
         name: "line_clipped",
         run: line_clipped,
+    },
+    Case {
+        name: "vertex_sphere",
+        run: |fb| scene::vertex_only(fb, &scene::SPHERE),
+    },
+    Case {
+        name: "vertex_bunny",
+        run: |fb| scene::vertex_only(fb, &scene::BUNNY),
+    },
+    Case {
+        name: "fill_quad",
+        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::QUAD),
+    },
+    Case {
+        name: "fill_cube",
+        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::CUBE),
+    },
+    Case {
+        name: "fill_sphere",
+        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::SPHERE),
+    },
+    Case {
+        name: "fill_sphere_division",
+        run: |fb| scene::fill_only::<DivisionWalker>(fb, &scene::SPHERE),
+    },
+    Case {
+        name: "fill_bunny",
+        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::BUNNY),
+    },
+    Case {
+        name: "fill_bunny_division",
+        run: |fb| scene::fill_only::<DivisionWalker>(fb, &scene::BUNNY),
+    },
+    Case {
+        name: "frame_quad",
+        run: |fb| scene::frame(fb, &scene::QUAD, ShadeMode::GouraudExact),
+    },
+    Case {
+        name: "frame_cube",
+        run: |fb| scene::frame(fb, &scene::CUBE, ShadeMode::GouraudExact),
+    },
+    Case {
+        name: "frame_sphere",
+        run: |fb| scene::frame(fb, &scene::SPHERE, ShadeMode::GouraudExact),
+    },
+    Case {
+        name: "frame_sphere_fast",
+        run: |fb| scene::frame(fb, &scene::SPHERE, ShadeMode::GouraudFast),
+    },
+    Case {
+        name: "frame_bunny",
+        run: |fb| scene::frame(fb, &scene::BUNNY, ShadeMode::GouraudExact),
+    },
+    Case {
+        name: "frame_bunny_fast",
+        run: |fb| scene::frame(fb, &scene::BUNNY, ShadeMode::GouraudFast),
     },
 ];
 
@@ -167,4 +225,236 @@ fn line_clipped(fb: &mut Framebuffer<'_>) -> u32 {
         line(fb, -900 + 10 * i, -50, 1200, -10 - i, 17 + i as u8);
     }
     8 * 320 + 8 * 240
+}
+
+/// The standard scenes of `shared/bench/SCENES.md` (exported by `zscan export-scenes
+/// benches/scenes`, tables in flash, validated at compile time) and the three kinds of scene
+/// case: the vertex stage alone, the vertex stage plus the bare fill (no depth, no shading:
+/// fill cost = `fill_*` − `vertex_*`), and the whole frame (clear colour, clear depth,
+/// transform, cull, clip, project, rasterise, shade: SCENES.md's frame).
+///
+/// Per-frame set-up inside the measured region: building the camera and [`Renderer`]
+/// (projector, frustum) and initialising the vertex scratch; `vertex_*` measures it too.
+pub mod scene {
+    use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
+    use zscan::geometry::fixed::Coord;
+    use zscan::geometry::mesh::{Mesh, PolygonSizes};
+    use zscan::geometry::trig::Angle;
+    use zscan::geometry::vector::Vec3;
+    use zscan::raster::edge_walker::EdgeWalker;
+    use zscan::raster::triangle::{cross, fill_triangle_with};
+    use zscan::render::{PreparedVertex, RenderStats, Renderer};
+    use zscan::scene::{Intensities, Object};
+    use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
+    use zscan::target::{DepthBuffer, Framebuffer};
+
+    mod quad {
+        include!("scenes/quad.rs");
+    }
+    mod cube {
+        include!("scenes/cube.rs");
+    }
+    mod sphere {
+        include!("scenes/sphere.rs");
+    }
+    mod bunny {
+        include!("scenes/bunny.rs");
+    }
+
+    /// Largest vertex table of the scenes (the bunny's).
+    const MAX_VERTICES: usize = 1839;
+
+    /// One standard scene as core tables.
+    pub struct StandardScene {
+        mesh: Mesh<'static>,
+        intensities: Intensities<'static>,
+    }
+
+    const fn vec3s<const N: usize>(v: &[[i32; 3]; N]) -> [Vec3; N] {
+        let mut out = [Vec3::ZERO; N];
+        let mut i = 0;
+        while i < N {
+            out[i] = Vec3::from_bits(v[i][0], v[i][1], v[i][2]);
+            i += 1;
+        }
+        out
+    }
+
+    const fn flat<const K: usize>(t: &[[u16; 3]]) -> [u16; K] {
+        assert!(K == 3 * t.len());
+        let mut out = [0u16; K];
+        let mut i = 0;
+        while i < K {
+            out[i] = t[i / 3][i % 3];
+            i += 1;
+        }
+        out
+    }
+
+    /// Per-vertex intensities from per-corner ones (the sphere and bunny: corners agree).
+    const fn per_vertex<const N: usize>(t: &[[u16; 3]], c: &[[u8; 3]]) -> [u8; N] {
+        let mut out = [0u8; N];
+        let mut i = 0;
+        while i < t.len() {
+            let mut k = 0;
+            while k < 3 {
+                out[t[i][k] as usize] = c[i][k];
+                k += 1;
+            }
+            i += 1;
+        }
+        out
+    }
+
+    /// Per-face intensities (the quad and cube: flat faces).
+    const fn per_face<const M: usize>(c: &[[u8; 3]; M]) -> [u8; M] {
+        let mut out = [0u8; M];
+        let mut i = 0;
+        while i < M {
+            out[i] = c[i][0];
+            i += 1;
+        }
+        out
+    }
+
+    const fn mesh(v: &'static [Vec3], i: &'static [u16]) -> Mesh<'static> {
+        match Mesh::new(v, i, PolygonSizes::Uniform(3)) {
+            Ok(m) => m,
+            Err(_) => panic!("invalid standard mesh"),
+        }
+    }
+
+    macro_rules! standard {
+        ($name:ident, $m:ident, $nv:expr, $nt:expr, $intens:ident) => {
+            mod $name {
+                use super::*;
+                pub static V: [Vec3; $nv] = vec3s(&$m::VERTICES);
+                pub static I: [u16; 3 * $nt] = flat(&$m::TRIANGLES);
+    pub static L: [u8; standard!(@len $intens, $nv, $nt)] =
+        standard!(@table $intens, $m, $nv);
+            }
+        };
+        (@len per_vertex, $nv:expr, $nt:expr) => {
+            $nv
+        };
+        (@len per_face, $nv:expr, $nt:expr) => {
+            $nt
+        };
+        (@table per_vertex, $m:ident, $nv:expr) => {
+            per_vertex::<$nv>(&$m::TRIANGLES, &$m::INTENSITIES)
+        };
+        (@table per_face, $m:ident, $nv:expr) => {
+            per_face(&$m::INTENSITIES)
+        };
+    }
+    standard!(quad_t, quad, 4, 2, per_face);
+    standard!(cube_t, cube, 8, 12, per_face);
+    standard!(sphere_t, sphere, 482, 960, per_vertex);
+    standard!(bunny_t, bunny, 1839, 3674, per_vertex);
+
+    /// SCENES.md's quad.
+    pub static QUAD: StandardScene = StandardScene {
+        mesh: mesh(&quad_t::V, &quad_t::I),
+        intensities: Intensities::PerPolygon(&quad_t::L),
+    };
+    /// SCENES.md's cube.
+    pub static CUBE: StandardScene = StandardScene {
+        mesh: mesh(&cube_t::V, &cube_t::I),
+        intensities: Intensities::PerPolygon(&cube_t::L),
+    };
+    /// SCENES.md's sphere.
+    pub static SPHERE: StandardScene = StandardScene {
+        mesh: mesh(&sphere_t::V, &sphere_t::I),
+        intensities: Intensities::PerVertex(&sphere_t::L),
+    };
+    /// SCENES.md's bunny.
+    pub static BUNNY: StandardScene = StandardScene {
+        mesh: mesh(&bunny_t::V, &bunny_t::I),
+        intensities: Intensities::PerVertex(&bunny_t::L),
+    };
+
+    /// SCENES.md's camera with lattice-point pixels (principal point (159.5, 119.5)).
+    fn renderer() -> Option<Renderer<4>> {
+        let lens = Lens {
+            fov: Angle::from_degrees(60),
+            axis: FovAxis::Vertical,
+            near: Coord::from_bits(1 << 15),
+            far: Coord::from_bits(10 << 16),
+        };
+        let camera = Camera::look_at(
+            Vec3::from_bits(0, 0, 3 << 16),
+            Vec3::ZERO,
+            Vec3::from_bits(0, 1 << 16, 0),
+            lens,
+            Viewport::new(super::WIDTH, super::HEIGHT),
+        )
+        .ok()?;
+        Renderer::new(&camera).ok()
+    }
+
+    fn object(s: &StandardScene, shade: ShadeMode) -> Object<'static> {
+        let mut o = Object::new(s.mesh);
+        o.intensities = s.intensities;
+        o.shade = shade;
+        o.ramp = LuminanceRamp::GREY;
+        o
+    }
+
+    /// The vertex stage alone (plus set-up); returns 0 pixels.
+    pub fn vertex_only(_fb: &mut Framebuffer<'_>, s: &StandardScene) -> u32 {
+        let Some(r) = renderer() else { return 0 };
+        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let _ = r.prepare(&object(s, ShadeMode::Flat), &mut scratch);
+        core::hint::black_box(&scratch);
+        0
+    }
+
+    /// Vertex stage, back-face culling on the projected area, and the bare fill of every
+    /// front-facing triangle whose vertices all projected (no depth test, no shading: index
+    /// 255 written with `slice::fill`). Returns the pixels written.
+    pub fn fill_only<W: EdgeWalker>(fb: &mut Framebuffer<'_>, s: &StandardScene) -> u32 {
+        let Some(r) = renderer() else { return 0 };
+        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        if r.prepare(&object(s, ShadeMode::Flat), &mut scratch)
+            .is_err()
+        {
+            return 0;
+        }
+        let window = fb.window();
+        let mut written = 0;
+        for t in s.mesh.indices().chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| scratch[i as usize]);
+            if a.outcode | b.outcode | c.outcode != 0 {
+                continue;
+            }
+            let v = [a.screen, b.screen, c.screen];
+            if cross(v[0], v[1], v[2]) >= 0 {
+                continue; // back face (clockwise on a y-down screen is front)
+            }
+            let _ = fill_triangle_with::<W, 4>(v, &window, |span| {
+                if let Some(row) = fb.span_mut(span.y, span.x0 as usize, span.x1 as usize) {
+                    row.fill(255);
+                    written += row.len() as u32;
+                }
+            });
+        }
+        written
+    }
+
+    /// SCENES.md's frame: clear colour, clear depth (16-bit), transform, cull, clip, project,
+    /// rasterise with the depth test, Gouraud luminance. Returns the pixels written.
+    pub fn frame(fb: &mut Framebuffer<'_>, s: &StandardScene, shade: ShadeMode) -> u32 {
+        let mut depth = [u16::MAX; super::FB_LEN]; // clear depth
+        let Ok(mut zb) = DepthBuffer::new(&mut depth, super::WIDTH, super::HEIGHT) else {
+            return 0;
+        };
+        fb.clear(0); // clear colour
+        let Some(r) = renderer() else { return 0 };
+        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let mut stats = RenderStats::default();
+        match r.draw_object(&object(s, shade), &mut scratch, fb, &mut zb, &mut stats) {
+            Ok(()) => stats.pixels_written,
+            Err(_) => 0,
+        }
+    }
 }

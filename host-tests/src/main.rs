@@ -2,7 +2,11 @@
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "zscan", version, about = "zscan host tool: render, inspect and benchmark")]
+#[command(
+    name = "zscan",
+    version,
+    about = "zscan host tool: render, inspect and benchmark"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -230,8 +230,31 @@ impl Frustum {
     }
 
     /// Bit `i` set when `p` is outside plane `i`.
+    ///
+    /// The planes have the shapes [`Frustum::new`] gives them (`z − near`, `far − z`,
+    /// `±x + cx·z`, `±y + cy·z`), so each distance is formed from its non-zero terms only: the
+    /// same `i64` values as [`Plane::distance`] (tested) with two multiplies instead of
+    /// eighteen — this runs once per vertex per frame.
     #[inline]
     pub fn outcode(&self, p: Vec3) -> u8 {
+        let [x, y, z] = p.bits();
+        let p = &self.planes;
+        let (x, y, z) = ((x as i64) << 16, (y as i64) << 16, z as i64);
+        let zn = (z << 16) + ((p[NEAR].d as i64) << 16); // z − near
+        let zf = ((p[FAR].d as i64) << 16) - (z << 16); // far − z
+        let cxz = p[2].c as i64 * z;
+        let cyz = p[4].c as i64 * z;
+        ((zn < 0) as u8)
+            | (((zf < 0) as u8) << 1)
+            | (((x + cxz < 0) as u8) << 2)
+            | (((cxz - x < 0) as u8) << 3)
+            | (((y + cyz < 0) as u8) << 4)
+            | (((cyz - y < 0) as u8) << 5)
+    }
+
+    /// [`Frustum::outcode`] from the six generic plane distances (the reference it is tested
+    /// against).
+    pub fn outcode_generic(&self, p: Vec3) -> u8 {
         let mut code = 0;
         for (i, pl) in self.planes.iter().enumerate() {
             if pl.distance(p) < 0 {
@@ -308,6 +331,26 @@ mod tests {
             Viewport::new(320, 240),
         )
         .unwrap()
+    }
+
+    #[test]
+    fn fast_outcode_equals_plane_distances() {
+        let mut seed = 0x5EED_0123_4567_89ABu64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed as i32
+        };
+        for guard in [1, 4, 100] {
+            let f = Frustum::new::<4>(&camera(), guard).unwrap();
+            for i in 0..20000 {
+                // Full-range raw coordinates, and small ones near the planes.
+                let shift = [0, 8, 14][i % 3];
+                let p = Vec3::from_bits(rnd() >> shift, rnd() >> shift, rnd() >> shift);
+                assert_eq!(f.outcode(p), f.outcode_generic(p), "{p:?}");
+            }
+        }
     }
 
     #[test]

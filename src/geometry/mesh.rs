@@ -122,17 +122,21 @@ pub fn faces_eye(normal: Vec3, point: Vec3, eye: Vec3) -> bool {
 
 impl<'a> Mesh<'a> {
     /// A validated mesh.
-    pub fn new(
+    pub const fn new(
         vertices: &'a [Vec3],
         indices: &'a [u16],
         sizes: PolygonSizes<'a>,
     ) -> Result<Mesh<'a>, MeshError> {
-        if vertices
-            .iter()
-            .flat_map(|v| v.bits())
-            .any(|c| c.unsigned_abs() > MAX_MESH_COORD_BITS as u32)
-        {
-            return Err(MeshError::CoordinateOutOfRange);
+        // `const fn` (while loops, no iterators) so that a mesh in flash can be validated at
+        // compile time: `const MESH: Mesh = match Mesh::new(..) { Ok(m) => m, .. }`.
+        let mut i = 0;
+        while i < vertices.len() {
+            let b = vertices[i].bits();
+            let lim = MAX_MESH_COORD_BITS as u32;
+            if b[0].unsigned_abs() > lim || b[1].unsigned_abs() > lim || b[2].unsigned_abs() > lim {
+                return Err(MeshError::CoordinateOutOfRange);
+            }
+            i += 1;
         }
         let polygon_count = match sizes {
             PolygonSizes::Uniform(n) => {
@@ -145,17 +149,26 @@ impl<'a> Mesh<'a> {
                 indices.len() / n as usize
             }
             PolygonSizes::PerPolygon(s) => {
-                if s.iter().any(|&n| n < 3) {
-                    return Err(MeshError::BadPolygonSize);
+                let (mut k, mut total) = (0, 0usize);
+                while k < s.len() {
+                    if s[k] < 3 {
+                        return Err(MeshError::BadPolygonSize);
+                    }
+                    total += s[k] as usize;
+                    k += 1;
                 }
-                if s.iter().map(|&n| n as usize).sum::<usize>() != indices.len() {
+                if total != indices.len() {
                     return Err(MeshError::IndexCountMismatch);
                 }
                 s.len()
             }
         };
-        if indices.iter().any(|&i| i as usize >= vertices.len()) {
-            return Err(MeshError::IndexOutOfRange);
+        let mut j = 0;
+        while j < indices.len() {
+            if indices[j] as usize >= vertices.len() {
+                return Err(MeshError::IndexOutOfRange);
+            }
+            j += 1;
         }
         Ok(Mesh {
             vertices,

@@ -10,8 +10,17 @@
 //! non-panicking result for `b < 0`; `b == 0` is never passed). No overflow for any `a`.
 
 /// `(q, r)` with `a = b·q + r` and `0 ≤ r < b`, for `b > 0`.
+///
+/// On 32-bit targets a 64-bit division is a library call (`__aeabi_ldivmod`, about a hundred
+/// instructions on a Cortex-M4) while a 32-bit one is a single `sdiv` (Cortex-M3/M4) or a much
+/// shorter call (Cortex-M0): operands that fit `i32` take the 32-bit division there. On 64-bit
+/// targets the hardware divides 64 bits directly and the check would only cost.
 #[inline(always)]
 pub fn div_floor_i64(a: i64, b: i64) -> (i64, i64) {
+    if cfg!(not(target_pointer_width = "64")) && a == a as i32 as i64 && b == b as i32 as i64 {
+        let (q, r) = div_floor_i32(a as i32, b as i32);
+        return (q as i64, r as i64);
+    }
     let (q, r) = (a / b, a % b);
     if r < 0 {
         (q - 1, r + b)

@@ -419,34 +419,80 @@ pub fn draw_line_with_ends(
     ends: Ends,
     index: u8,
 ) -> Result<(), LineError> {
-    let window = fb.window();
-    // Consecutive pixels on one row (an x-major line's runs) are written as one span, so the
-    // row is looked up once per run, not once per pixel.
-    let mut run: Option<(i32, i32, i32)> = None; // (row, min x, max x)
-    for p in Bresenham::clipped(p0, p1, ends, &window)? {
-        run = match run {
-            Some((y, lo, hi)) if y == p.y => Some((y, lo.min(p.x), hi.max(p.x))),
-            other => {
-                if let Some(r) = other {
-                    fill_run(fb, r, index);
-                }
-                Some((p.y, p.x, p.x))
-            }
-        };
-    }
-    if let Some(r) = run {
-        fill_run(fb, r, index);
-    }
+    let line = Bresenham::clipped(p0, p1, ends, &fb.window())?;
+    line.draw(fb, index);
     Ok(())
 }
 
-/// Writes `index` at row `y`, columns `lo..=hi`. Every pixel of a clipped line is inside the
-/// window; the checked look-ups still make an out-of-range run a no-op instead of a panic.
-#[inline]
-fn fill_run(fb: &mut Framebuffer<'_>, (y, lo, hi): (i32, i32, i32), index: u8) {
-    if let (Some(row), Ok(lo), Ok(hi)) = (fb.row_mut(y), usize::try_from(lo), usize::try_from(hi)) {
-        if let Some(span) = row.get_mut(lo..=hi) {
-            span.fill(index);
+impl Bresenham {
+    /// Writes every remaining pixel into `fb` with one tight loop: the pixel's offset in the
+    /// buffer moves by a precomputed major (and, on error overflow, minor) stride, so a pixel
+    /// costs a store, two adds, a compare and the loop test. Pixels must lie in the frame
+    /// (true for [`Bresenham::clipped`] against `fb.window()`); a pixel outside it ends the
+    /// line instead of writing out of bounds. Lines whose error terms exceed `i32` (end points
+    /// farther apart than 2^30) take the iterator instead.
+    pub fn draw(self, fb: &mut Framebuffer<'_>, index: u8) {
+        if self.done {
+            return;
+        }
+        let fits = |v: i64| v.unsigned_abs() < 1 << 30;
+        if !(fits(self.error) && fits(self.error_step_major) && fits(self.error_step_minor)) {
+            for p in self {
+                fb.set_pixel(p.x, p.y, index);
+            }
+            return;
+        }
+        let (width, stride, top) = (fb.width() as i32, fb.stride() as isize, fb.top());
+        let (x, y) = (self.point.x, self.point.y - top);
+        if x < 0 || x >= width || y < 0 {
+            return;
+        }
+        let offset = |p: Point| (p.x as isize + p.y as isize * stride) as usize;
+        let start = (y as isize * stride + x as isize) as usize;
+        let steps = BresenhamSteps {
+            major: offset(self.major_step),
+            minor: offset(self.minor_step),
+            error_step_major: self.error_step_major as i32,
+            error_step_minor: self.error_step_minor as i32,
+        };
+        steps.run(
+            fb.pixels_mut(),
+            start,
+            self.error as i32,
+            self.steps_left,
+            index,
+        );
+    }
+}
+
+/// The inner loop of [`Bresenham::draw`], kept apart with few live values so that everything
+/// stays in registers: offsets in the buffer (negative strides as wrapping `usize`), `i32`
+/// error terms.
+#[derive(Clone, Copy)]
+struct BresenhamSteps {
+    major: usize,
+    minor: usize,
+    error_step_major: i32,
+    error_step_minor: i32,
+}
+
+impl BresenhamSteps {
+    #[inline(never)]
+    fn run(self, pixels: &mut [u8], mut at: usize, mut error: i32, mut left: u32, index: u8) {
+        loop {
+            // An offset that left the buffer (negative ones wrap to huge values) ends the line.
+            let Some(p) = pixels.get_mut(at) else { return };
+            *p = index;
+            if left == 0 {
+                return;
+            }
+            left -= 1;
+            at = at.wrapping_add(self.major);
+            error += self.error_step_major;
+            if error >= 0 {
+                error -= self.error_step_minor;
+                at = at.wrapping_add(self.minor);
+            }
         }
     }
 }

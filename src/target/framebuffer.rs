@@ -89,6 +89,12 @@ impl<'a> Framebuffer<'a> {
         )
     }
 
+    /// The whole buffer (rows `stride` apart), for loops that walk it by offsets.
+    #[inline(always)]
+    pub fn pixels_mut(&mut self) -> &mut [u8] {
+        self.pixels
+    }
+
     /// Row `y` (absolute) as a slice of `width` indices, or `None` outside the buffer.
     pub fn row(&self, y: i32) -> Option<&[u8]> {
         let start = self.row_start(y)?;
