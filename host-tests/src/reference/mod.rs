@@ -1,5 +1,6 @@
 //! Reference implementations, independent of the production code, used by the tests.
 
 pub mod bresenham;
+pub mod compare;
 pub mod exact_fill;
 pub mod float_render;
