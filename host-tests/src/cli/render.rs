@@ -392,9 +392,8 @@ impl PreparedObject {
             Some(n) => PolygonSizes::Uniform(n),
             None => PolygonSizes::PerPolygon(&self.sizes),
         };
-        let mesh = Mesh::new(&self.vertices, &self.indices, sizes).map_err(|e| {
-            format!("mesh: {e:?} (world coordinates must stay within ±1024)")
-        })?;
+        let mesh = Mesh::new(&self.vertices, &self.indices, sizes)
+            .map_err(|e| format!("mesh: {e:?} (world coordinates must stay within ±1024)"))?;
         let mut o = Object::new(mesh);
         o.intensities = if self.shade == ShadeKey::Flat {
             Intensities::PerPolygon(&self.intensities)
@@ -665,7 +664,7 @@ fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, St
         ));
     }
     if let Some(g) = &o.generator {
-        return generate(g.get_ref(), o).map_err(|e| format!("line {}: {e}", at(g)));
+        return generate(g.get_ref(), o).map_err(|e| format!("`generator` (line {}): {e}", at(g)));
     }
     let (path, key) = if let Some(p) = &o.obj {
         (dir.join(p.get_ref()), p)
@@ -675,16 +674,22 @@ fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, St
             "bunny" => (crate::scenes::bunny_path(), b),
             other => {
                 return Err(format!(
-                    "line {}: unknown builtin {other:?} (expected \"bunny\")",
+                    "`builtin` (line {}): unknown builtin {other:?} (expected \"bunny\")",
                     at(b)
                 ))
             }
         }
     };
-    let mesh = crate::obj::load_obj(&path)
-        .map_err(|e| format!("line {}: {}: {e}", at(key), path.display()))?;
+    let mesh = crate::obj::load_obj(&path).map_err(|e| match &e.kind {
+        crate::obj::ObjErrorKind::Io(msg) => format!("mesh (line {}): cannot read {msg}", at(key)),
+        _ => format!("mesh (line {}): {}: {e}", at(key), path.display()),
+    })?;
     if mesh.polygons.is_empty() {
-        return Err(format!("line {}: {}: no faces", at(key), path.display()));
+        return Err(format!(
+            "mesh (line {}): {}: no faces",
+            at(key),
+            path.display()
+        ));
     }
     Ok(HostMesh {
         vertices: mesh.vertices,
@@ -767,7 +772,10 @@ fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String
         return Err("[viewport] pixel_aspect entries must be positive".into());
     }
     let lens = Lens {
-        fov: Angle::from_turns((c.fov_deg / 360.0 * (1u64 << 31) as f64).round() as i64, 1 << 31),
+        fov: Angle::from_turns(
+            (c.fov_deg / 360.0 * (1u64 << 31) as f64).round() as i64,
+            1 << 31,
+        ),
         axis: match c.fov_axis {
             FovAxisKey::Vertical => FovAxis::Vertical,
             FovAxisKey::Horizontal => FovAxis::Horizontal,

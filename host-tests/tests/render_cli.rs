@@ -1,0 +1,222 @@
+//! `zscan render` end to end: the built binary on the scenes of `host-tests/scenes`, outputs
+//! written under `target/` (`CARGO_TARGET_TMPDIR`).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use zscan_host::image::read_png_rgb;
+
+fn scenes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes")
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("render-cli-{}", std::process::id()))
+        .join(name);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn zscan(args: &[&Path]) -> Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_zscan"));
+    c.arg("render");
+    for a in args {
+        c.arg(a);
+    }
+    c.output().expect("run zscan")
+}
+
+/// Renders `scene` into `dir` with image, depth image and stats; returns them.
+fn render(scene: &Path, dir: &Path, extra: &[&str]) -> (PathBuf, PathBuf, serde_json::Value) {
+    let (png, depth, stats) = (
+        dir.join("out.png"),
+        dir.join("depth.png"),
+        dir.join("stats.json"),
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .arg("render")
+        .arg(scene)
+        .arg("-o")
+        .arg(&png)
+        .arg("--depth-out")
+        .arg(&depth)
+        .arg("--stats")
+        .arg(&stats)
+        .args(extra)
+        .output()
+        .expect("run zscan");
+    assert!(
+        out.status.success(),
+        "{}: {}",
+        scene.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    (png, depth, json)
+}
+
+fn n(v: &serde_json::Value, key: &str) -> i64 {
+    v[key]
+        .as_i64()
+        .unwrap_or_else(|| panic!("stats key {key} missing: {v}"))
+}
+
+/// Pixels that are not black (the standard scenes' background; lit pixels are ≥ 26).
+fn lit_pixels(png: &Path) -> usize {
+    let img = read_png_rgb(png).unwrap();
+    img.data.chunks_exact(3).filter(|p| p != &[0, 0, 0]).count()
+}
+
+#[test]
+fn example_and_demo_render_with_sane_stats() {
+    for name in ["example", "demo"] {
+        let dir = out_dir(name);
+        let (png, depth, s) = render(&scenes().join(format!("{name}.toml")), &dir, &[]);
+        let img = read_png_rgb(&png).unwrap();
+        assert_eq!((img.width, img.height), (320, 240), "{name}");
+        let d = read_png_rgb(&depth).unwrap();
+        assert_eq!((d.width, d.height), (320, 240), "{name}");
+        assert!(
+            d.data.contains(&255) && d.data.contains(&0),
+            "{name}: depth range"
+        );
+        assert_eq!(
+            (n(&s, "width"), n(&s, "height"), n(&s, "bands")),
+            (320, 240, 1)
+        );
+        assert_eq!(
+            n(&s, "depth_bits"),
+            if name == "demo" { 16 } else { 32 },
+            "{name}"
+        );
+        let drawn = n(&s, "triangles_drawn");
+        assert!(drawn > 100 && drawn <= n(&s, "triangles_in"), "{name}: {s}");
+        assert!(n(&s, "culled") > 0 && n(&s, "culled") < n(&s, "polygons_in"));
+        let (cov, wr) = (n(&s, "pixels_covered"), n(&s, "pixels_written"));
+        assert!(wr <= cov && cov > 10_000 && wr > 10_000, "{name}: {s}");
+        // Objects: several distinct colours on screen.
+        let mut colours: Vec<&[u8]> = img.data.chunks_exact(3).collect();
+        colours.sort();
+        colours.dedup();
+        assert!(colours.len() > 50, "{name}: {} colours", colours.len());
+    }
+}
+
+#[test]
+fn standard_scenes_match_scenes_md() {
+    // SCENES.md: coverage with exact arithmetic (zscan snaps to 1/16 pixel: within ±20).
+    for (name, pixels, drawn) in [
+        ("quad", 76_800, Some(2)),
+        ("cube", 16_014, Some(6)),
+        ("sphere", 22_000, None),
+        ("bunny", 11_462, None),
+    ] {
+        let dir = out_dir(&format!("standard_{name}"));
+        let scene = scenes().join(format!("standard_{name}.toml"));
+        let (png, _, s) = render(&scene, &dir, &[]);
+        let lit = lit_pixels(&png) as i64;
+        assert!((lit - pixels).abs() <= 20, "{name}: {lit} pixels drawn");
+        if name != "bunny" {
+            // Convex: covered pixels are the silhouette, each written once.
+            let cov = n(&s, "pixels_covered");
+            assert!((cov - pixels).abs() <= 20, "{name}: {s}");
+            assert_eq!(n(&s, "pixels_written"), cov, "{name}");
+        }
+        if let Some(t) = drawn {
+            assert_eq!(n(&s, "triangles_drawn"), t, "{name}");
+        }
+        assert_eq!(n(&s, "clipped") + n(&s, "rejected"), 0, "{name}");
+    }
+}
+
+#[test]
+fn bands_give_the_same_pictures_as_one_pass() {
+    let scene = scenes().join("demo.toml");
+    let (png1, depth1, s1) = render(&scene, &out_dir("bands-1"), &[]);
+    for rows in ["1", "7", "64", "1000"] {
+        let (png, depth, s) = render(
+            &scene,
+            &out_dir(&format!("bands-{rows}")),
+            &["--bands", rows],
+        );
+        assert_eq!(
+            std::fs::read(&png).unwrap(),
+            std::fs::read(&png1).unwrap(),
+            "{rows}"
+        );
+        assert_eq!(
+            std::fs::read(&depth).unwrap(),
+            std::fs::read(&depth1).unwrap(),
+            "{rows}"
+        );
+        assert_eq!(n(&s, "pixels_written"), n(&s1, "pixels_written"), "{rows}");
+        assert_eq!(n(&s, "pixels_covered"), n(&s1, "pixels_covered"), "{rows}");
+        let bands = (240 + n(&s, "band_rows") - 1) / n(&s, "band_rows");
+        assert_eq!(n(&s, "bands"), bands, "{rows}");
+    }
+}
+
+/// Runs `zscan render` on `text` written to a scene file; expects failure, returns stderr.
+fn fails(name: &str, text: &str) -> String {
+    let dir = out_dir("errors");
+    let scene = dir.join(name);
+    std::fs::write(&scene, text).unwrap();
+    let out = zscan(&[&scene, Path::new("-o"), &dir.join(format!("{name}.png"))]);
+    assert!(!out.status.success(), "{name} should fail");
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!err.contains("panicked"), "{name}: {err}");
+    assert!(
+        err.contains(name),
+        "{name}: message should name the file: {err}"
+    );
+    err
+}
+
+#[test]
+fn bad_scenes_fail_with_messages_naming_the_problem() {
+    let err = fails("syntax.toml", "[camera]\neye = [0, 0,\n");
+    assert!(err.contains("line"), "{err}");
+
+    let err = fails(
+        "generator.toml",
+        "[camera]\nfov_deg = 50.0\n\n[[object]]\ngenerator = \"blob\"\n",
+    );
+    assert!(err.contains("unknown generator \"blob\""), "{err}");
+    assert!(err.contains("line 5"), "{err}");
+
+    let err = fails("key.toml", "[render]\ndepht_bits = 16\n");
+    assert!(err.contains("depht_bits"), "{err}");
+
+    let err = fails("depth.toml", "[render]\ndepth_bits = 24\n");
+    assert!(err.contains("depth_bits"), "{err}");
+
+    let err = fails("axis.toml", "[camera]\nfov_axis = \"sideways\"\n");
+    assert!(err.contains("sideways"), "{err}");
+
+    let err = fails("obj.toml", "[[object]]\nobj = \"no-such-mesh.obj\"\n");
+    assert!(err.contains("no-such-mesh.obj"), "{err}");
+
+    let err = fails(
+        "param.toml",
+        "[[object]]\ngenerator = \"cube\"\nradius = 2.0\n",
+    );
+    assert!(err.contains("radius"), "{err}");
+
+    let err = fails(
+        "material.toml",
+        "[lut]\nkind = \"shaded\"\ncolours = [[255, 0, 0]]\n[[object]]\ngenerator = \"cube\"\nmaterial = 3\n",
+    );
+    assert!(err.contains("material 3"), "{err}");
+
+    // A scene file that does not exist.
+    let dir = out_dir("errors");
+    let missing = dir.join("missing-scene.toml");
+    let out = zscan(&[&missing, Path::new("-o"), &dir.join("missing.png")]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("missing-scene.toml") && err.contains("cannot read"),
+        "{err}"
+    );
+}
