@@ -7,3 +7,6 @@
 
 pub mod attributes;
 pub mod span_writer;
+pub mod dither;
+pub mod lighting;
+pub mod phong;
