@@ -34,7 +34,7 @@
 //!   `M` at a covered pixel is bounded by `D·2^32 < 2^62`; it is evaluated with wrapping
 //!   products, exact because the true result is in range.
 
-use crate::raster::euclid::div_floor_i64;
+use crate::raster::euclid::Divisor;
 use crate::raster::SubpixelPoint;
 
 /// Why an attribute plane could not be set up.
@@ -121,21 +121,28 @@ pub struct ExactRun {
 }
 
 impl ExactRun {
-    /// The 32.32 step of `e` (per triangle: it does not depend on the start).
+    /// The 32.32 step of `e` and `2D` prepared for the starts (per triangle: neither depends
+    /// on the span).
     #[inline]
-    pub fn step_of(e: &Exact) -> u64 {
-        let two_d = e.two_d as u64;
-        ((e.q as u64) << 32).wrapping_add(((e.r as u64) << 32).div_ceil(two_d))
+    pub fn prepare(e: &Exact) -> (u64, Divisor) {
+        let two_d = Divisor::new(e.two_d as i64);
+        (Self::ceil_frac(e.q, e.r, &two_d), two_d)
     }
 
-    /// Starts at the exact state `e` with the step `inc` of [`ExactRun::step_of`].
+    /// `(q << 32) + ⌈r·2^32 / 2D⌉` for `r < 2D` (wrapping in the integer part).
     #[inline(always)]
-    pub fn start(e: &Exact, inc: u64) -> Self {
+    fn ceil_frac(q: u32, r: u32, two_d: &Divisor) -> u64 {
+        let (f, rem) = two_d.div_floor((r as i64) << 32);
+        ((q as u64) << 32).wrapping_add(f as u64 + (rem != 0) as u64)
+    }
+
+    /// Starts at the exact state `e` with the step and divisor of [`ExactRun::prepare`].
+    #[inline(always)]
+    pub fn start(e: &Exact, (inc, two_d): &(u64, Divisor)) -> Self {
         // rem < 2D, so the rounded-up fraction stays below 2^32.
-        let frac = ((e.rem as u64) << 32).div_ceil(e.two_d as u64);
         ExactRun {
-            acc: ((e.value as u64) << 32) | frac,
-            inc,
+            acc: Self::ceil_frac(e.value, e.rem, two_d),
+            inc: *inc,
         }
     }
 }
@@ -199,10 +206,20 @@ impl<'p, const N: usize, const S: u32> RowStarts<'p, N, S> {
     #[inline]
     pub fn at(&mut self, x: i32, y: i32) -> [Exact; N] {
         if cfg!(target_pointer_width = "64") {
-            core::array::from_fn(|i| self.plane.exact(i, x, y))
+            self.direct(x, y)
         } else {
             self.carried(x, y)
         }
+    }
+
+    /// The values at `(x, y)` by direct evaluation (a loop, not `array::from_fn`, which the
+    /// compiler left out of line here).
+    #[inline(always)]
+    fn direct(&mut self, x: i32, y: i32) -> [Exact; N] {
+        for i in 0..N {
+            self.values[i] = self.plane.exact(i, x, y);
+        }
+        self.values
     }
 
     /// [`RowStarts::at`] by carrying the previous row's values (the 32-bit targets' form).
@@ -226,7 +243,7 @@ impl<'p, const N: usize, const S: u32> RowStarts<'p, N, S> {
                 e.advance(m);
             }
         } else {
-            self.values = core::array::from_fn(|i| self.plane.exact(i, x, y));
+            self.direct(x, y);
         }
         self.x = x;
         self.y = y;
@@ -273,13 +290,15 @@ impl Interpolant for Dda {
 }
 
 /// The exact affine interpolant of `N` attributes over one triangle.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct AttributePlane<const N: usize, const S: u32> {
     origin: SubpixelPoint<S>,
     base: [u32; N],
     gx: [i64; N],
     gy: [i64; N],
     d: i64,
+    /// `d` prepared for repeated division (a reciprocal on 32-bit targets).
+    div: Divisor,
     /// Per attribute, `(q, r)` of one pixel step right.
     step_x: [(u32, u32); N],
     /// Per attribute, `gx = D·g1 + g0` and `gy = D·h1 + h0` (`0 ≤ g0, h0 < D`): lets a move
@@ -307,6 +326,7 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
         let mut step_x = [(0u32, 0u32); N];
         let mut split = [(0i64, 0i64, 0i64, 0i64); N];
         let f = 1i64 << S;
+        let div = Divisor::new(d);
         for i in 0..N {
             let a1 = values[1][i] as i64 - values[0][i] as i64;
             let a2 = values[2][i] as i64 - values[0][i] as i64;
@@ -314,10 +334,10 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             gy[i] = sign * (a2 * dx1 - a1 * dx2);
             // One pixel right adds 2·gx·F to 2M + D: quotient ⌊gx·F / D⌋ (mod 2^32), remainder
             // 2·(gx·F mod D). Split gx = D·g1 + g0 so no product exceeds 2^46.
-            let (g1, g0) = div_floor_i64(gx[i], d);
-            let (q0, r0) = div_floor_i64(g0 << S, d);
+            let (g1, g0) = div.div_floor(gx[i]);
+            let (q0, r0) = div.div_floor(g0 << S);
             step_x[i] = ((g1.wrapping_mul(f) + q0) as u32, (2 * r0) as u32);
-            let (h1, h0) = div_floor_i64(gy[i], d);
+            let (h1, h0) = div.div_floor(gy[i]);
             split[i] = (g1, g0, h1, h0);
         }
         Ok(AttributePlane {
@@ -326,6 +346,7 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
             gx,
             gy,
             d,
+            div,
             step_x,
             split,
         })
@@ -346,8 +367,10 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     #[inline]
     pub fn exact(&self, i: usize, x: i32, y: i32) -> Exact {
         let two_d = 2 * self.d;
-        let t = 2 * self.m(i, x, y) + self.d;
-        let (q, rem) = div_floor_i64(t, two_d);
+        // ⌊(2M + D) / 2D⌋ = ⌊⌊(2M + D) / D⌋ / 2⌋, remainder r' + D·(q' mod 2): one division by
+        // the prepared D.
+        let (q1, r1) = self.div.div_floor(2 * self.m(i, x, y) + self.d);
+        let (q, rem) = (q1 >> 1, r1 + (q1 & 1) * self.d);
         Exact {
             value: self.base[i].wrapping_add(q as u32),
             rem: rem as u32,
@@ -361,8 +384,8 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     /// vertex values are below `2^15`.
     #[inline]
     pub fn dda(&self, i: usize, x: i32, y: i32) -> Dda {
-        let start = ((self.base[i] as i64) << 16) + (self.m(i, x, y) << 16).div_euclid(self.d);
-        let inc = (self.gx[i] << (16 + S)).div_euclid(self.d);
+        let start = ((self.base[i] as i64) << 16) + self.div.div_floor(self.m(i, x, y) << 16).0;
+        let inc = self.div.div_floor(self.gx[i] << (16 + S)).0;
         Dda {
             acc: (start + (1 << 15)) as u32,
             inc: inc as u32,
@@ -374,13 +397,15 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     #[inline]
     pub fn row_move(&self, dx: i32) -> [(u32, u32); N] {
         let dx = dx as i64;
-        core::array::from_fn(|i| {
+        let mut out = [(0, 0); N];
+        for (i, o) in out.iter_mut().enumerate() {
             let (g1, g0, h1, h0) = self.split[i];
             // F·(g0·dx + h0): |g0·dx| < 2^45, so below 2^47 · 2^S.
-            let (q, r) = div_floor_i64((g0 * dx + h0) << S, self.d);
+            let (q, r) = self.div.div_floor((g0 * dx + h0) << S);
             let whole = (g1.wrapping_mul(dx).wrapping_add(h1)).wrapping_shl(S);
-            (whole.wrapping_add(q) as u32, (2 * r) as u32)
-        })
+            *o = (whole.wrapping_add(q) as u32, (2 * r) as u32);
+        }
+        out
     }
 
     /// All values at pixel `(x, y)`, exactly rounded.
@@ -508,7 +533,7 @@ mod tests {
             let (x, y) = (rnd(m >> 4) as i32, rnd(m >> 4) as i32);
             let mut exact = plane.exact(0, x, y);
             let limit = exact.run_limit().min(5000);
-            let mut run = ExactRun::start(&exact, ExactRun::step_of(&exact));
+            let mut run = ExactRun::start(&exact, &ExactRun::prepare(&exact));
             for _ in 0..limit {
                 assert_eq!(run.value(), exact.value(), "{v:?} {a:?} limit {limit}");
                 run.step();

@@ -17,6 +17,7 @@
 use super::attributes::{
     AttributePlane, Constant, Dda, Exact, ExactRun, Interpolant, PlaneError, RowStarts,
 };
+use crate::raster::euclid::Divisor;
 use crate::raster::polygon::FillError;
 use crate::raster::triangle::fill_triangle;
 use crate::raster::{Span, SubpixelPoint, Window};
@@ -238,7 +239,7 @@ const MIN_RUN_WIDTH: u32 = 16;
 
 /// How a span loop gets its exact interpolants from [`Exact`] starts: as they are, or as
 /// [`ExactRun`] accumulators (one add per pixel) when every span is short enough.
-trait FromExact: Copy {
+trait FromExact {
     type I: Interpolant;
     /// Per-triangle data derived from a first exact state.
     fn prepare(e: &Exact) -> Self;
@@ -258,19 +259,18 @@ impl FromExact for Exact {
     }
 }
 
-/// The per-triangle 32.32 step of an [`ExactRun`].
-#[derive(Clone, Copy)]
-struct ExactRunFrom(u64);
+/// The per-triangle 32.32 step of an [`ExactRun`] and its prepared `2D`.
+struct ExactRunFrom((u64, Divisor));
 
 impl FromExact for ExactRunFrom {
     type I = ExactRun;
     #[inline(always)]
     fn prepare(e: &Exact) -> Self {
-        ExactRunFrom(ExactRun::step_of(e))
+        ExactRunFrom(ExactRun::prepare(e))
     }
     #[inline(always)]
     fn start(&self, e: &Exact) -> ExactRun {
-        ExactRun::start(e, self.0)
+        ExactRun::start(e, &self.0)
     }
 }
 
@@ -308,7 +308,7 @@ impl<const S: u32> TriangleSpans<'_, S> {
                 return;
             }
             let [ze, le] = starts.at(s.x0, s.y);
-            let [fz, fl] = *per_triangle.get_or_insert_with(|| [F::prepare(&ze), F::prepare(&le)]);
+            let [fz, fl] = per_triangle.get_or_insert_with(|| [F::prepare(&ze), F::prepare(&le)]);
             let (ze, le) = (fz.start(&ze), fl.start(&le));
             let gouraud = Gouraud {
                 luminance: le,
