@@ -4,3 +4,4 @@ pub mod bresenham;
 pub mod compare;
 pub mod exact_fill;
 pub mod float_render;
+pub mod float_lighting;
