@@ -17,6 +17,8 @@ pub struct Outline {
     pub screen: Vec<(f64, f64)>,
     /// The triangle's corners in view space (`x` right, `y` up, `d` forward), unclipped.
     pub view: [Vec3; 3],
+    /// Whether the near or far plane cut it (then `screen` holds clip points).
+    pub clipped: bool,
 }
 
 /// The outlines of every triangle of `scene` the reference would draw (front-facing by its
@@ -32,6 +34,7 @@ pub fn outlines(scene: &Scene, include_back_faces: bool) -> Vec<Outline> {
             continue;
         }
         let view = tri.map(|i| cam.to_view(scene.vertices[i]));
+        let clipped = view.iter().any(|v| v[2] < cam.near || v[2] > cam.far);
         let poly = clip(&view, |v| v[2] - cam.near);
         let poly = clip(&poly, |v| cam.far - v[2]);
         if poly.len() < 3 {
@@ -41,6 +44,7 @@ pub fn outlines(scene: &Scene, include_back_faces: bool) -> Vec<Outline> {
             triangle: t,
             screen: poly.iter().map(|&v| cam.project_view(v)).collect(),
             view,
+            clipped,
         });
     }
     out
