@@ -24,6 +24,8 @@ enum Command {
     ExportScenes(zscan_host::cli::export::ExportScenesArgs),
     /// Render a scene described in TOML (see host-tests/scenes/example.toml) to an image.
     Render(zscan_host::cli::render::RenderArgs),
+    /// Write the speed-versus-accuracy chart of the shading modes (SVG) and print its table.
+    Chart(zscan_host::cli::chart::ChartArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -34,6 +36,7 @@ fn main() -> std::process::ExitCode {
         Command::Bench(a) => zscan_host::cli::bench::run(a),
         Command::ExportScenes(a) => zscan_host::cli::export::run(a),
         Command::Render(a) => zscan_host::cli::render::run(a),
+        Command::Chart(a) => zscan_host::cli::chart::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -21,8 +21,11 @@
 //! Conventions: pixel `(x, y)` as [`raster`](crate::raster); the matrix is the classical
 //! recursive Bayer matrix, indexed `[y mod 4][x mod 4]`.
 
-use super::attributes::Interpolant;
-use super::span_writer::{LuminanceRamp, Shading};
+use super::attributes::{AttributePlane, Constant, Interpolant, PlaneError, RowStarts};
+use super::span_writer::{depth_span, DrawError, LuminanceRamp, ShadeMode, Shading};
+use crate::raster::triangle::fill_triangle;
+use crate::raster::{SubpixelPoint, Window};
+use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// The 4×4 Bayer matrix: `0..16`, each value once.
 pub const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
@@ -104,6 +107,76 @@ impl<L: Interpolant, Q: Quantizer> Shading for Quantized<L, Q> {
         self.luminance.step();
         self.quantizer.step();
     }
+}
+
+/// [`draw_triangle`](super::span_writer::draw_triangle) with the ramp dithered by [`Bayer4`]:
+/// same arguments (`values[i] = [depth, luminance]`), pixels and return value. Flat uses the
+/// rounded mean of the vertex luminances, as the undithered writer does.
+pub fn draw_triangle_dithered<D: DepthValue, const S: u32>(
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    ramp: LuminanceRamp,
+    mode: ShadeMode,
+) -> Result<(u32, u32), DrawError> {
+    let window = frame.window().intersect(&Window::new(
+        0,
+        depth.top(),
+        depth.width() as i32,
+        depth.top() + depth.height() as i32,
+    ));
+    let plane = match AttributePlane::<2, S>::new(v, values) {
+        Ok(p) => p,
+        Err(PlaneError::Degenerate) => return Ok((0, 0)),
+        Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
+    };
+    let flat = Constant((values[0][1] + values[1][1] + values[2][1] + 1) / 3);
+    let (mut covered, mut written) = (0u32, 0u32);
+    let mut starts = RowStarts::new(&plane);
+    fill_triangle(v, &window, |s| {
+        let (x0, x1) = (s.x0 as usize, s.x1 as usize);
+        covered += (x1 - x0) as u32;
+        let (Some(c), Some(z)) = (frame.span_mut(s.y, x0, x1), depth.span_mut(s.y, x0, x1)) else {
+            return;
+        };
+        let [ze, le] = starts.at(s.x0, s.y);
+        let quantizer = Bayer4::at(ramp, s.x0, s.y);
+        written += match mode {
+            ShadeMode::Flat => depth_span(
+                c,
+                z,
+                ze,
+                Quantized {
+                    luminance: flat,
+                    quantizer,
+                },
+            ),
+            ShadeMode::GouraudExact => depth_span(
+                c,
+                z,
+                ze,
+                Quantized {
+                    luminance: le,
+                    quantizer,
+                },
+            ),
+            ShadeMode::GouraudFast => {
+                let luminance = plane.dda(1, s.x0, s.y);
+                depth_span(
+                    c,
+                    z,
+                    ze,
+                    Quantized {
+                        luminance,
+                        quantizer,
+                    },
+                )
+            }
+        };
+    })
+    .map_err(DrawError::Fill)?;
+    Ok((covered, written))
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! string on bad input instead of panicking.
 
 pub mod bench;
+pub mod chart;
 pub mod export;
 pub mod lines;
 pub mod render;

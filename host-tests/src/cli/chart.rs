@@ -1,0 +1,633 @@
+//! `zscan chart`: speed against accuracy of the shading modes, as an SVG (plotters' SVG
+//! backend; no font library: every text is written as plain SVG `<text>` by this module) and
+//! the table behind it.
+//!
+//! ## What is measured
+//! For the standard sphere and bunny scenes (SCENES.md camera, 320×240) lit by one directional
+//! light along the scenes' `normalize(1, 1, 1)` (intensity 255, ambient 255) with the material
+//! `k_a = 0.15, k_d = 0.55, k_s = 0.45, n = 20`, each variant — flat (per-face lighting at the
+//! centroid), fast Gouraud, exact Gouraud (per-vertex lighting), Phong (per-pixel lighting),
+//! each with and without the 4×4 ordered dither — renders a frame through a 32-level ramp:
+//! lighting, vertex stage, culling, fill, depth test, shading (the standard scenes need no
+//! clipping; polygons that would are skipped, none are).
+//!
+//! - **x, host**: instructions of the whole frame (valgrind callgrind, only inside
+//!   `zscan_chart_region`) divided by the covered pixels. Cortex-M4 figures need bench cases
+//!   (docs/BENCHMARKS.md); they are not in this chart yet.
+//! - **y**: per covered pixel, the error in LUT levels of the index against the `f64` reference
+//!   level `L·32/256 − 1/2`, `L` the `f64` Phong illumination (`reference::float_lighting`) at
+//!   the visible surface point of `reference::float_render` (perspective-correct position and
+//!   smooth area-weighted normal interpolated in 3D): the picture every mode approximates.
+//!   Maximum and mean over pixels covered in both frames.
+use super::CliError;
+use crate::reference::float_lighting::{unit, FloatLight, FloatLighting, FloatMaterial, V3};
+use crate::reference::float_render;
+use crate::scenes::{self, Scene};
+use std::path::PathBuf;
+use std::process::Command;
+use zscan::geometry::camera::Camera;
+use zscan::geometry::matrix::Affine3;
+use zscan::geometry::mesh::Mesh;
+use zscan::geometry::vector::Vec3;
+use zscan::raster::triangle::cross;
+use zscan::render::{PreparedVertex, Renderer};
+use zscan::scene::Object;
+use zscan::shade::dither::draw_triangle_dithered;
+use zscan::shade::lighting::{light_faces, light_vertices, Illumination, Light, Material};
+use zscan::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
+use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
+use zscan::target::{DepthBuffer, Framebuffer};
+
+/// Arguments of `zscan chart`.
+#[derive(clap::Args, Debug)]
+pub struct ChartArgs {
+    /// Where to write the SVG.
+    #[arg(long, default_value = "docs/chart.svg")]
+    pub out: PathBuf,
+    /// Print the error table only (no callgrind, no SVG).
+    #[arg(long)]
+    pub no_measure: bool,
+    /// Internal: render one variant inside the measured region (what callgrind runs).
+    #[arg(long, hide = true)]
+    pub run_variant: Option<String>,
+}
+
+const LEVELS: u16 = 32;
+const BACKGROUND: u8 = 255;
+const AMBIENT: u8 = 255;
+const LIGHT: u8 = 255;
+const MATERIAL: Material = Material::from_thousandths(150, 550, 450, 20);
+
+/// A shading mode of the chart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Flat,
+    GouraudFast,
+    GouraudExact,
+    Phong,
+}
+
+const MODES: [(Mode, &str); 4] = [
+    (Mode::Flat, "flat"),
+    (Mode::GouraudFast, "gouraud_fast"),
+    (Mode::GouraudExact, "gouraud_exact"),
+    (Mode::Phong, "phong"),
+];
+const SCENES: [&str; 2] = ["sphere", "bunny"];
+
+/// One point of the chart.
+#[derive(Debug, Clone, Copy)]
+struct Variant {
+    scene: &'static str,
+    mode: Mode,
+    mode_name: &'static str,
+    dither: bool,
+}
+
+impl Variant {
+    fn name(&self) -> String {
+        format!(
+            "{}_{}{}",
+            self.scene,
+            self.mode_name,
+            if self.dither { "_dither" } else { "" }
+        )
+    }
+
+    fn all() -> Vec<Variant> {
+        let mut v = Vec::new();
+        for scene in SCENES {
+            for (mode, mode_name) in MODES {
+                for dither in [false, true] {
+                    v.push(Variant {
+                        scene,
+                        mode,
+                        mode_name,
+                        dither,
+                    });
+                }
+            }
+        }
+        v
+    }
+}
+
+/// A scene in core form plus the buffers a frame needs (allocated outside the measured region).
+struct Prepared {
+    scene: Scene,
+    vertices: Vec<Vec3>,
+    indices: Vec<u16>,
+    camera: Camera,
+    scratch: Vec<PreparedVertex<4>>,
+    normals: Vec<Vec3>,
+    levels: Vec<u8>,
+    pixels: Vec<u8>,
+    depth: Vec<u16>,
+}
+
+impl Prepared {
+    fn new(name: &str) -> Result<Prepared, CliError> {
+        let scene = scenes::standard_scene(name)?;
+        let camera = crate::core_render::core_camera(&scene.camera)?;
+        let c = crate::core_render::coord;
+        let vertices: Vec<Vec3> = scene
+            .vertices
+            .iter()
+            .map(|v| Vec3::new(c(v[0]), c(v[1]), c(v[2])))
+            .collect();
+        let indices: Vec<u16> = scene
+            .triangles
+            .iter()
+            .flatten()
+            .map(|&i| u16::try_from(i))
+            .collect::<Result<_, _>>()
+            .map_err(|_| "more than 65536 vertices")?;
+        let (w, h) = (scene.camera.width as usize, scene.camera.height as usize);
+        let (nv, nt) = (vertices.len(), scene.triangles.len());
+        Ok(Prepared {
+            scratch: vec![PreparedVertex::default(); nv],
+            normals: vec![Vec3::ZERO; nv],
+            levels: vec![0; nv.max(nt)],
+            pixels: vec![0; w * h],
+            depth: vec![0; w * h],
+            scene,
+            vertices,
+            indices,
+            camera,
+        })
+    }
+
+    fn size(&self) -> (u16, u16) {
+        (
+            self.scene.camera.width as u16,
+            self.scene.camera.height as u16,
+        )
+    }
+}
+
+/// The light in the world frame.
+fn light() -> Light {
+    let d = scenes::light_direction();
+    let c = crate::core_render::coord;
+    Light::Directional {
+        toward: Vec3::new(c(d[0]), c(d[1]), c(d[2])),
+        intensity: LIGHT,
+    }
+}
+
+/// One frame of `v` into `p.pixels`: lighting, vertex stage, culling, drawing. Returns the
+/// covered pixels, or an error message.
+fn render(p: &mut Prepared, v: &Variant) -> Result<u32, String> {
+    let (w, h) = p.size();
+    let mesh = Mesh::triangles(&p.vertices, &p.indices).map_err(|e| format!("{e:?}"))?;
+    let ill = Illumination::new(&p.camera, AMBIENT, &[light()]).map_err(|e| format!("{e:?}"))?;
+    let renderer = Renderer::<4>::new(&p.camera).map_err(|e| e.to_string())?;
+    let id = Affine3::IDENTITY;
+    let ramp = LuminanceRamp {
+        first: 0,
+        levels: LEVELS,
+    };
+    let mut fb = Framebuffer::new(&mut p.pixels, w, h).map_err(|e| e.to_string())?;
+    let mut zb = DepthBuffer::new(&mut p.depth, w, h).map_err(|e| e.to_string())?;
+    fb.clear(BACKGROUND);
+    zb.clear();
+    renderer
+        .prepare(&Object::new(mesh), &mut p.scratch)
+        .map_err(|e| e.to_string())?;
+    let err = |e: zscan::shade::lighting::LightingError| format!("{e:?}");
+    match v.mode {
+        Mode::Flat => light_faces(&mesh, &id, &p.camera, &ill, &MATERIAL, &mut p.levels),
+        Mode::GouraudFast | Mode::GouraudExact => light_vertices(
+            &mesh,
+            &id,
+            &p.camera,
+            &ill,
+            &MATERIAL,
+            &mut p.normals,
+            &mut p.levels,
+        ),
+        Mode::Phong => mesh
+            .vertex_normals(&mut p.normals)
+            .map_err(|_| zscan::shade::lighting::LightingError::OutputTooSmall),
+    }
+    .map_err(err)?;
+    let view = *p.camera.view_transform();
+    let ctx = PhongContext {
+        illumination: &ill,
+        material: MATERIAL,
+        ramp,
+        dither: v.dither,
+    };
+    let mut covered = 0u32;
+    for (k, t) in p.indices.chunks_exact(3).enumerate() {
+        let pv = [t[0], t[1], t[2]].map(|i| p.scratch[i as usize]);
+        if pv.iter().any(|q| q.outcode != 0) {
+            continue;
+        }
+        let s = pv.map(|q| q.screen);
+        if cross(s[0], s[1], s[2]) >= 0 {
+            continue;
+        }
+        let r = match v.mode {
+            Mode::Phong => {
+                let c = |j: usize| PhongVertex {
+                    screen: s[j],
+                    depth: pv[j].depth,
+                    position: pv[j].view,
+                    normal: view.transform_vector(p.normals[t[j] as usize]),
+                };
+                draw_triangle_phong(&mut fb, &mut zb, [c(0), c(1), c(2)], &ctx)
+            }
+            _ => {
+                let (shade, lum): (ShadeMode, [u32; 3]) = match v.mode {
+                    Mode::Flat => (ShadeMode::Flat, [p.levels[k] as u32; 3]),
+                    m => (
+                        if m == Mode::GouraudFast {
+                            ShadeMode::GouraudFast
+                        } else {
+                            ShadeMode::GouraudExact
+                        },
+                        [0, 1, 2].map(|j| p.levels[t[j] as usize] as u32),
+                    ),
+                };
+                let vals = [0, 1, 2].map(|j| [pv[j].depth, lum[j]]);
+                if v.dither {
+                    draw_triangle_dithered(&mut fb, &mut zb, s, vals, ramp, shade)
+                } else {
+                    draw_triangle(&mut fb, &mut zb, s, vals, ramp, shade)
+                }
+            }
+        };
+        covered += r.map_err(|e| format!("{e:?}"))?.0;
+    }
+    Ok(covered)
+}
+
+/// The measured region: callgrind collects exactly this call.
+#[no_mangle]
+#[inline(never)]
+pub fn zscan_chart_region(f: &mut dyn FnMut() -> u32) -> u32 {
+    f()
+}
+
+/// Smooth normals of SCENES.md (area-weighted sum of face normals, normalised), `f64`.
+fn smooth_normals(scene: &Scene) -> Vec<V3> {
+    let mut n = vec![[0.0; 3]; scene.vertices.len()];
+    for t in &scene.triangles {
+        let [a, b, c] = t.map(|i| scene.vertices[i]);
+        let f = scenes::cross(scenes::sub(b, a), scenes::sub(c, a));
+        for &i in t {
+            n[i] = scenes::add(n[i], f);
+        }
+    }
+    n.into_iter().map(unit).collect()
+}
+
+/// Error statistics of one frame against the reference levels.
+#[derive(Debug, Clone, Copy, Default)]
+struct Errors {
+    max: f64,
+    mean: f64,
+    pixels: usize,
+}
+
+/// The `f64` reference level (continuous, `L·levels/256 − 1/2`) at every pixel the reference
+/// covers.
+fn reference_levels(scene: &Scene) -> Result<Vec<Option<f64>>, CliError> {
+    let frame = float_render::render(scene)?;
+    let cam = &scene.camera;
+    let (f, (cx, cy)) = (cam.focal(), cam.principal);
+    let normals = smooth_normals(scene);
+    let lighting = FloatLighting {
+        eye: cam.eye,
+        ambient: AMBIENT as f64,
+        lights: vec![FloatLight::Directional(
+            scenes::light_direction(),
+            LIGHT as f64,
+        )],
+    };
+    let m = FloatMaterial {
+        ka: 0.15,
+        kd: 0.55,
+        ks: 0.45,
+        n: 20,
+    };
+    let mut out = vec![None; frame.pixels.len()];
+    for y in 0..frame.height {
+        for x in 0..frame.width {
+            let Some(frag) = frame.at(x, y) else { continue };
+            let tri = scene.triangles[frag.triangle];
+            let [a, b, c] = tri.map(|i| cam.to_view(scene.vertices[i]));
+            let r = [(x as f64 - cx) / f, -(y as f64 - cy) / f, 1.0];
+            let p = scenes::scale(r, frag.depth);
+            // Barycentric coordinates of p in the 3D triangle.
+            let n = scenes::cross(scenes::sub(b, a), scenes::sub(c, a));
+            let nn = scenes::dot(n, n);
+            let wb = scenes::dot(scenes::cross(scenes::sub(p, a), scenes::sub(c, a)), n) / nn;
+            let wc = scenes::dot(scenes::cross(scenes::sub(b, a), scenes::sub(p, a)), n) / nn;
+            let w = [1.0 - wb - wc, wb, wc];
+            let mut pw = [0.0; 3];
+            let mut nw = [0.0; 3];
+            for k in 0..3 {
+                pw = scenes::add(pw, scenes::scale(scene.vertices[tri[k]], w[k]));
+                nw = scenes::add(nw, scenes::scale(normals[tri[k]], w[k]));
+            }
+            let l = lighting.intensity(&m, pw, nw);
+            out[(y * frame.width + x) as usize] = Some(l * LEVELS as f64 / 256.0 - 0.5);
+        }
+    }
+    Ok(out)
+}
+
+fn errors(pixels: &[u8], reference: &[Option<f64>]) -> Errors {
+    let mut e = Errors::default();
+    let mut sum = 0.0;
+    for (&p, r) in pixels.iter().zip(reference) {
+        if let (true, Some(r)) = (p != BACKGROUND, r) {
+            let d = (p as f64 - r).abs();
+            e.max = e.max.max(d);
+            sum += d;
+            e.pixels += 1;
+        }
+    }
+    e.mean = sum / e.pixels.max(1) as f64;
+    e
+}
+
+/// Host instructions of one variant's frame, by running this tool under callgrind.
+fn host_instructions(v: &Variant) -> Result<u64, CliError> {
+    let exe = std::env::current_exe()?;
+    let dir = std::env::temp_dir().join(format!("zscan-chart-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let out_file = dir.join(format!("callgrind.{}", v.name()));
+    let out = Command::new("valgrind")
+        .arg("--tool=callgrind")
+        .arg("--collect-atstart=no")
+        .arg("--toggle-collect=zscan_chart_region")
+        .arg(format!("--callgrind-out-file={}", out_file.display()))
+        .arg(&exe)
+        .args(["chart", "--run-variant", &v.name()])
+        .output()
+        .map_err(|e| format!("valgrind (is it installed?): {e}"))?;
+    if !out.status.success() {
+        return Err(format!(
+            "callgrind run of {} failed:\n{}",
+            v.name(),
+            String::from_utf8_lossy(&out.stderr)
+        )
+        .into());
+    }
+    let text = std::fs::read_to_string(&out_file)?;
+    let _ = std::fs::remove_file(&out_file);
+    text.lines()
+        .find_map(|l| {
+            l.strip_prefix("totals:")
+                .or_else(|| l.strip_prefix("summary:"))
+        })
+        .and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok())
+        .ok_or_else(|| format!("no totals in {}", out_file.display()).into())
+}
+
+/// One row of the table.
+#[derive(Debug, Clone)]
+struct Row {
+    variant: Variant,
+    covered: u32,
+    instructions: Option<u64>,
+    errors: Errors,
+}
+
+impl Row {
+    fn per_pixel(&self) -> Option<f64> {
+        Some(self.instructions? as f64 / self.covered.max(1) as f64)
+    }
+}
+
+/// Runs `zscan chart`.
+pub fn run(args: ChartArgs) -> Result<(), CliError> {
+    if let Some(name) = &args.run_variant {
+        let v = Variant::all()
+            .into_iter()
+            .find(|v| &v.name() == name)
+            .ok_or_else(|| format!("no variant {name:?}"))?;
+        let mut p = Prepared::new(v.scene)?;
+        render(&mut p, &v)?; // warm-up
+        let mut res = Ok(0);
+        zscan_chart_region(&mut || {
+            res = render(std::hint::black_box(&mut p), &v);
+            0
+        });
+        println!("{} covered={}", v.name(), res?);
+        return Ok(());
+    }
+    if cfg!(debug_assertions) && !args.no_measure {
+        eprintln!("zscan chart: warning: a debug build; run with --release for meaningful figures");
+    }
+    let mut rows = Vec::new();
+    for scene in SCENES {
+        let mut p = Prepared::new(scene)?;
+        let reference = reference_levels(&p.scene)?;
+        for v in Variant::all().into_iter().filter(|v| v.scene == scene) {
+            let covered = render(&mut p, &v)?;
+            let errors = errors(&p.pixels, &reference);
+            let instructions = if args.no_measure {
+                None
+            } else {
+                Some(host_instructions(&v)?)
+            };
+            rows.push(Row {
+                variant: v,
+                covered,
+                instructions,
+                errors,
+            });
+        }
+    }
+    println!(
+        "{:<28} {:>8} {:>12} {:>10} {:>9} {:>9}",
+        "variant", "covered", "host instr", "instr/px", "max err", "mean err"
+    );
+    for r in &rows {
+        println!(
+            "{:<28} {:>8} {:>12} {:>10} {:>9.3} {:>9.3}",
+            r.variant.name(),
+            r.covered,
+            r.instructions.map_or("-".into(), |i| i.to_string()),
+            r.per_pixel().map_or("-".into(), |x| format!("{x:.1}")),
+            r.errors.max,
+            r.errors.mean
+        );
+    }
+    if args.no_measure {
+        return Ok(());
+    }
+    let svg = chart(&rows)?;
+    std::fs::write(&args.out, svg)?;
+    eprintln!("zscan chart: wrote {}", args.out.display());
+    Ok(())
+}
+
+/// Colours of the modes (flat, fast Gouraud, exact Gouraud, Phong).
+const COLOURS: [(u8, u8, u8); 4] = [(120, 120, 120), (230, 140, 0), (200, 30, 30), (30, 90, 200)];
+
+fn mode_index(m: Mode) -> usize {
+    MODES.iter().position(|(x, _)| *x == m).unwrap_or(0)
+}
+
+/// The SVG: x = host instructions per covered pixel (log scale would hide the flat points'
+/// spread; linear), y = error in levels; a marker at the mean error joined to a tick at the
+/// maximum. Circles: sphere, triangles: bunny; filled: plain ramp, hollow: dithered.
+fn chart(rows: &[Row]) -> Result<String, CliError> {
+    use plotters::prelude::*;
+    let e = |x: &dyn std::fmt::Display| x.to_string();
+    let xmax = rows.iter().filter_map(Row::per_pixel).fold(0.0, f64::max) * 1.08;
+    let ymax = rows.iter().map(|r| r.errors.max).fold(0.0, f64::max) * 1.08;
+    let (width, height) = (900u32, 560u32);
+    let (left, top, right, bottom) = (80i32, 50i32, 260i32, 60i32);
+    let mut svg = String::new();
+    let mut texts: Vec<String> = Vec::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|x| e(&x))?;
+        let mut chart = ChartBuilder::on(&root)
+            .margin_left(left)
+            .margin_top(top)
+            .margin_right(right)
+            .margin_bottom(bottom)
+            .build_cartesian_2d(0f64..xmax, 0f64..ymax)
+            .map_err(|x| e(&x))?;
+        let grey = RGBColor(220, 220, 220);
+        let step = |max: f64| {
+            let raw = max / 6.0;
+            let mag = 10f64.powf(raw.log10().floor());
+            [1.0, 2.0, 5.0, 10.0]
+                .iter()
+                .map(|m| m * mag)
+                .find(|s| *s >= raw)
+                .unwrap_or(raw)
+        };
+        let (sx, sy) = (step(xmax), step(ymax));
+        let mut x = 0.0;
+        while x <= xmax {
+            chart
+                .draw_series(LineSeries::new([(x, 0.0), (x, ymax)], grey))
+                .map_err(|q| e(&q))?;
+            let (px, py) = chart.backend_coord(&(x, 0.0));
+            texts.push(format!(
+                r#"<text x="{px}" y="{}" text-anchor="middle" font-size="12">{x}</text>"#,
+                py + 16
+            ));
+            x += sx;
+        }
+        let mut y = 0.0;
+        while y <= ymax {
+            chart
+                .draw_series(LineSeries::new([(0.0, y), (xmax, y)], grey))
+                .map_err(|q| e(&q))?;
+            let (px, py) = chart.backend_coord(&(0.0, y));
+            texts.push(format!(
+                r#"<text x="{}" y="{}" text-anchor="end" font-size="12">{y:.2}</text>"#,
+                px - 6,
+                py + 4
+            ));
+            y += sy;
+        }
+        chart
+            .draw_series(LineSeries::new(
+                [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
+                BLACK,
+            ))
+            .map_err(|q| e(&q))?;
+        for r in rows {
+            let Some(x) = r.per_pixel() else { continue };
+            let (cr, cg, cb) = COLOURS[mode_index(r.variant.mode)];
+            let colour = RGBColor(cr, cg, cb);
+            let style = if r.variant.dither {
+                colour.stroke_width(2)
+            } else {
+                colour.filled()
+            };
+            chart
+                .draw_series(LineSeries::new(
+                    [(x, r.errors.mean), (x, r.errors.max)],
+                    colour.stroke_width(1),
+                ))
+                .map_err(|q| e(&q))?;
+            chart
+                .draw_series(std::iter::once(Cross::new(
+                    (x, r.errors.max),
+                    4,
+                    colour.stroke_width(1),
+                )))
+                .map_err(|q| e(&q))?;
+            if r.variant.scene == "sphere" {
+                chart
+                    .draw_series(std::iter::once(Circle::new((x, r.errors.mean), 5, style)))
+                    .map_err(|q| e(&q))?;
+            } else {
+                chart
+                    .draw_series(std::iter::once(TriangleMarker::new(
+                        (x, r.errors.mean),
+                        6,
+                        style,
+                    )))
+                    .map_err(|q| e(&q))?;
+            }
+        }
+        root.present().map_err(|x| e(&x))?;
+    }
+    // Titles, axis names and the legend as plain SVG text (no font library needed).
+    let w = width as i32;
+    let h = height as i32;
+    texts.push(format!(
+        r#"<text x="{}" y="28" text-anchor="middle" font-size="16" font-weight="bold">zscan shading: speed vs accuracy (standard sphere and bunny, 320x240, 32-level ramp)</text>"#,
+        w / 2
+    ));
+    texts.push(format!(
+        r#"<text x="{}" y="{}" text-anchor="middle" font-size="13">host instructions per covered pixel (x86-64, callgrind; whole frame incl. lighting)</text>"#,
+        left + (w - left - right) / 2,
+        h - 18
+    ));
+    texts.push(format!(
+        r#"<text x="18" y="{}" text-anchor="middle" font-size="13" transform="rotate(-90 18 {})">error vs f64 Phong (LUT levels): marker = mean, x = max</text>"#,
+        top + (h - top - bottom) / 2,
+        top + (h - top - bottom) / 2
+    ));
+    let lx = w - right + 20;
+    let mut ly = top + 10;
+    let names = [
+        "flat",
+        "Gouraud fast (DDA)",
+        "Gouraud exact",
+        "Phong (per pixel)",
+    ];
+    for (i, n) in names.iter().enumerate() {
+        let (r, g, b) = COLOURS[i];
+        texts.push(format!(
+            r#"<rect x="{lx}" y="{}" width="12" height="12" fill="rgb({r},{g},{b})"/><text x="{}" y="{}" font-size="13">{n}</text>"#,
+            ly - 10,
+            lx + 18,
+            ly
+        ));
+        ly += 22;
+    }
+    ly += 10;
+    for line in [
+        "● circle: sphere",
+        "▲ triangle: bunny",
+        "filled: plain ramp",
+        "hollow: 4x4 Bayer dither",
+        "line from mean up to max",
+    ] {
+        texts.push(format!(
+            r#"<text x="{lx}" y="{ly}" font-size="12">{line}</text>"#
+        ));
+        ly += 20;
+    }
+    let body = texts.join("\n");
+    let svg = match svg.rfind("</svg>") {
+        Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
+        None => svg,
+    };
+    Ok(svg)
+}
