@@ -69,6 +69,8 @@ pub enum RenderError {
     Clip(ClipError),
     /// A triangle was rejected by the raster stage (range or size limits).
     Draw(DrawError),
+    /// The band buffers hold fewer than `width × band_rows` elements (or the size is zero).
+    BufferTooSmall,
 }
 
 impl core::fmt::Display for RenderError {
@@ -87,6 +89,7 @@ impl core::fmt::Display for RenderError {
             RenderError::Projection(e) => write!(f, "projection: {e:?}"),
             RenderError::Clip(e) => write!(f, "clipping: {e:?}"),
             RenderError::Draw(e) => write!(f, "raster: {e:?}"),
+            RenderError::BufferTooSmall => write!(f, "band buffers smaller than width × rows"),
         }
     }
 }
@@ -108,6 +111,19 @@ pub struct RenderStats {
     pub pixels_covered: u32,
     /// Pixels that passed the depth test and were written.
     pub pixels_written: u32,
+}
+
+impl core::ops::AddAssign for RenderStats {
+    /// Sums two frames' (or bands') counts.
+    fn add_assign(&mut self, o: RenderStats) {
+        self.polygons_in += o.polygons_in;
+        self.culled += o.culled;
+        self.rejected += o.rejected;
+        self.clipped += o.clipped;
+        self.triangles_drawn += o.triangles_drawn;
+        self.pixels_covered += o.pixels_covered;
+        self.pixels_written += o.pixels_written;
+    }
 }
 
 /// One mesh vertex after the vertex stage.
@@ -351,6 +367,42 @@ pub fn render_scene<D: DepthValue, const S: u32>(
     let mut stats = RenderStats::default();
     for object in scene.objects {
         renderer.draw_object(object, scratch, frame, depth, &mut stats)?;
+    }
+    Ok(stats)
+}
+
+/// Draws a `width × height` picture band by band through one band-sized pair of buffers:
+/// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band
+/// with [`render_scene`], then calls `band_done` with the finished band — flush it to the
+/// display there (e.g. [`flush`](crate::target::flush)). The picture is the same as one pass
+/// (the raster stage writes exactly the rows a buffer holds).
+///
+/// `pixels` and `depths` need `width × band_rows` elements. Statistics are summed over bands:
+/// pixel counts add up to the picture's, polygon counts count each band's pass.
+#[allow(clippy::too_many_arguments)]
+pub fn render_in_bands<D: DepthValue, const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    pixels: &mut [u8],
+    depths: &mut [D],
+    (width, height, band_rows): (u16, u16, u16),
+    scratch: &mut [PreparedVertex<S>],
+    mut band_done: impl FnMut(&Framebuffer<'_>, &DepthBuffer<'_, D>),
+) -> Result<RenderStats, RenderError> {
+    let band_rows = band_rows.clamp(1, height.max(1));
+    let mut stats = RenderStats::default();
+    let mut top = 0u16;
+    while top < height {
+        let rows = band_rows.min(height - top);
+        let n = width as usize * rows as usize;
+        let too_small = RenderError::BufferTooSmall;
+        let mut frame = Framebuffer::band(pixels.get_mut(..n).ok_or(too_small)?, width, rows, top)
+            .map_err(|_| too_small)?;
+        let mut depth = DepthBuffer::band(depths.get_mut(..n).ok_or(too_small)?, width, rows, top)
+            .map_err(|_| too_small)?;
+        stats += render_scene(renderer, scene, &mut frame, &mut depth, scratch)?;
+        band_done(&frame, &depth);
+        top += rows;
     }
     Ok(stats)
 }

@@ -11,10 +11,10 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{render_scene, PreparedVertex, RenderStats, Renderer};
+use zscan::render::{render_in_bands, PreparedVertex, RenderStats, Renderer};
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, DepthValue, Framebuffer};
+use zscan::target::DepthValue;
 
 use crate::scenes::Scene;
 
@@ -178,33 +178,49 @@ impl CoreMesh {
         };
         let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
-        let mut pixels = vec![0u8; w as usize * h as usize];
-        let mut depth = vec![D::FAR; w as usize * h as usize];
-        let mut stats = RenderStats::default();
-        let band = band_rows.unwrap_or(h).clamp(1, h);
-        let mut top = 0u16;
-        while top < h {
-            let rows = band.min(h - top);
-            let range = top as usize * w as usize..(top + rows) as usize * w as usize;
-            let mut fb = Framebuffer::band(&mut pixels[range.clone()], w, rows, top)
-                .map_err(|e| e.to_string())?;
-            let mut zb =
-                DepthBuffer::band(&mut depth[range], w, rows, top).map_err(|e| e.to_string())?;
-            let s = render_scene(&renderer, &scene, &mut fb, &mut zb, &mut scratch)
-                .map_err(|e| e.to_string())?;
-            stats.polygons_in += s.polygons_in;
-            stats.culled += s.culled;
-            stats.rejected += s.rejected;
-            stats.clipped += s.clipped;
-            stats.triangles_drawn += s.triangles_drawn;
-            stats.pixels_covered += s.pixels_covered;
-            stats.pixels_written += s.pixels_written;
-            top += rows;
-        }
+        let (pixels, depth, stats) =
+            render_picture(&renderer, &scene, (w, h), band_rows, &mut scratch)?;
         Ok(CoreFrame {
             pixels,
             depth,
             stats,
         })
     }
+}
+
+/// Renders `scene` into a whole `w × h` picture with the core's [`render_in_bands`], through
+/// one band-sized pair of buffers (the embedded way: each finished band is copied out here
+/// where a device would flush it). `band_rows = None` is one band of the whole height.
+/// Returns the picture's indices and depths, row-major, and the summed statistics.
+pub fn render_picture<D: DepthValue, const SB: u32>(
+    renderer: &Renderer<SB>,
+    scene: &CoreScene<'_>,
+    (w, h): (u16, u16),
+    band_rows: Option<u16>,
+    scratch: &mut [PreparedVertex<SB>],
+) -> Result<(Vec<u8>, Vec<D>, RenderStats), String> {
+    let band = band_rows.unwrap_or(h).clamp(1, h.max(1));
+    let n = w as usize * band as usize;
+    let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
+    let total = w as usize * h as usize;
+    let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
+    let stats = render_in_bands(
+        renderer,
+        scene,
+        &mut band_pixels,
+        &mut band_depths,
+        (w, h, band),
+        scratch,
+        |frame, zb| {
+            for y in frame.top()..frame.top() + frame.height() as i32 {
+                let at = y as usize * w as usize;
+                if let (Some(row), Some(zrow)) = (frame.row(y), zb.row(y)) {
+                    pixels[at..at + w as usize].copy_from_slice(row);
+                    depth[at..at + w as usize].copy_from_slice(zrow);
+                }
+            }
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    Ok((pixels, depth, stats))
 }

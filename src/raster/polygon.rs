@@ -51,12 +51,11 @@
 //!
 //! ## Numeric contract
 //! Vertices are [`SubpixelPoint<S>`] with `|x|, |y| ≤ `[`MAX_COORD`]` = 2^28 − 1` and
-//! `S ≤ `[`MAX_SUBPIXEL_BITS`]; other input is rejected with [`FillError::CoordinateOutOfRange`].
+//! `S ≤ `[`MAX_SUBPIXEL_BITS`](super::edge_walker::MAX_SUBPIXEL_BITS); other input is rejected with [`FillError::CoordinateOutOfRange`].
 //! See [`edge_walker`](super::edge_walker) for why nothing overflows in that range.
 
-use super::edge_walker::{
-    ceil_shift, Edge, EdgeSide, EdgeWalker, IncrementalWalker, MAX_COORD, MAX_SUBPIXEL_BITS,
-};
+use super::edge_walker::{ceil_shift, Edge, EdgeSide, EdgeWalker, IncrementalWalker, MAX_COORD};
+use super::triangle::check_range;
 use super::{Span, SubpixelPoint, Window};
 use heapless::Vec;
 
@@ -100,14 +99,7 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
     /// `Construire_TAG_et_TAD`: splits the polygon's non-horizontal edges into left and right
     /// edges (see the module doc). Fewer than 3 vertices give no edges that cover anything.
     pub fn build<const S: u32>(vertices: &[SubpixelPoint<S>]) -> Result<Self, FillError> {
-        if S > MAX_SUBPIXEL_BITS {
-            return Err(FillError::CoordinateOutOfRange { vertex: usize::MAX });
-        }
-        if let Some(i) = vertices.iter().position(|p| {
-            p.x.unsigned_abs() > MAX_COORD as u32 || p.y.unsigned_abs() > MAX_COORD as u32
-        }) {
-            return Err(FillError::CoordinateOutOfRange { vertex: i });
-        }
+        check_range(vertices)?;
         let mut edges = PolygonEdges {
             left: Vec::new(),
             right: Vec::new(),

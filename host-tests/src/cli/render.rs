@@ -54,10 +54,10 @@ use zscan::geometry::generators;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{render_scene, PreparedVertex, RenderStats, Renderer};
+use zscan::render::{PreparedVertex, RenderStats, Renderer};
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, DepthValue, Framebuffer, Lut};
+use zscan::target::{DepthValue, Framebuffer, Lut};
 
 use super::CliError;
 use crate::core_render::coord;
@@ -931,30 +931,11 @@ impl LoadedScene {
             Renderer::<SUBPIXEL_BITS>::new(&self.camera).map_err(|e| format!("camera: {e}"))?;
         let most = self.objects.iter().map(|o| o.vertices.len()).max();
         let mut scratch = vec![PreparedVertex::default(); most.unwrap_or(0)];
-        let n = w as usize * h as usize;
-        let (mut pixels, mut depth) = (vec![self.background; n], vec![D::FAR; n]);
-        let mut stats = RenderStats::default();
         let band = band_rows.unwrap_or(h).clamp(1, h);
-        let (mut top, mut bands) = (0u16, 0u32);
-        while top < h {
-            let rows = band.min(h - top);
-            let range = top as usize * w as usize..(top + rows) as usize * w as usize;
-            let mut fb = Framebuffer::band(&mut pixels[range.clone()], w, rows, top)
-                .map_err(|e| format!("frame: {e:?}"))?;
-            let mut zb = DepthBuffer::band(&mut depth[range], w, rows, top)
-                .map_err(|e| format!("depth buffer: {e:?}"))?;
-            let s = render_scene(&renderer, &scene, &mut fb, &mut zb, &mut scratch)
+        let bands = h.div_ceil(band) as u32;
+        let (pixels, depth, stats) =
+            crate::core_render::render_picture(&renderer, &scene, (w, h), band_rows, &mut scratch)
                 .map_err(|e| format!("render: {e}"))?;
-            stats.polygons_in += s.polygons_in;
-            stats.culled += s.culled;
-            stats.rejected += s.rejected;
-            stats.clipped += s.clipped;
-            stats.triangles_drawn += s.triangles_drawn;
-            stats.pixels_covered += s.pixels_covered;
-            stats.pixels_written += s.pixels_written;
-            top += rows;
-            bands += 1;
-        }
         Ok(Frame {
             pixels,
             depth,
