@@ -73,13 +73,18 @@ impl Divisor {
     }
 
     /// `(q, r)` with `a = d·q + r`, `0 ≤ r < d`, for `|a| < 2^63`. Operands that fit `i32`
-    /// take [`div_floor_i64`]'s 32-bit division.
-    #[inline]
+    /// take [`div_floor_i64`]'s 32-bit division (inline); others the reciprocal (out of line).
+    #[inline(always)]
     pub fn div_floor(&self, a: i64) -> (i64, i64) {
         let d = self.d as i64;
         if cfg!(target_pointer_width = "64") || (a == a as i32 as i64 && d == d as i32 as i64) {
             return div_floor_i64(a, d);
         }
+        self.div_floor_wide(a)
+    }
+
+    #[inline(never)]
+    fn div_floor_wide(&self, a: i64) -> (i64, i64) {
         let mut m = self.m.get();
         if m == 0 {
             m = u64::MAX / self.d;

@@ -53,6 +53,10 @@ static REGIONS: AtomicU64 = AtomicU64::new(0);
 static ERRORS: AtomicU64 = AtomicU64::new(0);
 /// Optional output file (`out=` argument).
 static OUT: Mutex<Option<std::fs::File>> = Mutex::new(None);
+/// Profile of one region (`profile=<file>,profile_region=<k>`): per translation block, its
+/// guest address, instruction count and executions inside region `k`, written at exit.
+static PROFILE: Mutex<Option<(String, u64, std::collections::HashMap<u64, (u64, u64)>)>> =
+    Mutex::new(None);
 
 #[derive(Default)]
 struct ICount {
@@ -98,6 +102,19 @@ fn on_end(_: VCPUIndex) {
 }
 
 fn on_exit() {
+    if let Ok(g) = PROFILE.lock() {
+        if let Some((path, _, blocks)) = g.as_ref() {
+            let mut rows: Vec<_> = blocks.iter().collect();
+            rows.sort();
+            let text: String = rows
+                .iter()
+                .map(|(a, (n, c))| format!("{a:#x} {n} {c}\n"))
+                .collect();
+            if let Err(e) = std::fs::write(path, text) {
+                eprintln!("qemu-icount: cannot write {path}: {e}");
+            }
+        }
+    }
     emit(&format!(
         "qemu-icount: regions {} errors {}",
         REGIONS.load(Ordering::Relaxed),
@@ -114,6 +131,19 @@ impl Register for ICount {
             match k {
                 "begin" => begin = parse_addr(v),
                 "end" => end = parse_addr(v),
+                "profile" => {
+                    let mut g = PROFILE.lock().expect("not poisoned");
+                    let region = g.as_ref().map_or(0, |p| p.1);
+                    *g = Some((v.to_string(), region, Default::default()));
+                }
+                "profile_region" => {
+                    let k = v.parse().unwrap_or(0);
+                    let mut g = PROFILE.lock().expect("not poisoned");
+                    match g.as_mut() {
+                        Some(p) => p.1 = k,
+                        None => *g = Some((String::new(), k, Default::default())),
+                    }
+                }
                 "out" => match std::fs::File::create(v) {
                     Ok(f) => *OUT.lock().expect("not poisoned") = Some(f),
                     Err(e) => eprintln!("qemu-icount: cannot create {v}: {e}"),
@@ -151,11 +181,27 @@ impl HasCallbacks for ICount {
             tb.register_execute_callback(on_end);
         } else {
             let n = tb.size() as u64;
-            tb.register_execute_callback(move |_| {
-                if OPEN.load(Ordering::Relaxed) {
-                    COUNT.fetch_add(n, Ordering::Relaxed);
-                }
-            });
+            let profiling = PROFILE.lock().map(|g| g.is_some()).unwrap_or(false);
+            if profiling {
+                tb.register_execute_callback(move |_| {
+                    if OPEN.load(Ordering::Relaxed) {
+                        COUNT.fetch_add(n, Ordering::Relaxed);
+                        if let Ok(mut g) = PROFILE.lock() {
+                            if let Some((_, region, blocks)) = g.as_mut() {
+                                if REGIONS.load(Ordering::Relaxed) == *region {
+                                    blocks.entry(at).or_insert((n, 0)).1 += 1;
+                                }
+                            }
+                        }
+                    }
+                });
+            } else {
+                tb.register_execute_callback(move |_| {
+                    if OPEN.load(Ordering::Relaxed) {
+                        COUNT.fetch_add(n, Ordering::Relaxed);
+                    }
+                });
+            }
         }
         Ok(())
     }
