@@ -615,7 +615,7 @@ fn bands_give_the_same_frame() {
             let one: CoreFrame<u32> = mesh.render(shade, None).unwrap();
             let one16: CoreFrame<u16> = mesh.render(shade, None).unwrap();
             for rows in [1u16, 7, 16, 240] {
-                let bands = (240 + rows as u32 - 1) / rows as u32;
+                let bands = 240u32.div_ceil(rows as u32);
                 let b: CoreFrame<u32> = mesh.render(shade, Some(rows)).unwrap();
                 assert!(
                     b.pixels == one.pixels,

@@ -359,7 +359,7 @@ fn slivers() {
     // Long thin triangles (widths 0.001 to 0.5 pixel at the far end) in random directions.
     let cam = Camera::standard();
     let f = cam.focal();
-    let mut rng = Rng(0x5eed_51_1e5);
+    let mut rng = Rng(0x0005_eed5_11e5);
     let mut tris = Vec::new();
     for _ in 0..300 {
         let z = rng.uniform(-2.0, 1.0);
@@ -402,7 +402,7 @@ fn vertices_on_pixel_centres_cover_exactly() {
     // (reference `cover_polygon` on those integer points).
     let cam = Camera::standard();
     let f = cam.focal();
-    let mut rng = Rng(0x1a77_1ce);
+    let mut rng = Rng(0x01a7_71ce);
     for round in 0..8 {
         let mut tris = Vec::new();
         let mut lattice = Vec::new();
@@ -572,7 +572,7 @@ fn extreme_random_triangles() {
     // up to snapping. Far plane 1000 so that most of them are in view.
     let mut cam = Camera::standard();
     cam.far = 1000.0;
-    let mut rng = Rng(0xe_c7_5eed);
+    let mut rng = Rng(0x0ec7_5eed);
     let mut totals = (0, 0, 0);
     for round in 0..16 {
         let mut tris = Vec::new();
