@@ -29,13 +29,10 @@ use zscan::geometry::camera::Camera;
 use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::Mesh;
 use zscan::geometry::vector::Vec3;
-use zscan::raster::triangle::cross;
 use zscan::render::{PreparedVertex, Renderer};
-use zscan::scene::Object;
-use zscan::shade::dither::draw_triangle_dithered;
-use zscan::shade::lighting::{light_faces, light_vertices, Illumination, Light, Material};
-use zscan::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
-use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
+use zscan::shade::lighting::{Illumination, Light, Material};
+use zscan::shade::phong::{draw_lit_object, LitMode, LitObject, LitScratch};
+use zscan::shade::span_writer::LuminanceRamp;
 use zscan::target::{DepthBuffer, Framebuffer};
 
 /// Arguments of `zscan chart`.
@@ -58,20 +55,11 @@ const AMBIENT: u8 = 255;
 const LIGHT: u8 = 255;
 const MATERIAL: Material = Material::from_thousandths(150, 550, 450, 20);
 
-/// A shading mode of the chart.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Mode {
-    Flat,
-    GouraudFast,
-    GouraudExact,
-    Phong,
-}
-
-const MODES: [(Mode, &str); 4] = [
-    (Mode::Flat, "flat"),
-    (Mode::GouraudFast, "gouraud_fast"),
-    (Mode::GouraudExact, "gouraud_exact"),
-    (Mode::Phong, "phong"),
+const MODES: [(LitMode, &str); 4] = [
+    (LitMode::Flat, "flat"),
+    (LitMode::GouraudFast, "gouraud_fast"),
+    (LitMode::GouraudExact, "gouraud_exact"),
+    (LitMode::Phong, "phong"),
 ];
 const SCENES: [&str; 2] = ["sphere", "bunny"];
 
@@ -79,7 +67,7 @@ const SCENES: [&str; 2] = ["sphere", "bunny"];
 #[derive(Debug, Clone, Copy)]
 struct Variant {
     scene: &'static str,
-    mode: Mode,
+    mode: LitMode,
     mode_name: &'static str,
     dither: bool,
 }
@@ -175,92 +163,38 @@ fn light() -> Light {
     }
 }
 
-/// One frame of `v` into `p.pixels`: lighting, vertex stage, culling, drawing. Returns the
+/// One frame of `v` into `p.pixels` through the core's [`draw_lit_object`] (the code the
+/// bench cases run on the Cortex-M4): lighting, vertex stage, culling, drawing. Returns the
 /// covered pixels, or an error message.
 fn render(p: &mut Prepared, v: &Variant) -> Result<u32, String> {
     let (w, h) = p.size();
     let mesh = Mesh::triangles(&p.vertices, &p.indices).map_err(|e| format!("{e:?}"))?;
     let ill = Illumination::new(&p.camera, AMBIENT, &[light()]).map_err(|e| format!("{e:?}"))?;
     let renderer = Renderer::<4>::new(&p.camera).map_err(|e| e.to_string())?;
-    let id = Affine3::IDENTITY;
-    let ramp = LuminanceRamp {
-        first: 0,
-        levels: LEVELS,
-    };
     let mut fb = Framebuffer::new(&mut p.pixels, w, h).map_err(|e| e.to_string())?;
     let mut zb = DepthBuffer::new(&mut p.depth, w, h).map_err(|e| e.to_string())?;
     fb.clear(BACKGROUND);
     zb.clear();
-    renderer
-        .prepare(&Object::new(mesh), &mut p.scratch)
-        .map_err(|e| e.to_string())?;
-    let err = |e: zscan::shade::lighting::LightingError| format!("{e:?}");
-    match v.mode {
-        Mode::Flat => light_faces(&mesh, &id, &p.camera, &ill, &MATERIAL, &mut p.levels),
-        Mode::GouraudFast | Mode::GouraudExact => light_vertices(
-            &mesh,
-            &id,
-            &p.camera,
-            &ill,
-            &MATERIAL,
-            &mut p.normals,
-            &mut p.levels,
-        ),
-        Mode::Phong => mesh
-            .vertex_normals(&mut p.normals)
-            .map_err(|_| zscan::shade::lighting::LightingError::OutputTooSmall),
-    }
-    .map_err(err)?;
-    let view = *p.camera.view_transform();
-    let ctx = PhongContext {
-        illumination: &ill,
+    let object = LitObject {
+        mesh,
+        transform: Affine3::IDENTITY,
         material: MATERIAL,
-        ramp,
+        ramp: LuminanceRamp {
+            first: 0,
+            levels: LEVELS,
+        },
+        mode: v.mode,
         dither: v.dither,
     };
-    let mut covered = 0u32;
-    for (k, t) in p.indices.chunks_exact(3).enumerate() {
-        let pv = [t[0], t[1], t[2]].map(|i| p.scratch[i as usize]);
-        if pv.iter().any(|q| q.outcode != 0) {
-            continue;
-        }
-        let s = pv.map(|q| q.screen);
-        if cross(s[0], s[1], s[2]) >= 0 {
-            continue;
-        }
-        let r = match v.mode {
-            Mode::Phong => {
-                let c = |j: usize| PhongVertex {
-                    screen: s[j],
-                    depth: pv[j].depth,
-                    position: pv[j].view,
-                    normal: view.transform_vector(p.normals[t[j] as usize]),
-                };
-                draw_triangle_phong(&mut fb, &mut zb, [c(0), c(1), c(2)], &ctx)
-            }
-            _ => {
-                let (shade, lum): (ShadeMode, [u32; 3]) = match v.mode {
-                    Mode::Flat => (ShadeMode::Flat, [p.levels[k] as u32; 3]),
-                    m => (
-                        if m == Mode::GouraudFast {
-                            ShadeMode::GouraudFast
-                        } else {
-                            ShadeMode::GouraudExact
-                        },
-                        [0, 1, 2].map(|j| p.levels[t[j] as usize] as u32),
-                    ),
-                };
-                let vals = [0, 1, 2].map(|j| [pv[j].depth, lum[j]]);
-                if v.dither {
-                    draw_triangle_dithered(&mut fb, &mut zb, s, vals, ramp, shade)
-                } else {
-                    draw_triangle(&mut fb, &mut zb, s, vals, ramp, shade)
-                }
-            }
-        };
-        covered += r.map_err(|e| format!("{e:?}"))?.0;
-    }
-    Ok(covered)
+    let scratch = LitScratch {
+        prepared: &mut p.scratch,
+        normals: &mut p.normals,
+        levels: &mut p.levels,
+    };
+    draw_lit_object(
+        &renderer, &p.camera, &ill, &object, scratch, &mut fb, &mut zb,
+    )
+    .map_err(|e| format!("{e:?}"))
 }
 
 /// The measured region: callgrind collects exactly this call.
@@ -470,7 +404,7 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
 /// Colours of the modes (flat, fast Gouraud, exact Gouraud, Phong).
 const COLOURS: [(u8, u8, u8); 4] = [(120, 120, 120), (230, 140, 0), (200, 30, 30), (30, 90, 200)];
 
-fn mode_index(m: Mode) -> usize {
+fn mode_index(m: LitMode) -> usize {
     MODES.iter().position(|(x, _)| *x == m).unwrap_or(0)
 }
 
