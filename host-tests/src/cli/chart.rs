@@ -44,6 +44,9 @@ pub struct ChartArgs {
     /// Print the error table only (no callgrind, no SVG).
     #[arg(long)]
     pub no_measure: bool,
+    /// A saved `zscan bench --no-host` table with the `lit_*` cases (the Cortex-M4 panel).
+    #[arg(long)]
+    pub m4: Option<PathBuf>,
     /// Internal: render one variant inside the measured region (what callgrind runs).
     #[arg(long, hide = true)]
     pub run_variant: Option<String>,
@@ -395,7 +398,30 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
     if args.no_measure {
         return Ok(());
     }
-    let svg = chart(&rows)?;
+    let m4_counts = match &args.m4 {
+        Some(p) => read_m4(p)?,
+        None => Default::default(),
+    };
+    let m4: Vec<Option<f64>> = rows
+        .iter()
+        .map(|r| {
+            let n = *m4_counts.get(&r.variant.name())?;
+            Some(n as f64 / r.covered.max(1) as f64)
+        })
+        .collect();
+    if !m4_counts.is_empty() {
+        println!("\n{:<28} {:>12} {:>10}", "variant", "M4 instr", "instr/px");
+        for (r, x) in rows.iter().zip(&m4) {
+            let n = m4_counts.get(&r.variant.name());
+            println!(
+                "{:<28} {:>12} {:>10}",
+                r.variant.name(),
+                n.map_or("-".into(), |n| n.to_string()),
+                x.map_or("-".into(), |x| format!("{x:.1}"))
+            );
+        }
+    }
+    let svg = chart(&rows, &m4)?;
     std::fs::write(&args.out, svg)?;
     eprintln!("zscan chart: wrote {}", args.out.display());
     Ok(())
@@ -408,127 +434,166 @@ fn mode_index(m: LitMode) -> usize {
     MODES.iter().position(|(x, _)| *x == m).unwrap_or(0)
 }
 
-/// The SVG: x = host instructions per covered pixel (log scale would hide the flat points'
-/// spread; linear), y = error in levels; a marker at the mean error joined to a tick at the
-/// maximum. Circles: sphere, triangles: bunny; filled: plain ramp, hollow: dithered.
-fn chart(rows: &[Row]) -> Result<String, CliError> {
+/// Draws one panel (x = `xs[i]`, instructions per covered pixel) into `area`, collecting
+/// its texts (tick labels, panel title) as SVG elements.
+fn panel<DB: plotters::prelude::DrawingBackend>(
+    area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+    rows: &[Row],
+    xs: &[Option<f64>],
+    title: &str,
+    ymax: f64,
+    texts: &mut Vec<String>,
+) -> Result<(), CliError> {
     use plotters::prelude::*;
-    let e = |x: &dyn std::fmt::Display| x.to_string();
-    let xmax = rows.iter().filter_map(Row::per_pixel).fold(0.0, f64::max) * 1.08;
+    let e = |x: &dyn std::fmt::Display| -> CliError { x.to_string().into() };
+    let xmax = xs.iter().flatten().fold(0.0, |a: f64, b| a.max(*b)) * 1.08;
+    if xmax <= 0.0 {
+        return Ok(());
+    }
+    let mut chart = ChartBuilder::on(area)
+        .margin_left(MARGINS.0)
+        .margin_top(MARGINS.1)
+        .margin_right(MARGINS.2)
+        .margin_bottom(MARGINS.3)
+        .build_cartesian_2d(0f64..xmax, 0f64..ymax)
+        .map_err(|x| e(&x))?;
+    let grey = RGBColor(220, 220, 220);
+    let step = |max: f64| {
+        let raw = max / 6.0;
+        let mag = 10f64.powf(raw.log10().floor());
+        [1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .map(|m| m * mag)
+            .find(|s| *s >= raw)
+            .unwrap_or(raw)
+    };
+    let (sx, sy) = (step(xmax), step(ymax));
+    let mut x = 0.0;
+    while x <= xmax {
+        chart
+            .draw_series(LineSeries::new([(x, 0.0), (x, ymax)], grey))
+            .map_err(|q| e(&q))?;
+        let (px, py) = chart.backend_coord(&(x, 0.0));
+        texts.push(format!(
+            r#"<text x="{px}" y="{}" text-anchor="middle" font-size="12">{x}</text>"#,
+            py + 16
+        ));
+        x += sx;
+    }
+    let mut y = 0.0;
+    while y <= ymax {
+        chart
+            .draw_series(LineSeries::new([(0.0, y), (xmax, y)], grey))
+            .map_err(|q| e(&q))?;
+        let (px, py) = chart.backend_coord(&(0.0, y));
+        texts.push(format!(
+            r#"<text x="{}" y="{}" text-anchor="end" font-size="12">{y:.0}</text>"#,
+            px - 6,
+            py + 4
+        ));
+        y += sy;
+    }
+    chart
+        .draw_series(LineSeries::new(
+            [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
+            BLACK,
+        ))
+        .map_err(|q| e(&q))?;
+    let (tx, ty) = chart.backend_coord(&(0.0, ymax));
+    texts.push(format!(
+        r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{title}</text>"#,
+        tx + 8,
+        ty + 16
+    ));
+    let (bx, by) = chart.backend_coord(&(xmax / 2.0, 0.0));
+    texts.push(format!(
+        r#"<text x="{bx}" y="{}" text-anchor="middle" font-size="13">instructions per covered pixel (whole frame: lighting, vertex stage, fill, shading)</text>"#,
+        by + 34
+    ));
+    for (r, x) in rows.iter().zip(xs) {
+        let Some(x) = *x else { continue };
+        let (cr, cg, cb) = COLOURS[mode_index(r.variant.mode)];
+        let colour = RGBColor(cr, cg, cb);
+        let style = if r.variant.dither {
+            colour.stroke_width(2)
+        } else {
+            colour.filled()
+        };
+        chart
+            .draw_series(LineSeries::new(
+                [(x, r.errors.mean), (x, r.errors.max)],
+                colour.stroke_width(1),
+            ))
+            .map_err(|q| e(&q))?;
+        chart
+            .draw_series(std::iter::once(Cross::new(
+                (x, r.errors.max),
+                4,
+                colour.stroke_width(1),
+            )))
+            .map_err(|q| e(&q))?;
+        if r.variant.scene == "sphere" {
+            chart
+                .draw_series(std::iter::once(Circle::new((x, r.errors.mean), 5, style)))
+                .map_err(|q| e(&q))?;
+        } else {
+            chart
+                .draw_series(std::iter::once(TriangleMarker::new(
+                    (x, r.errors.mean),
+                    6,
+                    style,
+                )))
+                .map_err(|q| e(&q))?;
+        }
+    }
+    Ok(())
+}
+
+/// Panel margins: left, top, right, bottom.
+const MARGINS: (i32, i32, i32, i32) = (70, 40, 250, 50);
+
+/// The SVG: one panel per platform (host, Cortex-M4 when given), x = instructions per covered
+/// pixel (linear), y = error in LUT levels; a marker at the mean error joined to a cross at
+/// the maximum. Circles: sphere, triangles: bunny; filled: plain ramp, hollow: dithered.
+fn chart(rows: &[Row], m4: &[Option<f64>]) -> Result<String, CliError> {
+    use plotters::prelude::*;
+    let e = |x: &dyn std::fmt::Display| -> CliError { x.to_string().into() };
     let ymax = rows.iter().map(|r| r.errors.max).fold(0.0, f64::max) * 1.08;
-    let (width, height) = (900u32, 560u32);
-    let (left, top, right, bottom) = (80i32, 50i32, 260i32, 60i32);
+    let host: Vec<Option<f64>> = rows.iter().map(Row::per_pixel).collect();
+    let panels: Vec<(&str, &[Option<f64>])> = if m4.iter().any(Option::is_some) {
+        vec![
+            ("host x86-64 (valgrind callgrind)", &host[..]),
+            ("Cortex-M4 (QEMU mps2-an386, qemu-icount)", m4),
+        ]
+    } else {
+        vec![("host x86-64 (valgrind callgrind)", &host[..])]
+    };
+    let (width, panel_h) = (900u32, 440u32);
+    let height = 60 + panel_h * panels.len() as u32;
     let mut svg = String::new();
     let mut texts: Vec<String> = Vec::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(|x| e(&x))?;
-        let mut chart = ChartBuilder::on(&root)
-            .margin_left(left)
-            .margin_top(top)
-            .margin_right(right)
-            .margin_bottom(bottom)
-            .build_cartesian_2d(0f64..xmax, 0f64..ymax)
-            .map_err(|x| e(&x))?;
-        let grey = RGBColor(220, 220, 220);
-        let step = |max: f64| {
-            let raw = max / 6.0;
-            let mag = 10f64.powf(raw.log10().floor());
-            [1.0, 2.0, 5.0, 10.0]
-                .iter()
-                .map(|m| m * mag)
-                .find(|s| *s >= raw)
-                .unwrap_or(raw)
-        };
-        let (sx, sy) = (step(xmax), step(ymax));
-        let mut x = 0.0;
-        while x <= xmax {
-            chart
-                .draw_series(LineSeries::new([(x, 0.0), (x, ymax)], grey))
-                .map_err(|q| e(&q))?;
-            let (px, py) = chart.backend_coord(&(x, 0.0));
-            texts.push(format!(
-                r#"<text x="{px}" y="{}" text-anchor="middle" font-size="12">{x}</text>"#,
-                py + 16
-            ));
-            x += sx;
-        }
-        let mut y = 0.0;
-        while y <= ymax {
-            chart
-                .draw_series(LineSeries::new([(0.0, y), (xmax, y)], grey))
-                .map_err(|q| e(&q))?;
-            let (px, py) = chart.backend_coord(&(0.0, y));
-            texts.push(format!(
-                r#"<text x="{}" y="{}" text-anchor="end" font-size="12">{y:.2}</text>"#,
-                px - 6,
-                py + 4
-            ));
-            y += sy;
-        }
-        chart
-            .draw_series(LineSeries::new(
-                [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
-                BLACK,
-            ))
-            .map_err(|q| e(&q))?;
-        for r in rows {
-            let Some(x) = r.per_pixel() else { continue };
-            let (cr, cg, cb) = COLOURS[mode_index(r.variant.mode)];
-            let colour = RGBColor(cr, cg, cb);
-            let style = if r.variant.dither {
-                colour.stroke_width(2)
-            } else {
-                colour.filled()
-            };
-            chart
-                .draw_series(LineSeries::new(
-                    [(x, r.errors.mean), (x, r.errors.max)],
-                    colour.stroke_width(1),
-                ))
-                .map_err(|q| e(&q))?;
-            chart
-                .draw_series(std::iter::once(Cross::new(
-                    (x, r.errors.max),
-                    4,
-                    colour.stroke_width(1),
-                )))
-                .map_err(|q| e(&q))?;
-            if r.variant.scene == "sphere" {
-                chart
-                    .draw_series(std::iter::once(Circle::new((x, r.errors.mean), 5, style)))
-                    .map_err(|q| e(&q))?;
-            } else {
-                chart
-                    .draw_series(std::iter::once(TriangleMarker::new(
-                        (x, r.errors.mean),
-                        6,
-                        style,
-                    )))
-                    .map_err(|q| e(&q))?;
-            }
+        let body = root.margin(50, 10, 0, 0);
+        let areas = body.split_evenly((panels.len(), 1));
+        for (area, (title, xs)) in areas.iter().zip(&panels) {
+            panel(area, rows, xs, title, ymax, &mut texts)?;
         }
         root.present().map_err(|x| e(&x))?;
     }
-    // Titles, axis names and the legend as plain SVG text (no font library needed).
+    // Title, axis name and the legend as plain SVG text (no font library needed).
     let w = width as i32;
-    let h = height as i32;
     texts.push(format!(
         r#"<text x="{}" y="28" text-anchor="middle" font-size="16" font-weight="bold">zscan shading: speed vs accuracy (standard sphere and bunny, 320x240, 32-level ramp)</text>"#,
         w / 2
     ));
+    let mid = 50 + (height as i32 - 50) / 2;
     texts.push(format!(
-        r#"<text x="{}" y="{}" text-anchor="middle" font-size="13">host instructions per covered pixel (x86-64, callgrind; whole frame incl. lighting)</text>"#,
-        left + (w - left - right) / 2,
-        h - 18
+        r#"<text x="18" y="{mid}" text-anchor="middle" font-size="13" transform="rotate(-90 18 {mid})">error vs f64 per-pixel Phong, LUT levels (marker: mean, cross: max)</text>"#
     ));
-    texts.push(format!(
-        r#"<text x="18" y="{}" text-anchor="middle" font-size="13" transform="rotate(-90 18 {})">error vs f64 Phong (LUT levels): marker = mean, x = max</text>"#,
-        top + (h - top - bottom) / 2,
-        top + (h - top - bottom) / 2
-    ));
-    let lx = w - right + 20;
-    let mut ly = top + 10;
+    let lx = w - MARGINS.2 + 30;
+    let mut ly = 100;
     let names = [
         "flat",
         "Gouraud fast (DDA)",
@@ -547,8 +612,8 @@ fn chart(rows: &[Row]) -> Result<String, CliError> {
     }
     ly += 10;
     for line in [
-        "● circle: sphere",
-        "▲ triangle: bunny",
+        "circle: sphere",
+        "triangle: bunny",
         "filled: plain ramp",
         "hollow: 4x4 Bayer dither",
         "line from mean up to max",
@@ -564,4 +629,28 @@ fn chart(rows: &[Row]) -> Result<String, CliError> {
         None => svg,
     };
     Ok(svg)
+}
+
+/// Cortex-M4 instructions per case from a saved `zscan bench` table (cases `lit_<variant>`):
+/// the first instruction column after the pixel count.
+fn read_m4(path: &std::path::Path) -> Result<std::collections::HashMap<String, u64>, CliError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut out = std::collections::HashMap::new();
+    for line in text.lines() {
+        let mut cols = line.split('|');
+        let (Some(head), Some(m4)) = (cols.next(), cols.next()) else {
+            continue;
+        };
+        let Some(name) = head.split_whitespace().next() else {
+            continue;
+        };
+        let Some(variant) = name.strip_prefix("lit_") else {
+            continue;
+        };
+        if let Some(n) = m4.split_whitespace().next().and_then(|v| v.parse().ok()) {
+            out.insert(variant.to_string(), n);
+        }
+    }
+    Ok(out)
 }
