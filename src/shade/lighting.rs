@@ -13,7 +13,7 @@
 //! ```
 //! `N` the unit normal, `L` the unit vector toward light `i` (from the point for a
 //! [`Light::Point`], fixed for a [`Light::Directional`]), `V` the unit vector toward the
-//! observer (`−P` in the observer frame). `S_i = 1` here (shadows: [`shadow`](super::shadow)).
+//! observer (`−P` in the observer frame). `S_i = 1` here (the shadow test is the caller's: it sets `S_i` by leaving a light out).
 //! A light with `N·L ≤ 0` is behind the surface and contributes nothing (neither diffuse nor
 //! specular): the course's `cos θ` is taken as `cos⁺θ`, which is what the exercises assume.
 //!
@@ -24,7 +24,7 @@
 //! - Intensities `I_a, I_p` are `u8` (`0..=255`); the result is rounded to nearest and clamped
 //!   to `0..=255`.
 //! - Unit vectors are Q15 in `i32` (`|c| ≤ 32768`), made by
-//!   [`unit_bits`](crate::geometry::vector::unit_bits) (integer square root). A dot product of
+//!   [`unit_bits`] (integer square root). A dot product of
 //!   two of them is at most `(2^15 + 1)²·3 < 2^32` in magnitude, computed in `i64`, rounded back
 //!   to Q15.
 //! - `(cos⁺α)^n` by squaring in Q15 with `u32` products (`≤ 2^30`), rounded at each step: at
