@@ -181,6 +181,9 @@ struct Report {
     lum_over_1_by: (usize, usize, usize, usize),
     /// Pixels of triangles clipped in 3D by either renderer (no per-pixel luminance bound).
     lum_clipped: usize,
+    /// Pixels (same surface, away from edges) of triangles only the core clips (its guard band
+    /// or near plane), and their largest |exact − L_ref|.
+    lum_guard_band: (usize, f64),
     /// Pixels whose exact index exceeds `1/2 + |∇L|·δ` from L_ref where the per-pixel bound
     /// applies (same surface, farther than DELTA from every edge).
     lum_bound_fail: Vec<(u32, u32, u8, f64, f64)>,
@@ -361,6 +364,10 @@ fn compare_frames(
                     let levels = scene.intensities[f.triangle].map(f64::from);
                     let clipped = vis.clipped || core_clipped[f.triangle];
                     r.lum_clipped += clipped as usize;
+                    if core_clipped[f.triangle] && !vis.clipped && same_surface && !near_edge {
+                        r.lum_guard_band.0 += 1;
+                        r.lum_guard_band.1 = r.lum_guard_band.1.max(e);
+                    }
                     let grad = if !clipped {
                         affine_gradient(&vis.screen, levels)
                     } else {
@@ -417,7 +424,10 @@ fn check(r: &Report) {
         r.fast_mean,
         r.fast_vs_exact_diff
     );
-    println!("{}: worst depth pixel {:?}", r.name, r.depth_worst);
+    println!(
+        "{}: worst depth pixel {:?}; clipped only by the core: {:?}",
+        r.name, r.depth_worst, r.lum_guard_band
+    );
     assert!(
         r.unexplained_coverage.is_empty(),
         "{}: coverage mismatches farther than {DELTA} px from the silhouette: {:?}",

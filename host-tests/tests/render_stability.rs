@@ -678,3 +678,102 @@ fn vertices_on_the_near_plane_and_at_the_eye() {
     let core = frame(&scene);
     assert!(core.depth.iter().all(|&d| d <= 8), "{:?}", &core.depth[..4]);
 }
+
+/// A triangle reaching 60 units sideways (far beyond the guard band of 4 screen extents), depths
+/// 2 to 9.5, with corner levels 0, 255, 128: the core cuts it against the side planes in 3D,
+/// the reference (near and far only) does not.
+fn guard_band_scenes() -> Vec<Scene> {
+    let cam = Camera::standard();
+    [
+        [[-60.0, -1.0, -6.5], [60.0, -1.0, 1.0], [0.0, 3.0, -3.0]],
+        [[-60.0, -1.0, 1.0], [60.0, -1.0, -6.5], [0.0, 3.0, -3.0]],
+    ]
+    .iter()
+    .map(|&t| Scene::from_triangles("guard band", cam, &[t], &[[0, 255, 128]]).unwrap())
+    .collect()
+}
+
+/// Largest |exact Gouraud − reference screen-affine luminance| over the pixels both cover.
+fn worst_affine_luminance(core: &CoreFrame<u32>, reference: &FloatFrame) -> f64 {
+    let mut worst = 0f64;
+    for (i, f) in reference.pixels.iter().enumerate() {
+        if let (Some(f), true) = (f, core.depth[i] != u32::MAX) {
+            worst = worst.max((core.pixels[i] as f64 - f.luminance_affine).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn guard_band_clipping_keeps_coverage_and_depth() {
+    // Coverage and depth do not depend on the side-plane cut: the fill clips at the screen edge
+    // exactly and D is affine in screen space, so a clip point's D lies on the same plane.
+    for scene in guard_band_scenes() {
+        let core = frame(&scene);
+        assert_eq!(core.stats.clipped, 1, "the core cuts it: {:?}", core.stats);
+        let reference = render(&scene).unwrap();
+        assert_eq!(
+            reference.stats.triangles_clipped, 0,
+            "the reference does not"
+        );
+        let c = coverage(&scene, &core, &reference);
+        c.assert_explained("guard band");
+        assert!(c.reference > 10_000);
+        let outs = outlines(&scene, false);
+        let mut worst = 0f64;
+        for (i, f) in reference.pixels.iter().enumerate() {
+            let (Some(f), d) = (f, core.depth[i]) else {
+                continue;
+            };
+            if d == u32::MAX {
+                continue;
+            }
+            let (x, y) = ((i as u32 % W) as f64, (i as u32 / W) as f64);
+            let (z, gx, gy) = plane_depth(&scene, &outs[0].view, x, y).unwrap();
+            let tol = 1.0 / 65536.0
+                + (gx * gx + gy * gy).sqrt() * DELTA
+                + 8.0 * z * z * 9.5 / (4294967295.0 * 5.0);
+            worst = worst.max((depth_from_d32(d, 0.5, 10.0) - f.depth).abs() / tol);
+        }
+        println!("guard band: worst depth error {worst:.2} of the bound");
+        assert!(worst <= 1.0, "{worst}");
+    }
+}
+
+#[test]
+#[ignore = "core: exact Gouraud is not the screen-affine interpolant of the vertex levels on \
+            triangles cut by the guard band (clip points get 3D-interpolated, truncated levels); \
+            80 levels off on this scene"]
+fn guard_band_clipping_keeps_gouraud_luminance() {
+    // src/render.rs (Renderer::rasterize, the clipping path) and src/clip/frustum.rs: a
+    // polygon with a vertex outside the guard band is cut in 3D, and each clip point's
+    // intensity is interpolated linearly along the 3D edge (then truncated to an integer). The
+    // screen-affine interpolant of the original corners is not linear in the 3D edge
+    // parameter, so the cut changes the shading: the picture depends on whether the guard
+    // band was crossed (coverage and depth do not, see the test above). Expected (ShadeMode::
+    // GouraudExact, span_writer.rs): every pixel the correctly rounded screen-affine value,
+    // i.e. within 1/2 + |∇L|·δ (< 1 here: the projected triangle is thousands of pixels wide)
+    // of the reference's screen-affine value. Measured: 80.16 levels on both triangles of
+    // `guard_band_scenes` (8.7 and 8.2 from the perspective-correct value: the cut makes the
+    // shading a hybrid of the two).
+    let mut worsts = Vec::new();
+    for scene in guard_band_scenes() {
+        let core = frame(&scene);
+        let reference = render(&scene).unwrap();
+        let worst = worst_affine_luminance(&core, &reference);
+        let persp = reference
+            .pixels
+            .iter()
+            .zip(core.depth.iter().zip(&core.pixels))
+            .filter_map(|(f, (&d, &p))| {
+                f.filter(|_| d != u32::MAX)
+                    .map(|f| (p as f64 - f.luminance_perspective).abs())
+            })
+            .fold(0f64, f64::max);
+        println!(
+            "guard band: worst luminance error {worst:.2} (against perspective-correct {persp:.2})"
+        );
+        worsts.push(worst);
+    }
+    assert!(worsts.iter().all(|&w| w <= 1.0), "{worsts:?}");
+}
