@@ -69,6 +69,14 @@ pub const CASES: &[Case] = &[
         run: line_clipped,
     },
     Case {
+        name: "vertex_quad",
+        run: |fb| scene::vertex_only(fb, &scene::QUAD),
+    },
+    Case {
+        name: "vertex_cube",
+        run: |fb| scene::vertex_only(fb, &scene::CUBE),
+    },
+    Case {
         name: "vertex_sphere",
         run: |fb| scene::vertex_only(fb, &scene::SPHERE),
     },
@@ -123,6 +131,10 @@ pub const CASES: &[Case] = &[
     Case {
         name: "frame_bunny_fast",
         run: |fb| scene::frame(fb, &scene::BUNNY, ShadeMode::GouraudFast),
+    },
+    Case {
+        name: "frame_bunny_bands16",
+        run: |fb| scene::frame_in_bands(fb, &scene::BUNNY, 16),
     },
 ];
 
@@ -439,6 +451,40 @@ pub mod scene {
             });
         }
         written
+    }
+
+    /// The same frame drawn through one 320×`rows` band buffer pair with
+    /// [`render_in_bands`](zscan::render::render_in_bands) (the vertex stage runs once per
+    /// band); each finished band is copied into `fb` where a device would flush it.
+    pub fn frame_in_bands(fb: &mut Framebuffer<'_>, s: &StandardScene, rows: u16) -> u32 {
+        const MAX_ROWS: usize = 16;
+        let rows = rows.min(MAX_ROWS as u16);
+        let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
+        let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
+        let Some(r) = renderer() else { return 0 };
+        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = zscan::scene::Scene {
+            camera: *r.camera(),
+            objects: &objects,
+            background: 0,
+        };
+        let stats = zscan::render::render_in_bands(
+            &r,
+            &scene,
+            &mut band,
+            &mut depth,
+            (super::WIDTH, super::HEIGHT, rows),
+            &mut scratch,
+            |frame, _| {
+                for (y, row) in frame.rows() {
+                    if let Some(out) = fb.row_mut(y) {
+                        out.copy_from_slice(row);
+                    }
+                }
+            },
+        );
+        stats.map_or(0, |s| s.pixels_written)
     }
 
     /// SCENES.md's frame: clear colour, clear depth (16-bit), transform, cull, clip, project,

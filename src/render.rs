@@ -37,6 +37,7 @@ use crate::geometry::camera::Camera;
 use crate::geometry::matrix::{Affine3, MatrixError};
 use crate::geometry::vector::Vec3;
 use crate::project::{ProjectError, Projector};
+use crate::raster::edge_walker::ceil_shift;
 use crate::raster::SubpixelPoint;
 use crate::scene::{Intensities, Object, Scene};
 use crate::shade::span_writer::{draw_triangle, DrawError};
@@ -153,6 +154,7 @@ impl<const S: u32> Default for PreparedVertex<S> {
 /// Everything fixed for a frame: the camera's projector, frustum and view transform.
 #[derive(Debug, Clone, Copy)]
 pub struct Renderer<const S: u32 = 4> {
+    camera: Camera,
     projector: Projector<S>,
     frustum: Frustum,
     view: Affine3,
@@ -162,11 +164,17 @@ impl<const S: u32> Renderer<S> {
     /// The renderer of `camera` at `S` sub-pixel bits, with the default guard band.
     pub fn new(camera: &Camera) -> Result<Self, RenderError> {
         Ok(Renderer {
+            camera: *camera,
             projector: Projector::new(camera).map_err(RenderError::Projection)?,
             frustum: Frustum::new::<S>(camera, Frustum::DEFAULT_GUARD)
                 .map_err(RenderError::Clip)?,
             view: *camera.view_transform(),
         })
+    }
+
+    /// The camera this renderer projects for.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
     }
 
     /// The vertex stage for `object`: fills `scratch[..vertex count]`.
@@ -230,6 +238,11 @@ impl<const S: u32> Renderer<S> {
             }
             _ => {}
         }
+        let rows = (frame.top().max(depth.top()), {
+            let f = frame.top() + frame.height() as i32;
+            f.min(depth.top() + depth.height() as i32)
+        });
+        let banded = rows.0 > 0 || rows.1 < self.camera.viewport().height as i32;
         let mut draw = |v: [SubpixelPoint<S>; 3], vals: [[u32; 2]; 3], stats: &mut RenderStats| {
             let (covered, written) =
                 draw_triangle(frame, depth, v, vals, object.ramp, object.shade)
@@ -262,6 +275,18 @@ impl<const S: u32> Renderer<S> {
                 (p.screen, [p.depth, object.intensity(pi, poly[k]) as u32])
             };
             if any == 0 {
+                // In a band, a polygon wholly above or below the buffer's rows is skipped before
+                // any other work (its rows are ⌈y_min⌉ ..= ⌈y_max⌉ − 1).
+                if banded {
+                    let (mut y_lo, mut y_hi) = (i32::MAX, i32::MIN);
+                    for k in 0..poly.len() {
+                        let y = vertex(k).screen.y;
+                        (y_lo, y_hi) = (y_lo.min(y), y_hi.max(y));
+                    }
+                    if ceil_shift(y_hi, S) <= rows.0 || ceil_shift(y_lo, S) >= rows.1 {
+                        continue;
+                    }
+                }
                 if object.cull_back_faces && screen_area(poly.len(), |k| vertex(k).screen) >= 0 {
                     stats.culled += 1;
                     continue;
@@ -372,14 +397,16 @@ pub fn render_scene<D: DepthValue, const S: u32>(
 }
 
 /// Draws a `width × height` picture band by band through one band-sized pair of buffers:
-/// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band
-/// with [`render_scene`], then calls `band_done` with the finished band — flush it to the
-/// display there (e.g. [`flush`](crate::target::flush)). The picture is the same as one pass
-/// (the raster stage writes exactly the rows a buffer holds).
+/// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band,
+/// then calls `band_done` with the finished band — flush it to the display there (e.g.
+/// [`flush`](crate::target::flush)). The picture is the same as one pass (the raster stage
+/// writes exactly the rows a buffer holds).
 ///
-/// `pixels` and `depths` need `width × band_rows` elements. Statistics are summed over bands:
-/// pixel counts add up to the picture's, polygon counts count each band's pass.
-#[allow(clippy::too_many_arguments)]
+/// `pixels` and `depths` need `width × band_rows` elements. Memory/time switch: when `scratch`
+/// holds the vertices of **all** objects together, the vertex stage runs once per frame;
+/// otherwise (scratch for the largest object only) it runs again for every band.
+/// Statistics are summed over bands: pixel counts add up to the picture's, polygon counts
+/// count each band's pass.
 pub fn render_in_bands<D: DepthValue, const S: u32>(
     renderer: &Renderer<S>,
     scene: &Scene<'_>,
@@ -390,6 +417,16 @@ pub fn render_in_bands<D: DepthValue, const S: u32>(
     mut band_done: impl FnMut(&Framebuffer<'_>, &DepthBuffer<'_, D>),
 ) -> Result<RenderStats, RenderError> {
     let band_rows = band_rows.clamp(1, height.max(1));
+    let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
+    let prepare_once = scratch.len() >= total;
+    if prepare_once {
+        let mut at = 0;
+        for object in scene.objects {
+            let n = object.mesh.vertices().len();
+            renderer.prepare(object, &mut scratch[at..at + n])?;
+            at += n;
+        }
+    }
     let mut stats = RenderStats::default();
     let mut top = 0u16;
     while top < height {
@@ -400,7 +437,19 @@ pub fn render_in_bands<D: DepthValue, const S: u32>(
             .map_err(|_| too_small)?;
         let mut depth = DepthBuffer::band(depths.get_mut(..n).ok_or(too_small)?, width, rows, top)
             .map_err(|_| too_small)?;
-        stats += render_scene(renderer, scene, &mut frame, &mut depth, scratch)?;
+        if prepare_once {
+            frame.clear(scene.background);
+            depth.clear();
+            let mut at = 0;
+            for object in scene.objects {
+                let n = object.mesh.vertices().len();
+                let prepared = &scratch[at..at + n];
+                renderer.rasterize(object, prepared, &mut frame, &mut depth, &mut stats)?;
+                at += n;
+            }
+        } else {
+            stats += render_scene(renderer, scene, &mut frame, &mut depth, scratch)?;
+        }
         band_done(&frame, &depth);
         top += rows;
     }

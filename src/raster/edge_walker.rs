@@ -74,9 +74,10 @@ pub struct Edge {
     pub y1: i32,
 }
 
-/// `⌈v / 2^s⌉` for any `v` (arithmetic shift rounds toward −∞, so negate twice).
+/// `⌈v / 2^s⌉` for any `v` except `i32::MIN` (arithmetic shift rounds toward −∞, so negate
+/// twice).
 #[inline(always)]
-pub(crate) const fn ceil_shift(v: i32, s: u32) -> i32 {
+pub const fn ceil_shift(v: i32, s: u32) -> i32 {
     -((-v) >> s)
 }
 
