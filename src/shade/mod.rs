@@ -10,3 +10,4 @@ pub mod span_writer;
 pub mod dither;
 pub mod lighting;
 pub mod phong;
+pub mod shadow;
