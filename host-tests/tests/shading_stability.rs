@@ -79,7 +79,7 @@ fn exact_gouraud_is_correctly_rounded_and_fast_is_bounded() {
                 pixels += 1;
                 let a = affine(v, lum, x, y);
                 let frac = a + 0.5 - (a + 0.5).floor();
-                if frac < 1e-9 || frac > 1.0 - 1e-9 {
+                if !(1e-9..=1.0 - 1e-9).contains(&frac) {
                     ties += 1;
                     continue;
                 }
