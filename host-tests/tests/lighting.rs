@@ -290,7 +290,8 @@ fn phong_keeps_a_highlight_gouraud_misses() {
 }
 
 /// The two-pass shadow test on a floor with a unit box standing on it, light from
-/// `(1, 1, 0.5)` (`tan θ = 1.12` on the floor): floor samples away from the shadow's outline classified against the exact (`f64` ray–box) answer for three
+/// `(1, 1, 0.5)` (`tan θ = 1.12` on the floor): floor samples away from the shadow's outline
+/// classified against the exact (`f64` ray–box) answer for four
 /// biases. Too little bias: acne (lit floor reported in shadow); too much: leaking (shadowed
 /// floor reported lit, next to the box where the occluder is close to the floor).
 #[test]

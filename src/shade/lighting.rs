@@ -13,7 +13,8 @@
 //! ```
 //! `N` the unit normal, `L` the unit vector toward light `i` (from the point for a
 //! [`Light::Point`], fixed for a [`Light::Directional`]), `V` the unit vector toward the
-//! observer (`−P` in the observer frame). `S_i = 1` here (the shadow test is the caller's: it sets `S_i` by leaving a light out).
+//! observer (`−P` in the observer frame). `S_i = 1` here: the shadow test
+//! ([`shadow`](super::shadow)) is the caller's, which sets `S_i = 0` by leaving a light out.
 //! A light with `N·L ≤ 0` is behind the surface and contributes nothing (neither diffuse nor
 //! specular): the course's `cos θ` is taken as `cos⁺θ`, which is what the exercises assume.
 //!
