@@ -405,8 +405,9 @@ pub fn render_scene<D: DepthValue, const S: u32>(
 /// `pixels` and `depths` need `width × band_rows` elements. Memory/time switch: when `scratch`
 /// holds the vertices of **all** objects together, the vertex stage runs once per frame;
 /// otherwise (scratch for the largest object only) it runs again for every band.
-/// Statistics are summed over bands: pixel counts add up to the picture's, polygon counts
-/// count each band's pass.
+/// Statistics are summed over bands: pixel counts add up to the picture's; `polygons_in`,
+/// `rejected` and `clipped` count each band's pass; `culled` counts, per band, the back faces
+/// that reach the band's rows (a band skips projected polygons above or below it first).
 pub fn render_in_bands<D: DepthValue, const S: u32>(
     renderer: &Renderer<S>,
     scene: &Scene<'_>,

@@ -636,9 +636,12 @@ fn bands_give_the_same_frame() {
                 let b16: CoreFrame<u16> = mesh.render(shade, Some(rows)).unwrap();
                 assert!(b16.pixels == one16.pixels && b16.depth == one16.depth);
                 let (s, o) = (b.stats, one.stats);
-                // Per-band counts: every band reads, culls, rejects and clips every polygon.
+                // Per-band counts: every band reads, rejects and clips every polygon; a band
+                // culls only the projected polygons that reach its rows (the others are
+                // skipped first), so every back face is culled at least once.
                 assert_eq!(s.polygons_in, o.polygons_in * bands, "{}", scene.name);
-                assert_eq!(s.culled, o.culled * bands, "{}", scene.name);
+                assert!(s.culled >= o.culled, "{}", scene.name);
+                assert!(s.culled <= o.culled * bands, "{}", scene.name);
                 assert_eq!(s.rejected, o.rejected * bands, "{}", scene.name);
                 assert_eq!(s.clipped, o.clipped * bands, "{}", scene.name);
                 // Pixels are counted once, in the band that holds them.

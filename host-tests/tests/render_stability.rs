@@ -741,9 +741,6 @@ fn guard_band_clipping_keeps_coverage_and_depth() {
 }
 
 #[test]
-#[ignore = "core: exact Gouraud is not the screen-affine interpolant of the vertex levels on \
-            triangles cut by the guard band (clip points get 3D-interpolated, truncated levels); \
-            80 levels off on this scene"]
 fn guard_band_clipping_keeps_gouraud_luminance() {
     // src/render.rs (Renderer::rasterize, the clipping path) and src/clip/frustum.rs: a
     // polygon with a vertex outside the guard band is cut in 3D, and each clip point's

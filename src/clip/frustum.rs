@@ -13,7 +13,10 @@
 //!
 //! ## Vertices and attributes
 //! A [`ClipVertex<A>`] carries its observer-frame position and `A` integer attributes
-//! (intensity, …), interpolated linearly along the edge at each intersection.
+//! (intensity, …). At an intersection whose two ends are in front of the eye the attributes
+//! take the value of the *screen-affine* interpolant at the new vertex's projection (what the
+//! raster interpolates), so a cut by the guard band or the far plane does not change the
+//! shading; at the near plane (an end behind the eye) they are interpolated along the 3D edge.
 //!
 //! ## Numeric contract
 //! - Plane coefficients `a, b, c` are [`Coord`] with `|a|, |b|, |c| ≤ 8192` (raw `≤ 2^29`),
@@ -131,10 +134,25 @@ fn intersect<const A: usize>(
     };
     let pp = p.pos.bits();
     let qq = q.pos.bits();
-    ClipVertex {
-        pos: Vec3::from_bits(lerp(pp[0], qq[0]), lerp(pp[1], qq[1]), lerp(pp[2], qq[2])),
-        attrs: core::array::from_fn(|i| lerp(p.attrs[i], q.attrs[i])),
-    }
+    let pos = Vec3::from_bits(lerp(pp[0], qq[0]), lerp(pp[1], qq[1]), lerp(pp[2], qq[2]));
+    // Attributes. When both ends are in front of the eye (side and far planes), the raster
+    // interpolates attributes affinely in *screen* space, so the clip point takes the value of
+    // that screen-affine interpolant at its projection: screen parameter
+    // s = t·z_q / z(t) (z(t) = the new vertex's z), rounded to nearest. Otherwise (the near
+    // plane, an end behind the eye) there is no screen interpolant to keep: linear in 3D.
+    let z_new = pos.bits()[2] as i128;
+    let attrs = if pp[2] > 0 && qq[2] > 0 && z_new > 0 {
+        let (num, den) = (a as i128 * qq[2] as i128, den as i128 * z_new);
+        core::array::from_fn(|i| {
+            let delta = q.attrs[i] as i128 - p.attrs[i] as i128;
+            // delta < 2^33, num < 2^61: the product < 2^94; round half up.
+            let scaled = (2 * delta * num + den).div_euclid(2 * den);
+            (p.attrs[i] as i128 + scaled) as i32
+        })
+    } else {
+        core::array::from_fn(|i| lerp(p.attrs[i], q.attrs[i]))
+    };
+    ClipVertex { pos, attrs }
 }
 
 /// Clips the closed polygon `input` to the inside of `plane`, appending the result to `out`
