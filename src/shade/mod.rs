@@ -6,8 +6,8 @@
 //! per-pixel loops: depth test, luminance → palette index, writes.
 
 pub mod attributes;
-pub mod span_writer;
 pub mod dither;
 pub mod lighting;
 pub mod phong;
 pub mod shadow;
+pub mod span_writer;

@@ -3,5 +3,5 @@
 pub mod bresenham;
 pub mod compare;
 pub mod exact_fill;
-pub mod float_render;
 pub mod float_lighting;
+pub mod float_render;
