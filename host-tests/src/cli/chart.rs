@@ -12,8 +12,12 @@
 //! clipping; polygons that would are skipped, none are).
 //!
 //! - **x, host**: instructions of the whole frame (valgrind callgrind, only inside
-//!   `zscan_chart_region`) divided by the covered pixels. Cortex-M4 figures need bench cases
-//!   (docs/BENCHMARKS.md); they are not in this chart yet.
+//!   `zscan_chart_region`) divided by the covered pixels.
+//! - **x, Cortex-M4** (second panel, with `--m4 FILE`): the same frames as bench cases
+//!   `lit_<scene>_<mode>[_dither]` (`scene::lit` in `benches/cases.rs`, calling the same
+//!   [`draw_lit_object`] with the same light, material and ramp), counted by `zscan bench
+//!   --no-host > FILE` (QEMU mps2-an386 + qemu-icount, harness overhead subtracted) and divided
+//!   by the same covered-pixel counts. The firmware's framebuffer checksums equal the host's.
 //! - **y**: per covered pixel, the error in LUT levels of the index against the `f64` reference
 //!   level `L·32/256 − 1/2`, `L` the `f64` Phong illumination (`reference::float_lighting`) at
 //!   the visible surface point of `reference::float_render` (perspective-correct position and
