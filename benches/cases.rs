@@ -19,6 +19,7 @@
 //! The harness clears the framebuffer to index 0 before each call, calls the case once to warm
 //! up, clears again, then measures one call between the region markers.
 use zscan::raster::edge_walker::{DivisionWalker, IncrementalWalker};
+use zscan::shade::phong::LitMode;
 use zscan::shade::span_writer::ShadeMode;
 use zscan::target::Framebuffer;
 
@@ -135,6 +136,70 @@ pub const CASES: &[Case] = &[
     Case {
         name: "frame_bunny_bands16",
         run: |fb| scene::frame_in_bands(fb, &scene::BUNNY, 16),
+    },
+    Case {
+        name: "lit_sphere_flat",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Flat, false),
+    },
+    Case {
+        name: "lit_sphere_flat_dither",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Flat, true),
+    },
+    Case {
+        name: "lit_sphere_gouraud_fast",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudFast, false),
+    },
+    Case {
+        name: "lit_sphere_gouraud_fast_dither",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudFast, true),
+    },
+    Case {
+        name: "lit_sphere_gouraud_exact",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudExact, false),
+    },
+    Case {
+        name: "lit_sphere_gouraud_exact_dither",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudExact, true),
+    },
+    Case {
+        name: "lit_sphere_phong",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Phong, false),
+    },
+    Case {
+        name: "lit_sphere_phong_dither",
+        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Phong, true),
+    },
+    Case {
+        name: "lit_bunny_flat",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Flat, false),
+    },
+    Case {
+        name: "lit_bunny_flat_dither",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Flat, true),
+    },
+    Case {
+        name: "lit_bunny_gouraud_fast",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudFast, false),
+    },
+    Case {
+        name: "lit_bunny_gouraud_fast_dither",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudFast, true),
+    },
+    Case {
+        name: "lit_bunny_gouraud_exact",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudExact, false),
+    },
+    Case {
+        name: "lit_bunny_gouraud_exact_dither",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudExact, true),
+    },
+    Case {
+        name: "lit_bunny_phong",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Phong, false),
+    },
+    Case {
+        name: "lit_bunny_phong_dither",
+        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Phong, true),
     },
 ];
 
@@ -502,5 +567,68 @@ pub mod scene {
             Ok(()) => stats.pixels_written,
             Err(_) => 0,
         }
+    }
+
+    /// `zscan chart`'s lit frames: clear (index 255, depth far), then `draw_lit_object` —
+    /// directional light toward (1, 1, 1) (255), ambient 255, material (0.15, 0.55, 0.45, 20),
+    /// 32-level ramp. Returns the pixels covered (the chart's per-pixel denominator).
+    pub fn lit(
+        fb: &mut Framebuffer<'_>,
+        s: &StandardScene,
+        mode: zscan::shade::phong::LitMode,
+        dither: bool,
+    ) -> u32 {
+        use zscan::shade::lighting::{Illumination, Light, Material};
+        use zscan::shade::phong::{draw_lit_object, LitObject, LitScratch};
+        let mut depth = [u16::MAX; super::FB_LEN];
+        let Ok(mut zb) = DepthBuffer::new(&mut depth, super::WIDTH, super::HEIGHT) else {
+            return 0;
+        };
+        fb.clear(255);
+        let lens = Lens {
+            fov: Angle::from_degrees(60),
+            axis: FovAxis::Vertical,
+            near: Coord::from_bits(1 << 15),
+            far: Coord::from_bits(10 << 16),
+        };
+        let Ok(camera) = Camera::look_at(
+            Vec3::from_bits(0, 0, 3 << 16),
+            Vec3::ZERO,
+            Vec3::from_bits(0, 1 << 16, 0),
+            lens,
+            Viewport::new(super::WIDTH, super::HEIGHT),
+        ) else {
+            return 0;
+        };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        let light = Light::Directional {
+            toward: Vec3::from_int(1, 1, 1),
+            intensity: 255,
+        };
+        let Ok(ill) = Illumination::new(&camera, 255, &[light]) else {
+            return 0;
+        };
+        let mut prepared = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let mut normals = [Vec3::ZERO; MAX_VERTICES];
+        let mut levels = [0u8; 4096];
+        let object = LitObject {
+            mesh: s.mesh,
+            transform: zscan::geometry::matrix::Affine3::IDENTITY,
+            material: Material::from_thousandths(150, 550, 450, 20),
+            ramp: LuminanceRamp {
+                first: 0,
+                levels: 32,
+            },
+            mode,
+            dither,
+        };
+        let scratch = LitScratch {
+            prepared: &mut prepared,
+            normals: &mut normals,
+            levels: &mut levels,
+        };
+        draw_lit_object(&r, &camera, &ill, &object, scratch, fb, &mut zb).unwrap_or(0)
     }
 }
