@@ -17,12 +17,12 @@
 //! `lum·levels/256 − 1/2` to within 1/32 of a level, as the undithered ramp's is on average.
 //!
 //! Cost: a table read, an add, a subtraction and a compare per pixel more than the plain ramp,
-//! and a 2-bit counter step. Measured by `zscan chart` (whole frames, per covered pixel): on
-//! the host +14 (sphere, exact Gouraud 145 → 164 instructions) and +28 (Phong); on the
-//! Cortex-M4 the dithered Gouraud frame is *cheaper* (253 → 234), probably because
-//! [`draw_triangle_dithered`] steps [`Exact`](super::attributes::Exact) without the undithered
-//! writer's per-span 64-bit `ExactRun` set-up (not profiled); on the bunny the differences are
-//! within ±1 %.
+//! and a 2-bit counter step. Measured by `zscan chart` (whole lit frames of the standard
+//! sphere, per covered pixel; docs/chart.svg): host exact Gouraud 153.5 → 167.5 instructions
+//! (+14), fast 156.6 → 165.5 (+9), Phong 1451 → 1468 (+17); Cortex-M4 exact Gouraud
+//! 225.3 → 233.0 (+8), fast 240.8 → 239.3 (−1.5: [`draw_triangle_dithered`] is a separate,
+//! simpler span loop than the undithered writer's), Phong 3108 → 3132 (+25). On the bunny,
+//! where per-vertex work dominates, the differences are within ±1 %.
 //!
 //! Conventions: pixel `(x, y)` as [`raster`](crate::raster); the matrix is the classical
 //! recursive Bayer matrix, indexed `[y mod 4][x mod 4]`.
