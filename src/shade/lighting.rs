@@ -37,6 +37,7 @@
 //! Integer only (no `f32`): usable per pixel on an FPU-less core.
 
 use crate::geometry::camera::Camera;
+use crate::geometry::isqrt::isqrt_u64;
 use crate::geometry::matrix::{Affine3, MatrixError};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::vector::{unit_bits, Vec3};
@@ -137,10 +138,48 @@ pub struct Illumination {
     count: usize,
 }
 
-/// The Q15 unit vector along `v`, or `None` for zero.
+/// The Q15 unit vector along `v`, or `None` for zero: per-pixel work in Phong shading.
+///
+/// As [`unit_bits`] (the largest component brought to `[2^29, 2^30)`, exact integer square
+/// root of the squared length `< 3·2^60`) but with one division instead of three: the
+/// reciprocal `q = ⌊2^61 / len⌋` (`len ∈ [2^29, 2^31)`, so `q ∈ (2^30, 2^32]`) and the
+/// components `round(c·q / 2^46)` (`|c·q| < 2^62`). `q` is low by less than one part in 2^30,
+/// so each component is within one unit of [`unit_bits`]`(v, 15)` (tested); components are in
+/// `[-32768, 32768]`.
 #[inline]
 pub fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
-    unit_bits(v, FRAC)
+    let max = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+    if max == 0 {
+        return None;
+    }
+    let bits = 64 - max.leading_zeros();
+    let w: [i64; 3] = if bits <= 30 {
+        v.map(|c| c << (30 - bits))
+    } else {
+        let down = bits - 30;
+        v.map(|c| {
+            let m = (c.unsigned_abs() >> down) as i64;
+            if c < 0 {
+                -m
+            } else {
+                m
+            }
+        })
+    };
+    let len2: u64 = w.iter().map(|c| c.unsigned_abs().pow(2)).sum();
+    let len = isqrt_u64(len2) as u64; // ≥ 2^29
+    if len == 0 {
+        return None;
+    }
+    let q = (1u64 << 61) / len;
+    Some(w.map(|c| {
+        let m = ((c.unsigned_abs() * q + (1 << 45)) >> 46).min(ONE as u64) as i32;
+        if c < 0 {
+            -m
+        } else {
+            m
+        }
+    }))
 }
 
 /// Dot product of two Q15 unit vectors, rounded to Q15 (in `[-32769, 32769]`).
@@ -384,6 +423,33 @@ mod tests {
                 assert!((got - want).abs() <= 16.0, "x {x} n {n}: {got} vs {want}");
             }
         }
+    }
+
+    #[test]
+    fn unit_q15_matches_unit_bits() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for i in 0..100_000 {
+            let scale = i % 62;
+            let v = [0; 3].map(|_| (next() as i64) >> scale);
+            let (a, b) = (unit_q15(v), unit_bits(v, FRAC));
+            match (a, b) {
+                (Some(a), Some(b)) => {
+                    for k in 0..3 {
+                        assert!((a[k] - b[k]).abs() <= 1, "{v:?}: {a:?} vs {b:?}");
+                    }
+                }
+                (a, b) => assert_eq!(a, b, "{v:?}"),
+            }
+        }
+        assert_eq!(unit_q15([0, 0, 0]), None);
+        assert_eq!(unit_q15([0, 0, -5]), Some([0, 0, -ONE]));
+        assert_eq!(unit_q15([i64::MIN, 0, 0]), Some([-ONE, 0, 0]));
     }
 
     #[test]
