@@ -18,10 +18,10 @@
 //!
 //! Cost: a table read, an add, a subtraction and a compare per pixel more than the plain ramp,
 //! and a 2-bit counter step. Measured by `zscan chart` (whole lit frames of the standard
-//! sphere, per covered pixel; docs/chart.svg): host exact Gouraud 153.5 → 167.5 instructions
-//! (+14), fast 156.6 → 165.5 (+9), Phong 1451 → 1468 (+17); Cortex-M4 exact Gouraud
-//! 225.3 → 233.0 (+8), fast 240.8 → 239.3 (−1.5: [`draw_triangle_dithered`] is a separate,
-//! simpler span loop than the undithered writer's), Phong 3108 → 3132 (+25). On the bunny,
+//! sphere, per covered pixel; docs/chart.svg): host exact Gouraud 152.0 → 166.0 instructions
+//! (+14), fast 155.1 → 164.0 (+9), Phong 1357.5 → 1374.5 (+17); Cortex-M4 exact Gouraud
+//! 212.7 → 220.5 (+8), fast 228.2 → 226.8 (−1.4: [`draw_triangle_dithered`] is a separate,
+//! simpler span loop than the undithered writer's), Phong 2490 → 2515 (+25). On the bunny,
 //! where per-vertex work dominates, the differences are within ±1 %.
 //!
 //! Conventions: pixel `(x, y)` as [`raster`](crate::raster); the matrix is the classical
