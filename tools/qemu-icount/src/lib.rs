@@ -55,8 +55,10 @@ static ERRORS: AtomicU64 = AtomicU64::new(0);
 static OUT: Mutex<Option<std::fs::File>> = Mutex::new(None);
 /// Profile of one region (`profile=<file>,profile_region=<k>`): per translation block, its
 /// guest address, instruction count and executions inside region `k`, written at exit.
-static PROFILE: Mutex<Option<(String, u64, std::collections::HashMap<u64, (u64, u64)>)>> =
-    Mutex::new(None);
+static PROFILE: Mutex<Option<Profile>> = Mutex::new(None);
+
+/// Output path, profiled region, and per block address: (instructions, executions).
+type Profile = (String, u64, std::collections::HashMap<u64, (u64, u64)>);
 
 #[derive(Default)]
 struct ICount {
