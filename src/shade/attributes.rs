@@ -308,6 +308,7 @@ pub struct AttributePlane<const N: usize, const S: u32> {
 
 impl<const N: usize, const S: u32> AttributePlane<N, S> {
     /// Sets up the plane of `values[i]` at vertex `v[i]`.
+    #[inline(always)]
     pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Result<Self, PlaneError> {
         let (x0, y0) = (v[0].x as i64, v[0].y as i64);
         let (dx1, dy1) = (v[1].x as i64 - x0, v[1].y as i64 - y0);
