@@ -25,7 +25,7 @@
 //! - Intensities `I_a, I_p` are `u8` (`0..=255`); the result is rounded to nearest and clamped
 //!   to `0..=255`.
 //! - Unit vectors are Q15 in `i32` (`|c| ≤ 32768`), made by
-//!   [`unit_bits`] (integer square root). A dot product of
+//!   [`unit_bits`](crate::geometry::vector::unit_bits) (integer square root). A dot product of
 //!   two of them is at most `(2^15 + 1)²·3 < 2^32` in magnitude, computed in `i64`, rounded back
 //!   to Q15.
 //! - `(cos⁺α)^n` by squaring in Q15 with `u32` products (`≤ 2^30`), rounded at each step: at
@@ -40,7 +40,7 @@ use crate::geometry::camera::Camera;
 use crate::geometry::isqrt::isqrt_u64;
 use crate::geometry::matrix::{Affine3, MatrixError};
 use crate::geometry::mesh::Mesh;
-use crate::geometry::vector::{unit_bits, Vec3};
+use crate::geometry::vector::Vec3;
 
 /// Fractional bits of coefficients and unit vectors (Q15).
 pub const FRAC: u32 = 15;
@@ -140,11 +140,11 @@ pub struct Illumination {
 
 /// The Q15 unit vector along `v`, or `None` for zero: per-pixel work in Phong shading.
 ///
-/// As [`unit_bits`] (the largest component brought to `[2^29, 2^30)`, exact integer square
+/// As [`unit_bits`](crate::geometry::vector::unit_bits) (the largest component brought to `[2^29, 2^30)`, exact integer square
 /// root of the squared length `< 3·2^60`) but with one division instead of three: the
 /// reciprocal `q = ⌊2^61 / len⌋` (`len ∈ [2^29, 2^31)`, so `q ∈ (2^30, 2^32]`) and the
 /// components `round(c·q / 2^46)` (`|c·q| < 2^62`). `q` is low by less than one part in 2^30,
-/// so each component is within one unit of [`unit_bits`]`(v, 15)` (tested); components are in
+/// so each component is within one unit of [`unit_bits`](crate::geometry::vector::unit_bits)`(v, 15)` (tested); components are in
 /// `[-32768, 32768]`.
 #[inline]
 pub fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
