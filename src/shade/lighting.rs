@@ -408,6 +408,7 @@ pub fn light_faces(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::vector::unit_bits;
 
     #[test]
     fn pow_by_squaring() {
