@@ -30,7 +30,7 @@
 use super::attributes::{AttributePlane, Constant, Interpolant, PlaneError, RowStarts};
 use super::span_writer::{depth_span, DrawError, LuminanceRamp, ShadeMode, Shading};
 use crate::raster::triangle::fill_triangle;
-use crate::raster::{SubpixelPoint, Window};
+use crate::raster::SubpixelPoint;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// The 4×4 Bayer matrix: `0..16`, each value once.
@@ -126,12 +126,7 @@ pub fn draw_triangle_dithered<D: DepthValue, const S: u32>(
     ramp: LuminanceRamp,
     mode: ShadeMode,
 ) -> Result<(u32, u32), DrawError> {
-    let window = frame.window().intersect(&Window::new(
-        0,
-        depth.top(),
-        depth.width() as i32,
-        depth.top() + depth.height() as i32,
-    ));
+    let window = super::span_writer::drawable_window(frame, depth);
     let plane = match AttributePlane::<2, S>::new(v, values) {
         Ok(p) => p,
         Err(PlaneError::Degenerate) => return Ok((0, 0)),

@@ -33,7 +33,7 @@ use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::vector::Vec3;
 use crate::raster::triangle::{cross, fill_triangle};
-use crate::raster::{SubpixelPoint, Window};
+use crate::raster::SubpixelPoint;
 use crate::render::{PreparedVertex, RenderError, Renderer};
 use crate::scene::Object;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
@@ -131,12 +131,7 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     corners: [PhongVertex<S>; 3],
     ctx: &PhongContext<'_>,
 ) -> Result<(u32, u32), DrawError> {
-    let window = frame.window().intersect(&Window::new(
-        0,
-        depth.top(),
-        depth.width() as i32,
-        depth.top() + depth.height() as i32,
-    ));
+    let window = super::span_writer::drawable_window(frame, depth);
     let v = corners.map(|c| c.screen);
     let plane = match AttributePlane::<7, S>::new(v, corners.map(|c| corner_values(&c))) {
         Ok(p) => p,

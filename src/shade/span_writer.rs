@@ -186,12 +186,7 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
     ramp: LuminanceRamp,
     mode: ShadeMode,
 ) -> Result<(u32, u32), DrawError> {
-    let window = frame.window().intersect(&Window::new(
-        0,
-        depth.top(),
-        depth.width() as i32,
-        depth.top() + depth.height() as i32,
-    ));
+    let window = drawable_window(frame, depth);
     if !bounds_meet(&v, &window) {
         return Ok((0, 0));
     }
@@ -326,6 +321,20 @@ impl<const S: u32> TriangleSpans<'_, S> {
         .map_err(DrawError::Fill)?;
         Ok((covered, written))
     }
+}
+
+/// The pixels both buffers hold (a band's rows, the frame's width).
+#[inline(always)]
+pub fn drawable_window<D: DepthValue>(
+    frame: &Framebuffer<'_>,
+    depth: &DepthBuffer<'_, D>,
+) -> Window {
+    frame.window().intersect(&Window::new(
+        0,
+        depth.top(),
+        depth.width() as i32,
+        depth.top() + depth.height() as i32,
+    ))
 }
 
 /// True when the bounding box of `v` (rounded outward to pixels) meets `window`.
