@@ -478,7 +478,8 @@ struct BresenhamSteps {
 
 impl BresenhamSteps {
     #[inline(never)]
-    fn run(self, pixels: &mut [u8], mut at: usize, mut error: i32, mut left: u32, index: u8) {
+    fn run(self, pixels: &mut [u8], mut at: usize, error: i32, mut left: u32, index: u8) {
+        let mut error = error as u32; // two's complement: see the step below
         loop {
             // An offset that left the buffer (negative ones wrap to huge values) ends the line.
             let Some(p) = pixels.get_mut(at) else { return };
@@ -488,9 +489,13 @@ impl BresenhamSteps {
             }
             left -= 1;
             at = at.wrapping_add(self.major);
-            error += self.error_step_major;
-            if error >= 0 {
-                error -= self.error_step_minor;
+            // The error lives in [−2n, 0); as a u32 it is in [2^32 − 2n, 2^32), so adding 2a
+            // (≤ 2n) carries out of 32 bits exactly when the error becomes ≥ 0: the carry
+            // flag is the minor-step decision (`adds` + a conditional pair on Cortex-M).
+            let (e, carry) = error.overflowing_add(self.error_step_major as u32);
+            error = e;
+            if carry {
+                error = error.wrapping_sub(self.error_step_minor as u32);
                 at = at.wrapping_add(self.minor);
             }
         }
