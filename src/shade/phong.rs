@@ -34,8 +34,8 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::vector::Vec3;
 use crate::raster::triangle::{cross, fill_triangle};
 use crate::raster::SubpixelPoint;
-use crate::render::{PreparedVertex, RenderError, Renderer};
-use crate::scene::Object;
+use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer};
+use crate::scene::{Intensities, Object};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// Offset of stored positions (`i32` raw → `u32`).
@@ -224,10 +224,11 @@ pub enum LitError {
 }
 
 /// Lights and draws one object: lighting (per polygon, per vertex or per pixel by
-/// `object.mode`), the vertex stage of `renderer`, back-face culling on the projected area,
-/// and every front-facing triangle of the polygon fans whose vertices all projected
-/// (polygons crossing a frustum plane are skipped: this path does not clip; the standard
-/// scenes need none). Returns the pixels covered. The same code runs in the `zscan chart`
+/// `object.mode`) and the vertex stage of `renderer`. Undithered flat and Gouraud objects then
+/// go through the renderer's polygon stage ([`Renderer::rasterize`]: culling, 3D clipping);
+/// Phong and dithered objects draw every front-facing triangle of the polygon fans whose
+/// vertices all projected (polygons crossing a frustum plane are skipped: that path does not
+/// clip yet; the standard scenes need none). Returns the pixels covered. The same code runs in the `zscan chart`
 /// measurements and in the bench cases.
 pub fn draw_lit_object<D: DepthValue, const S: u32>(
     renderer: &Renderer<S>,
@@ -277,6 +278,21 @@ pub fn draw_lit_object<D: DepthValue, const S: u32>(
     };
     let prepared = &*scratch.prepared;
     let (normals, levels) = (&*scratch.normals, &*scratch.levels);
+    if object.mode != LitMode::Phong && !object.dither {
+        // Flat and Gouraud levels go through the main renderer's polygon stage, which clips
+        // polygons crossing the frustum instead of skipping them.
+        o.intensities = match object.mode {
+            LitMode::Flat => Intensities::PerPolygon(levels),
+            _ => Intensities::PerVertex(levels),
+        };
+        o.shade = shade;
+        o.ramp = object.ramp;
+        let mut stats = RenderStats::default();
+        renderer
+            .rasterize(&o, prepared, frame, depth, &mut stats)
+            .map_err(LitError::Render)?;
+        return Ok(stats.pixels_covered);
+    }
     let mut covered = 0u32;
     for (k, poly) in mesh.polygons().enumerate() {
         let vertex = |j: usize| prepared.get(poly[j] as usize).copied().unwrap_or_default();
