@@ -20,39 +20,20 @@
 //! and a 2-bit counter step. Measured by `zscan chart` (whole lit frames of the standard
 //! sphere, per covered pixel; docs/chart.svg): host exact Gouraud 152.0 → 166.0 instructions
 //! (+14), fast 155.1 → 164.0 (+9), Phong 1357.5 → 1374.5 (+17); Cortex-M4 exact Gouraud
-//! 212.7 → 220.5 (+8), fast 228.2 → 226.8 (−1.4: [`draw_triangle_dithered`] is a separate,
-//! simpler span loop than the undithered writer's), Phong 2490 → 2515 (+25). On the bunny,
-//! where per-vertex work dominates, the differences are within ±1 %.
+//! 212.7 → 220.5 (+8), fast 228.2 → 226.8 (−1.4, measured when [`draw_triangle_dithered`] had
+//! its own span loop; it now runs the undithered writer's with a [`Bayer4`] quantizer), Phong
+//! 2490 → 2515 (+25). On the bunny, where per-vertex work dominates, the differences are within
+//! ±1 %.
 //!
 //! Conventions: pixel `(x, y)` as [`raster`](crate::raster); the matrix is the classical
 //! recursive Bayer matrix, indexed `[y mod 4][x mod 4]`.
 
-use super::attributes::{AttributePlane, Constant, Interpolant, PlaneError, RowStarts};
-use super::span_writer::{depth_span, DrawError, LuminanceRamp, ShadeMode, Shading};
-use crate::raster::triangle::fill_triangle;
+use super::span_writer::{draw_triangle_quantized, DrawError, LuminanceRamp, Quantizer, ShadeMode};
 use crate::raster::SubpixelPoint;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// The 4×4 Bayer matrix: `0..16`, each value once.
 pub const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
-
-/// Luminance → palette index at the current pixel, stepping right: plain or dithered.
-pub trait Quantizer: Copy {
-    /// The palette index of luminance `lum` (`0..=255`, larger saturates) at the current pixel.
-    fn index(&self, lum: u32) -> u8;
-    /// Moves one pixel right.
-    fn step(&mut self);
-}
-
-impl Quantizer for LuminanceRamp {
-    #[inline(always)]
-    fn index(&self, lum: u32) -> u8 {
-        LuminanceRamp::index(self, lum)
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {}
-}
 
 /// A ramp with a 4×4 ordered dither, positioned at one pixel of a span.
 #[derive(Debug, Clone, Copy)]
@@ -93,28 +74,6 @@ impl Quantizer for Bayer4 {
     }
 }
 
-/// Gouraud shading through a [`Quantizer`]: with [`Bayer4`], dithered Gouraud.
-#[derive(Debug, Clone, Copy)]
-pub struct Quantized<L: Interpolant, Q: Quantizer> {
-    /// The interpolated luminance.
-    pub luminance: L,
-    /// Its mapping to palette indices.
-    pub quantizer: Q,
-}
-
-impl<L: Interpolant, Q: Quantizer> Shading for Quantized<L, Q> {
-    #[inline(always)]
-    fn index(&self) -> u8 {
-        self.quantizer.index(self.luminance.value())
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {
-        self.luminance.step();
-        self.quantizer.step();
-    }
-}
-
 /// [`draw_triangle`](super::span_writer::draw_triangle) with the ramp dithered by [`Bayer4`]:
 /// same arguments (`values[i] = [depth, luminance]`), pixels and return value. Flat uses the
 /// rounded mean of the vertex luminances, as the undithered writer does.
@@ -126,58 +85,7 @@ pub fn draw_triangle_dithered<D: DepthValue, const S: u32>(
     ramp: LuminanceRamp,
     mode: ShadeMode,
 ) -> Result<(u32, u32), DrawError> {
-    let window = super::span_writer::drawable_window(frame, depth);
-    let plane = match AttributePlane::<2, S>::new(v, values) {
-        Ok(p) => p,
-        Err(PlaneError::Degenerate) => return Ok((0, 0)),
-        Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
-    };
-    let flat = Constant((values[0][1] + values[1][1] + values[2][1] + 1) / 3);
-    let (mut covered, mut written) = (0u32, 0u32);
-    let mut starts = RowStarts::new(&plane);
-    fill_triangle(v, &window, |s| {
-        let (x0, x1) = (s.x0 as usize, s.x1 as usize);
-        covered += (x1 - x0) as u32;
-        let (Some(c), Some(z)) = (frame.span_mut(s.y, x0, x1), depth.span_mut(s.y, x0, x1)) else {
-            return;
-        };
-        let [ze, le] = starts.at(s.x0, s.y);
-        let quantizer = Bayer4::at(ramp, s.x0, s.y);
-        written += match mode {
-            ShadeMode::Flat => depth_span(
-                c,
-                z,
-                ze,
-                Quantized {
-                    luminance: flat,
-                    quantizer,
-                },
-            ),
-            ShadeMode::GouraudExact => depth_span(
-                c,
-                z,
-                ze,
-                Quantized {
-                    luminance: le,
-                    quantizer,
-                },
-            ),
-            ShadeMode::GouraudFast => {
-                let luminance = plane.dda(1, s.x0, s.y);
-                depth_span(
-                    c,
-                    z,
-                    ze,
-                    Quantized {
-                        luminance,
-                        quantizer,
-                    },
-                )
-            }
-        };
-    })
-    .map_err(DrawError::Fill)?;
-    Ok((covered, written))
+    draw_triangle_quantized(frame, depth, v, values, mode, |x, y| Bayer4::at(ramp, x, y))
 }
 
 #[cfg(test)]

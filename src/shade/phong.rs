@@ -23,11 +23,13 @@
 //! - Lighting as [`lighting`](super::lighting): integer only.
 
 use super::attributes::{AttributePlane, Exact, Interpolant, PlaneError, RowStarts};
-use super::dither::{draw_triangle_dithered, Bayer4, Quantizer};
+use super::dither::{draw_triangle_dithered, Bayer4};
 use super::lighting::{
     light_faces, light_vertices, unit_q15, Illumination, LightingError, Material, ONE,
 };
-use super::span_writer::{depth_span, draw_triangle, DrawError, LuminanceRamp, ShadeMode, Shading};
+use super::span_writer::{
+    depth_span, draw_triangle, DrawError, LuminanceRamp, Quantizer, ShadeMode, Shading,
+};
 use crate::geometry::camera::Camera;
 use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::Mesh;

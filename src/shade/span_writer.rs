@@ -15,12 +15,12 @@
 //! luminance is `0..=255` (values above saturate in the ramp).
 
 use super::attributes::{
-    AttributePlane, Constant, Dda, Exact, ExactRun, Interpolant, PlaneError, RowStarts,
+    AttributePlane, Constant, Exact, ExactRun, Interpolant, PlaneError, RowStarts,
 };
 use crate::raster::euclid::Divisor;
 use crate::raster::polygon::FillError;
 use crate::raster::triangle::fill_triangle;
-use crate::raster::{Span, SubpixelPoint, Window};
+use crate::raster::{SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// Luminance (`0..=255`) to a ramp of `levels` palette entries starting at `first`:
@@ -52,7 +52,7 @@ impl LuminanceRamp {
 
 /// Per-pixel colour of a span: the palette index at the current pixel, stepped right.
 pub trait Shading: Copy {
-    /// True for [`FlatIndex`]: the index does not change along a span.
+    /// True when the index does not change along a span ([`FlatIndex`], flat [`Gouraud`]).
     const IS_CONSTANT: bool = false;
     /// The palette index at the current pixel.
     fn index(&self) -> u8;
@@ -76,24 +76,52 @@ impl Shading for FlatIndex {
     fn step(&mut self) {}
 }
 
-/// Gouraud shading: an interpolated luminance through a [`LuminanceRamp`].
+/// Luminance → palette index at the current pixel, stepping right: the plain
+/// [`LuminanceRamp`] or a dithered one ([`Bayer4`](super::dither::Bayer4)).
+pub trait Quantizer: Copy {
+    /// True for the plain ramp: the mapping does not change along a span.
+    const IS_CONSTANT: bool = false;
+    /// The palette index of luminance `lum` (`0..=255`, larger saturates) at the current pixel.
+    fn index(&self, lum: u32) -> u8;
+    /// Moves one pixel right.
+    fn step(&mut self);
+}
+
+impl Quantizer for LuminanceRamp {
+    const IS_CONSTANT: bool = true;
+
+    #[inline(always)]
+    fn index(&self, lum: u32) -> u8 {
+        LuminanceRamp::index(self, lum)
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {}
+}
+
+/// Gouraud shading: an interpolated luminance through a [`Quantizer`] (by default the plain
+/// ramp). With a [`Constant`] luminance it is flat shading, and with the plain ramp it is
+/// constant along the span, which [`depth_span`] exploits.
 #[derive(Debug, Clone, Copy)]
-pub struct Gouraud<L: Interpolant> {
+pub struct Gouraud<L: Interpolant, Q: Quantizer = LuminanceRamp> {
     /// The interpolated luminance.
     pub luminance: L,
     /// Its mapping to palette indices.
-    pub ramp: LuminanceRamp,
+    pub quantizer: Q,
 }
 
-impl<L: Interpolant> Shading for Gouraud<L> {
+impl<L: Interpolant, Q: Quantizer> Shading for Gouraud<L, Q> {
+    const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
+
     #[inline(always)]
     fn index(&self) -> u8 {
-        self.ramp.index(self.luminance.value())
+        self.quantizer.index(self.luminance.value())
     }
 
     #[inline(always)]
     fn step(&mut self) {
         self.luminance.step();
+        self.quantizer.step();
     }
 }
 
@@ -104,7 +132,7 @@ pub enum ShadeMode {
     Flat,
     /// Vertex luminances interpolated exactly (every pixel the correctly rounded value).
     GouraudExact,
-    /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see [`Dda`]).
+    /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see [`Dda`](super::attributes::Dda)).
     GouraudFast,
 }
 
@@ -158,11 +186,17 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
         }
         return written;
     }
+    // A shading constant along the span (flat) is mapped to its index once.
+    let constant_index = shading.index();
     for (c, stored) in colours.iter_mut().zip(depths.iter_mut()) {
         let d = D::from_depth32(z.value());
         if d < *stored {
             *stored = d;
-            *c = shading.index();
+            *c = if Sh::IS_CONSTANT {
+                constant_index
+            } else {
+                shading.index()
+            };
             written += 1;
         }
         z.step();
@@ -186,6 +220,20 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
     ramp: LuminanceRamp,
     mode: ShadeMode,
 ) -> Result<(u32, u32), DrawError> {
+    draw_triangle_quantized(frame, depth, v, values, mode, |_, _| ramp)
+}
+
+/// [`draw_triangle`] with luminance mapped to indices by the [`Quantizer`] that
+/// `quantizer_at(x, y)` gives for the span starting at pixel `(x, y)` (a dithered ramp, say).
+/// Flat shading uses the rounded mean of the vertex luminances.
+pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    mode: ShadeMode,
+    quantizer_at: impl Fn(i32, i32) -> Q,
+) -> Result<(u32, u32), DrawError> {
     let window = drawable_window(frame, depth);
     if !bounds_meet(&v, &window) {
         return Ok((0, 0));
@@ -200,7 +248,6 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
     } else {
         (values[0][1] + values[1][1] + values[2][1] + 1) / 3
     };
-    let flat = FlatIndex(ramp.index(flat_lum));
     let mode = if plane.is_constant(1) {
         ShadeMode::Flat
     } else {
@@ -213,8 +260,8 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
         plane: &plane,
         const_depth,
         mode,
-        flat,
-        ramp,
+        flat_lum: Constant(flat_lum),
+        quantizer_at,
     };
     // The longest span is at most the bounding box's width in pixels plus one.
     let xs = [v[0].x, v[1].x, v[2].x];
@@ -269,18 +316,18 @@ impl FromExact for ExactRunFrom {
     }
 }
 
-/// One triangle's span drawing, set up (see [`draw_triangle`]).
-struct TriangleSpans<'p, const S: u32> {
+/// One triangle's span drawing, set up (see [`draw_triangle_quantized`]).
+struct TriangleSpans<'p, QF, const S: u32> {
     v: [SubpixelPoint<S>; 3],
     window: Window,
     plane: &'p AttributePlane<2, S>,
     const_depth: Option<Constant>,
     mode: ShadeMode,
-    flat: FlatIndex,
-    ramp: LuminanceRamp,
+    flat_lum: Constant,
+    quantizer_at: QF,
 }
 
-impl<const S: u32> TriangleSpans<'_, S> {
+impl<Q: Quantizer, QF: Fn(i32, i32) -> Q, const S: u32> TriangleSpans<'_, QF, S> {
     #[inline(always)]
     fn draw<D: DepthValue, F: FromExact>(
         &self,
@@ -289,7 +336,7 @@ impl<const S: u32> TriangleSpans<'_, S> {
     ) -> Result<(u32, u32), DrawError> {
         let (mut covered, mut written) = (0u32, 0u32);
         let mut starts = RowStarts::new(self.plane);
-        let (flat, ramp, plane) = (self.flat, self.ramp, self.plane);
+        let plane = self.plane;
         let mut per_triangle: Option<[F; 2]> = None;
         fill_triangle(self.v, &self.window, |s| {
             let (x0, x1) = (s.x0 as usize, s.x1 as usize);
@@ -297,6 +344,11 @@ impl<const S: u32> TriangleSpans<'_, S> {
             let (Some(c), Some(z)) = (frame.span_mut(s.y, x0, x1), depth.span_mut(s.y, x0, x1))
             else {
                 return;
+            };
+            let quantizer = (self.quantizer_at)(s.x0, s.y);
+            let flat = Gouraud {
+                luminance: self.flat_lum,
+                quantizer,
             };
             if let (Some(zc), ShadeMode::Flat) = (self.const_depth, self.mode) {
                 written += depth_span(c, z, zc, flat);
@@ -307,14 +359,19 @@ impl<const S: u32> TriangleSpans<'_, S> {
             let (ze, le) = (fz.start(&ze), fl.start(&le));
             let gouraud = Gouraud {
                 luminance: le,
-                ramp,
+                quantizer,
+            };
+            // The DDA start costs a division: only the fast mode computes it.
+            let fast = || Gouraud {
+                luminance: plane.dda(1, s.x0, s.y),
+                quantizer,
             };
             written += match (self.const_depth, self.mode) {
                 (Some(zc), ShadeMode::Flat) => depth_span(c, z, zc, flat),
                 (None, ShadeMode::Flat) => depth_span(c, z, ze, flat),
-                (Some(zc), ShadeMode::GouraudFast) => depth_span(c, z, zc, fast(plane, s, ramp)),
+                (Some(zc), ShadeMode::GouraudFast) => depth_span(c, z, zc, fast()),
                 (Some(zc), ShadeMode::GouraudExact) => depth_span(c, z, zc, gouraud),
-                (None, ShadeMode::GouraudFast) => depth_span(c, z, ze, fast(plane, s, ramp)),
+                (None, ShadeMode::GouraudFast) => depth_span(c, z, ze, fast()),
                 (None, ShadeMode::GouraudExact) => depth_span(c, z, ze, gouraud),
             };
         })
@@ -352,15 +409,6 @@ fn bounds_meet<const S: u32>(v: &[SubpixelPoint<S>; 3], window: &Window) -> bool
         && (x_lo >> S) < window.x1
         && (y_hi >> S) >= window.y0
         && (y_lo >> S) < window.y1
-}
-
-/// Fast (16.16 DDA) Gouraud shading for span `s`.
-#[inline(always)]
-fn fast<const S: u32>(p: &AttributePlane<2, S>, s: Span, ramp: LuminanceRamp) -> Gouraud<Dda> {
-    Gouraud {
-        luminance: p.dda(1, s.x0, s.y),
-        ramp,
-    }
 }
 
 #[cfg(test)]
