@@ -134,6 +134,11 @@ pub enum ShadeMode {
     GouraudExact,
     /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see [`Dda`](super::attributes::Dda)).
     GouraudFast,
+    /// Normals interpolated and lit at every pixel ([`phong`](super::phong)); the renderer
+    /// draws lit objects in this mode with [`draw_triangle_phong`](super::phong::draw_triangle_phong).
+    /// The luminance writers here have no normals: given vertex luminances they interpolate
+    /// them as [`GouraudExact`](ShadeMode::GouraudExact).
+    Phong,
 }
 
 /// Why a triangle was not drawn.
@@ -248,10 +253,10 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
     } else {
         (values[0][1] + values[1][1] + values[2][1] + 1) / 3
     };
-    let mode = if plane.is_constant(1) {
-        ShadeMode::Flat
-    } else {
-        mode
+    let mode = match mode {
+        _ if plane.is_constant(1) => ShadeMode::Flat,
+        ShadeMode::Phong => ShadeMode::GouraudExact,
+        m => m,
     };
     let const_depth = plane.is_constant(0).then(|| Constant(values[0][0]));
     let spans = TriangleSpans {
@@ -370,9 +375,11 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q, const S: u32> TriangleSpans<'_, QF, S>
                 (Some(zc), ShadeMode::Flat) => depth_span(c, z, zc, flat),
                 (None, ShadeMode::Flat) => depth_span(c, z, ze, flat),
                 (Some(zc), ShadeMode::GouraudFast) => depth_span(c, z, zc, fast()),
-                (Some(zc), ShadeMode::GouraudExact) => depth_span(c, z, zc, gouraud),
+                (Some(zc), ShadeMode::GouraudExact | ShadeMode::Phong) => {
+                    depth_span(c, z, zc, gouraud)
+                }
                 (None, ShadeMode::GouraudFast) => depth_span(c, z, ze, fast()),
-                (None, ShadeMode::GouraudExact) => depth_span(c, z, ze, gouraud),
+                (None, ShadeMode::GouraudExact | ShadeMode::Phong) => depth_span(c, z, ze, gouraud),
             };
         })
         .map_err(DrawError::Fill)?;
