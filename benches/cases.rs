@@ -19,7 +19,6 @@
 //! The harness clears the framebuffer to index 0 before each call, calls the case once to warm
 //! up, clears again, then measures one call between the region markers.
 use zscan::raster::edge_walker::{DivisionWalker, IncrementalWalker};
-use zscan::shade::phong::LitMode;
 use zscan::shade::span_writer::ShadeMode;
 use zscan::target::Framebuffer;
 
@@ -139,67 +138,67 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "lit_sphere_flat",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Flat, false),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Flat, false),
     },
     Case {
         name: "lit_sphere_flat_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Flat, true),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Flat, true),
     },
     Case {
         name: "lit_sphere_gouraud_fast",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudFast, false),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudFast, false),
     },
     Case {
         name: "lit_sphere_gouraud_fast_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudFast, true),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudFast, true),
     },
     Case {
         name: "lit_sphere_gouraud_exact",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudExact, false),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudExact, false),
     },
     Case {
         name: "lit_sphere_gouraud_exact_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::GouraudExact, true),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudExact, true),
     },
     Case {
         name: "lit_sphere_phong",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Phong, false),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Phong, false),
     },
     Case {
         name: "lit_sphere_phong_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, LitMode::Phong, true),
+        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Phong, true),
     },
     Case {
         name: "lit_bunny_flat",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Flat, false),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Flat, false),
     },
     Case {
         name: "lit_bunny_flat_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Flat, true),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Flat, true),
     },
     Case {
         name: "lit_bunny_gouraud_fast",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudFast, false),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudFast, false),
     },
     Case {
         name: "lit_bunny_gouraud_fast_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudFast, true),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudFast, true),
     },
     Case {
         name: "lit_bunny_gouraud_exact",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudExact, false),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudExact, false),
     },
     Case {
         name: "lit_bunny_gouraud_exact_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::GouraudExact, true),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudExact, true),
     },
     Case {
         name: "lit_bunny_phong",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Phong, false),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Phong, false),
     },
     Case {
         name: "lit_bunny_phong_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, LitMode::Phong, true),
+        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Phong, true),
     },
 ];
 
@@ -533,6 +532,8 @@ pub mod scene {
             camera: *r.camera(),
             objects: &objects,
             background: 0,
+            ambient: 0,
+            lights: &[],
         };
         let stats = zscan::render::render_in_bands(
             &r,
@@ -569,17 +570,14 @@ pub mod scene {
         }
     }
 
-    /// `zscan chart`'s lit frames: clear (index 255, depth far), then `draw_lit_object` —
-    /// directional light toward (1, 1, 1) (255), ambient 255, material (0.15, 0.55, 0.45, 20),
-    /// 32-level ramp. Returns the pixels covered (the chart's per-pixel denominator).
-    pub fn lit(
-        fb: &mut Framebuffer<'_>,
-        s: &StandardScene,
-        mode: zscan::shade::phong::LitMode,
-        dither: bool,
-    ) -> u32 {
-        use zscan::shade::lighting::{Illumination, Light, Material};
-        use zscan::shade::phong::{draw_lit_object, LitObject, LitScratch};
+    /// `zscan chart`'s lit frames: clear (index 255, depth far), vertex normals of the mesh
+    /// (inside the frame, as a mesh without stored normals needs), then the renderer with a
+    /// lit object — directional light toward (1, 1, 1) (255), ambient 255, material
+    /// (0.15, 0.55, 0.45, 20), 32-level ramp. Returns the pixels covered (the chart's
+    /// per-pixel denominator).
+    pub fn lit(fb: &mut Framebuffer<'_>, s: &StandardScene, mode: ShadeMode, dither: bool) -> u32 {
+        use zscan::scene::{Intensities, Object};
+        use zscan::shade::lighting::{Light, Material};
         let mut depth = [u16::MAX; super::FB_LEN];
         let Ok(mut zb) = DepthBuffer::new(&mut depth, super::WIDTH, super::HEIGHT) else {
             return 0;
@@ -600,35 +598,33 @@ pub mod scene {
         ) else {
             return 0;
         };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
-            return 0;
-        };
         let light = Light::Directional {
             toward: Vec3::from_int(1, 1, 1),
             intensity: 255,
         };
-        let Ok(ill) = Illumination::new(&camera, 255, &[light]) else {
+        let Ok(r) = Renderer::<4>::new(&camera).and_then(|r| r.with_lights(255, &[light])) else {
             return 0;
         };
-        let mut prepared = [PreparedVertex::<4>::default(); MAX_VERTICES];
         let mut normals = [Vec3::ZERO; MAX_VERTICES];
-        let mut levels = [0u8; 4096];
-        let object = LitObject {
-            mesh: s.mesh,
-            transform: zscan::geometry::matrix::Affine3::IDENTITY,
+        if mode != ShadeMode::Flat && s.mesh.vertex_normals(&mut normals).is_err() {
+            return 0;
+        }
+        let mut object = Object::new(s.mesh);
+        object.intensities = Intensities::Lit {
             material: Material::from_thousandths(150, 550, 450, 20),
-            ramp: LuminanceRamp {
-                first: 0,
-                levels: 32,
-            },
-            mode,
-            dither,
+            normals: &normals,
         };
-        let scratch = LitScratch {
-            prepared: &mut prepared,
-            normals: &mut normals,
-            levels: &mut levels,
+        object.shade = mode;
+        object.ramp = LuminanceRamp {
+            first: 0,
+            levels: 32,
         };
-        draw_lit_object(&r, &camera, &ill, &object, scratch, fb, &mut zb).unwrap_or(0)
+        object.dither = dither;
+        let mut prepared = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let mut stats = RenderStats::default();
+        match r.draw_object(&object, &mut prepared, fb, &mut zb, &mut stats) {
+            Ok(()) => stats.pixels_covered,
+            Err(_) => 0,
+        }
     }
 }

@@ -30,6 +30,8 @@
 //! Culling in the observer frame uses `i128` (edge vectors up to 2^32 raw, cross products up
 //! to 2^65).
 
+use core::cell::Cell;
+
 use heapless::Vec;
 
 use crate::clip::frustum::{ClipError, ClipVertex, Frustum};
@@ -40,7 +42,10 @@ use crate::project::{ProjectError, Projector};
 use crate::raster::edge_walker::ceil_shift;
 use crate::raster::SubpixelPoint;
 use crate::scene::{Intensities, Object, Scene};
-use crate::shade::span_writer::{draw_triangle, DrawError};
+use crate::shade::dither::draw_triangle_dithered;
+use crate::shade::lighting::{light_polygon, Illumination, Light, LightingError};
+use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
+use crate::shade::span_writer::{draw_triangle, DrawError, ShadeMode};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// Largest polygon (vertex count) the clipping path accepts; each of the 6 planes may add one.
@@ -72,6 +77,8 @@ pub enum RenderError {
     Draw(DrawError),
     /// The band buffers hold fewer than `width × band_rows` elements (or the size is zero).
     BufferTooSmall,
+    /// The lights could not be set up (too many, a zero direction).
+    Lighting(LightingError),
 }
 
 impl core::fmt::Display for RenderError {
@@ -91,6 +98,7 @@ impl core::fmt::Display for RenderError {
             RenderError::Clip(e) => write!(f, "clipping: {e:?}"),
             RenderError::Draw(e) => write!(f, "raster: {e:?}"),
             RenderError::BufferTooSmall => write!(f, "band buffers smaller than width × rows"),
+            RenderError::Lighting(e) => write!(f, "lighting: {e:?}"),
         }
     }
 }
@@ -138,6 +146,9 @@ pub struct PreparedVertex<const S: u32> {
     pub depth: u32,
     /// Frustum outcode: bit `i` set when outside plane `i`; 0 when projected.
     pub outcode: u8,
+    /// Lit level `0..=255` of a Gouraud-shaded lit object's vertex (0 otherwise); it fits in
+    /// the structure's padding.
+    pub level: u8,
 }
 
 impl<const S: u32> Default for PreparedVertex<S> {
@@ -147,21 +158,26 @@ impl<const S: u32> Default for PreparedVertex<S> {
             screen: SubpixelPoint::new(0, 0),
             depth: 0,
             outcode: 0,
+            level: 0,
         }
     }
 }
 
-/// Everything fixed for a frame: the camera's projector, frustum and view transform.
+/// Everything fixed for a frame: the camera's projector, frustum and view transform, and the
+/// lights in the observer frame.
 #[derive(Debug, Clone, Copy)]
 pub struct Renderer<const S: u32 = 4> {
     camera: Camera,
     projector: Projector<S>,
     frustum: Frustum,
     view: Affine3,
+    illumination: Illumination,
 }
 
 impl<const S: u32> Renderer<S> {
-    /// The renderer of `camera` at `S` sub-pixel bits, with the default guard band.
+    /// The renderer of `camera` at `S` sub-pixel bits, with the default guard band. Its
+    /// lighting is ambient only, at full intensity (`I_a = 255`, no lights): lit objects show
+    /// `k_a·255` until [`with_lights`](Self::with_lights) sets the scene's lights.
     pub fn new(camera: &Camera) -> Result<Self, RenderError> {
         Ok(Renderer {
             camera: *camera,
@@ -169,7 +185,26 @@ impl<const S: u32> Renderer<S> {
             frustum: Frustum::new::<S>(camera, Frustum::DEFAULT_GUARD)
                 .map_err(RenderError::Clip)?,
             view: *camera.view_transform(),
+            illumination: Illumination::observer(255, &[]).map_err(RenderError::Lighting)?,
         })
+    }
+
+    /// This renderer with ambient intensity `ambient` and `lights` (world frame, at most
+    /// [`MAX_LIGHTS`](crate::shade::lighting::MAX_LIGHTS)) for lit objects.
+    pub fn with_lights(mut self, ambient: u8, lights: &[Light]) -> Result<Self, RenderError> {
+        self.illumination =
+            Illumination::new(&self.camera, ambient, lights).map_err(RenderError::Lighting)?;
+        Ok(self)
+    }
+
+    /// The renderer of a scene: its camera, ambient intensity and lights.
+    pub fn for_scene(scene: &Scene<'_>) -> Result<Self, RenderError> {
+        Renderer::new(&scene.camera)?.with_lights(scene.ambient, scene.lights)
+    }
+
+    /// The lights in the observer frame.
+    pub fn illumination(&self) -> &Illumination {
+        &self.illumination
     }
 
     /// The camera this renderer projects for.
@@ -189,11 +224,20 @@ impl<const S: u32> Renderer<S> {
             .ok_or(RenderError::ScratchTooSmall {
                 needed: vertices.len(),
             })?;
-        let m = object
-            .transform
-            .then(&self.view)
-            .map_err(RenderError::Transform)?;
-        for (out, v) in scratch.iter_mut().zip(vertices) {
+        let m = self.model_view(object)?;
+        // Lit Gouraud objects are lit here, once per vertex, in the observer frame.
+        let lit = match object.intensities {
+            Intensities::Lit { material, normals }
+                if !matches!(object.shade, ShadeMode::Flat | ShadeMode::Phong) =>
+            {
+                if normals.len() < vertices.len() {
+                    return Err(RenderError::IntensitiesTooShort);
+                }
+                Some((material, normals))
+            }
+            _ => None,
+        };
+        for (i, (out, v)) in scratch.iter_mut().zip(vertices).enumerate() {
             let view = m.transform_point(*v);
             let mut outcode = self.frustum.outcode(view);
             let (mut screen, mut depth) = (SubpixelPoint::new(0, 0), 0);
@@ -203,17 +247,31 @@ impl<const S: u32> Renderer<S> {
                     Err(_) => outcode = UNPROJECTED,
                 }
             }
+            let level = match lit {
+                Some((material, normals)) => {
+                    let n = normals.get(i).map_or([0; 3], |n| m.transform_vector(*n).bits());
+                    let n = [n[0] as i64, n[1] as i64, n[2] as i64];
+                    self.illumination.intensity(&material, view, n)
+                }
+                None => 0,
+            };
             *out = PreparedVertex {
                 view,
                 screen,
                 depth,
                 outcode,
+                level,
             };
         }
         Ok(())
     }
 
     /// The polygon stage and raster for `object`, whose vertices `prepare` put in `scratch`.
+    ///
+    /// Lit objects ([`Intensities::Lit`]) get their levels here: flat ones per polygon
+    /// ([`light_polygon`]), Gouraud ones from the vertex stage; Phong ones carry their
+    /// observer-frame normals through clipping as three attributes and are lit per pixel
+    /// ([`draw_triangle_phong`]).
     pub fn rasterize<D: DepthValue>(
         &self,
         object: &Object<'_>,
@@ -236,25 +294,150 @@ impl<const S: u32> Renderer<S> {
             Intensities::PerPolygon(t) if t.len() < mesh.polygon_count() => {
                 return Err(RenderError::IntensitiesTooShort)
             }
+            Intensities::Lit { normals, .. }
+                if object.shade != ShadeMode::Flat && normals.len() < prepared.len() =>
+            {
+                return Err(RenderError::IntensitiesTooShort)
+            }
             _ => {}
         }
         let rows = (frame.top().max(depth.top()), {
             let f = frame.top() + frame.height() as i32;
             f.min(depth.top() + depth.height() as i32)
         });
-        let banded = rows.0 > 0 || rows.1 < self.camera.viewport().height as i32;
-        let mut draw = |v: [SubpixelPoint<S>; 3], vals: [[u32; 2]; 3], stats: &mut RenderStats| {
-            let (covered, written) =
-                draw_triangle(frame, depth, v, vals, object.ramp, object.shade)
-                    .map_err(RenderError::Draw)?;
-            if covered > 0 || written > 0 {
-                stats.triangles_drawn += 1;
-            }
-            stats.pixels_covered += covered;
-            stats.pixels_written += written;
-            Ok::<(), RenderError>(())
+        let stage = PolygonStage {
+            renderer: self,
+            object,
+            prepared,
+            rows,
+            banded: rows.0 > 0 || rows.1 < self.camera.viewport().height as i32,
         };
-        for (pi, poly) in mesh.polygons().enumerate() {
+        if let Intensities::Lit { material, normals } = object.intensities {
+            let model_view = self.model_view(object)?;
+            if object.shade == ShadeMode::Phong {
+                let ctx = PhongContext {
+                    illumination: &self.illumination,
+                    material,
+                    ramp: object.ramp,
+                    dither: object.dither,
+                };
+                let normal = |i: u16| {
+                    let n = normals.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+                    model_view.transform_vector(n).bits()
+                };
+                return stage.run(
+                    stats,
+                    |_, poly, k| normal(poly[k]),
+                    |c| {
+                        let corner = |c: &Corner<S, 3>| PhongVertex {
+                            screen: c.screen,
+                            depth: c.depth,
+                            position: c.view,
+                            normal: Vec3::from_bits(c.attrs[0], c.attrs[1], c.attrs[2]),
+                        };
+                        draw_triangle_phong(frame, depth, [0, 1, 2].map(|k| corner(&c[k])), &ctx)
+                    },
+                );
+            }
+            // Flat: one level per polygon, computed for its first corner and reused.
+            let last = Cell::new((usize::MAX, 0u8));
+            let level = |pi: usize, poly: &[u16], k: usize| {
+                if object.shade != ShadeMode::Flat {
+                    return prepared.get(poly[k] as usize).map_or(0, |p| p.level);
+                }
+                if last.get().0 != pi {
+                    let l = light_polygon(mesh, poly, &model_view, &self.illumination, &material);
+                    last.set((pi, l));
+                }
+                last.get().1
+            };
+            return stage.run(
+                stats,
+                |pi, poly, k| [level(pi, poly, k) as i32],
+                |c| draw_levels(frame, depth, object, c),
+            );
+        }
+        stage.run(
+            stats,
+            |pi, poly, k| [object.intensity(pi, poly[k]) as i32],
+            |c| draw_levels(frame, depth, object, c),
+        )
+    }
+
+    /// The object's model → observer transform.
+    fn model_view(&self, object: &Object<'_>) -> Result<Affine3, RenderError> {
+        object
+            .transform
+            .then(&self.view)
+            .map_err(RenderError::Transform)
+    }
+
+    /// Both stages for one object.
+    pub fn draw_object<D: DepthValue>(
+        &self,
+        object: &Object<'_>,
+        scratch: &mut [PreparedVertex<S>],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        self.prepare(object, scratch)?;
+        self.rasterize(object, scratch, frame, depth, stats)
+    }
+}
+
+/// One triangle corner handed to a writer: screen position, depth, observer-frame position
+/// and `N` attributes (a level, or a normal), from the vertex stage or the clipper.
+#[derive(Debug, Clone, Copy)]
+struct Corner<const S: u32, const N: usize> {
+    screen: SubpixelPoint<S>,
+    depth: u32,
+    view: Vec3,
+    attrs: [i32; N],
+}
+
+/// A luminance triangle (flat or Gouraud, plain or dithered) from corners whose one attribute
+/// is a level (clamped to `0..=255`: clipped corners are interpolated).
+#[inline(always)]
+fn draw_levels<D: DepthValue, const S: u32>(
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    object: &Object<'_>,
+    c: [Corner<S, 1>; 3],
+) -> Result<(u32, u32), DrawError> {
+    let v = c.map(|c| c.screen);
+    let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
+    if object.dither {
+        draw_triangle_dithered(frame, depth, v, values, object.ramp, object.shade)
+    } else {
+        draw_triangle(frame, depth, v, values, object.ramp, object.shade)
+    }
+}
+
+/// The polygon stage of one object: rejection, culling, clipping, projection and fans, for
+/// any per-corner attributes and triangle writer.
+struct PolygonStage<'r, 'o, const S: u32> {
+    renderer: &'r Renderer<S>,
+    object: &'r Object<'o>,
+    prepared: &'r [PreparedVertex<S>],
+    /// Rows the buffers hold, `rows.0 .. rows.1`.
+    rows: (i32, i32),
+    /// The buffers hold only part of the viewport's rows.
+    banded: bool,
+}
+
+impl<const S: u32> PolygonStage<'_, '_, S> {
+    /// Runs every polygon: `attrs(polygon index, polygon, corner k)` gives a corner's
+    /// attributes, `draw` writes one triangle and returns `(covered, written)`.
+    #[inline(always)]
+    fn run<const N: usize>(
+        &self,
+        stats: &mut RenderStats,
+        attrs: impl Fn(usize, &[u16], usize) -> [i32; N],
+        mut draw: impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        let (object, prepared, rows) = (self.object, self.prepared, self.rows);
+        for (pi, poly) in object.mesh.polygons().enumerate() {
             stats.polygons_in += 1;
             if poly.len() > MAX_POLYGON_VERTICES {
                 return Err(RenderError::PolygonTooLarge);
@@ -270,14 +453,10 @@ impl<const S: u32> Renderer<S> {
                 continue;
             }
             let vertex = |k: usize| &prepared[poly[k] as usize];
-            let corner = |k: usize| {
-                let p = vertex(k);
-                (p.screen, [p.depth, object.intensity(pi, poly[k]) as u32])
-            };
             if any == 0 {
                 // In a band, a polygon wholly above or below the buffer's rows is skipped before
                 // any other work (its rows are ⌈y_min⌉ ..= ⌈y_max⌉ − 1).
-                if banded {
+                if self.banded {
                     let (mut y_lo, mut y_hi) = (i32::MAX, i32::MIN);
                     for k in 0..poly.len() {
                         let y = vertex(k).screen.y;
@@ -291,11 +470,16 @@ impl<const S: u32> Renderer<S> {
                     stats.culled += 1;
                     continue;
                 }
-                let (p0, a0) = corner(0);
-                for k in 1..poly.len() - 1 {
-                    let ((p1, a1), (p2, a2)) = (corner(k), corner(k + 1));
-                    draw([p0, p1, p2], [a0, a1, a2], stats)?;
-                }
+                let corner = |k: usize| {
+                    let p = vertex(k);
+                    Corner {
+                        screen: p.screen,
+                        depth: p.depth,
+                        view: p.view,
+                        attrs: attrs(pi, poly, k),
+                    }
+                };
+                fan(poly.len(), corner, &mut draw, stats)?;
                 continue;
             }
             if object.cull_back_faces && !faces_eye_observer(poly.len(), |k| vertex(k).view) {
@@ -303,48 +487,55 @@ impl<const S: u32> Renderer<S> {
                 continue;
             }
             stats.clipped += 1;
-            let mut input: Vec<ClipVertex<1>, CLIP_CAPACITY> = Vec::new();
-            for (k, &i) in poly.iter().enumerate() {
-                let l = object.intensity(pi, i) as i32;
+            let mut input: Vec<ClipVertex<N>, CLIP_CAPACITY> = Vec::new();
+            for k in 0..poly.len() {
                 // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
-                let _ = input.push(ClipVertex::new(vertex(k).view, [l]));
+                let _ = input.push(ClipVertex::new(vertex(k).view, attrs(pi, poly, k)));
             }
             let clipped = self
+                .renderer
                 .frustum
-                .clip::<1, CLIP_CAPACITY>(&input)
+                .clip::<N, CLIP_CAPACITY>(&input)
                 .map_err(RenderError::Clip)?;
-            let mut projected: Vec<(SubpixelPoint<S>, [u32; 2]), CLIP_CAPACITY> = Vec::new();
+            let mut corners: Vec<Corner<S, N>, CLIP_CAPACITY> = Vec::new();
             for c in clipped.iter() {
-                let (p, d) = self
+                let (screen, depth) = self
+                    .renderer
                     .projector
                     .project_point(c.pos)
                     .map_err(RenderError::Projection)?;
-                let _ = projected.push((p, [d, c.attrs[0].clamp(0, 255) as u32]));
+                let _ = corners.push(Corner {
+                    screen,
+                    depth,
+                    view: c.pos,
+                    attrs: c.attrs,
+                });
             }
-            if projected.len() < 3 {
-                continue;
-            }
-            let (p0, a0) = projected[0];
-            for k in 1..projected.len() - 1 {
-                let ((p1, a1), (p2, a2)) = (projected[k], projected[k + 1]);
-                draw([p0, p1, p2], [a0, a1, a2], stats)?;
-            }
+            fan(corners.len(), |k| corners[k], &mut draw, stats)?;
         }
         Ok(())
     }
+}
 
-    /// Both stages for one object.
-    pub fn draw_object<D: DepthValue>(
-        &self,
-        object: &Object<'_>,
-        scratch: &mut [PreparedVertex<S>],
-        frame: &mut Framebuffer<'_>,
-        depth: &mut DepthBuffer<'_, D>,
-        stats: &mut RenderStats,
-    ) -> Result<(), RenderError> {
-        self.prepare(object, scratch)?;
-        self.rasterize(object, scratch, frame, depth, stats)
+/// Draws polygon corners `0..n` as a fan of triangles from corner 0 (exact for convex
+/// polygons, whose fan triangles tile them under the fill rule), counting into `stats`.
+#[inline(always)]
+fn fan<const S: u32, const N: usize>(
+    n: usize,
+    corner: impl Fn(usize) -> Corner<S, N>,
+    draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    stats: &mut RenderStats,
+) -> Result<(), RenderError> {
+    let c0 = corner(0);
+    for k in 1..n.saturating_sub(1) {
+        let (covered, written) = draw([c0, corner(k), corner(k + 1)]).map_err(RenderError::Draw)?;
+        if covered > 0 || written > 0 {
+            stats.triangles_drawn += 1;
+        }
+        stats.pixels_covered += covered;
+        stats.pixels_written += written;
     }
+    Ok(())
 }
 
 /// Twice the signed area of a projected polygon (fan sum, exact in `i64` for coordinates

@@ -2,17 +2,29 @@
 //!
 //! Role in the pipeline: the input of [`render`](crate::render). An [`Object`] is a
 //! [`Mesh`] (vertex and polygon tables in static slices, so it can live in flash), its
-//! model → world [`Affine3`], its per-vertex or per-polygon intensities (0..=255, computed by
-//! the caller or by the lighting stage) and how to shade it. A [`Scene`] is a camera and a
-//! slice of objects.
+//! model → world [`Affine3`], where its luminance comes from and how to shade it. A [`Scene`]
+//! is a camera, the lights and a slice of objects.
+//!
+//! Luminance comes either from the caller (a uniform level, or per-vertex or per-polygon
+//! tables `0..=255`) or from the lighting stage ([`Intensities::Lit`]: a [`Material`] and the
+//! mesh's vertex normals, lit by the scene's lights with the course's model,
+//! [`lighting`](crate::shade::lighting)). What each [`ShadeMode`] does with a lit object:
+//!
+//! | mode | lighting evaluated | interpolated |
+//! |---|---|---|
+//! | `Flat` | once per polygon, at its centroid with its face normal | nothing |
+//! | `GouraudExact`, `GouraudFast` | once per vertex (vertex stage), with its vertex normal | levels |
+//! | `Phong` | at every pixel that passes the depth test | normals and positions |
 //!
 //! Conventions: world axes as [`geometry`](crate::geometry) (right-handed, `y` up); front faces
 //! counter-clockwise seen from outside; intensities are luminance levels `0..=255` that a
-//! [`LuminanceRamp`] maps to palette indices.
+//! [`LuminanceRamp`] maps to palette indices (optionally dithered, [`Object::dither`]).
 
 use crate::geometry::camera::Camera;
 use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::Mesh;
+use crate::geometry::vector::Vec3;
+use crate::shade::lighting::{Light, Material};
 use crate::shade::span_writer::{LuminanceRamp, ShadeMode};
 
 /// Where an object's luminance comes from.
@@ -24,6 +36,16 @@ pub enum Intensities<'a> {
     PerVertex(&'a [u8]),
     /// One level per polygon (flat faces); as long as the polygon table.
     PerPolygon(&'a [u8]),
+    /// Lit by the scene's lights ([`Renderer::with_lights`](crate::render::Renderer::with_lights)).
+    Lit {
+        /// Reflection coefficients.
+        material: Material,
+        /// Vertex normals in the model frame (any non-zero length), as long as the vertex
+        /// table; flat shading does not read them (it uses face normals) and may pass `&[]`.
+        /// Static meshes can keep them in flash beside the vertices, or compute them once with
+        /// [`Mesh::vertex_normals`].
+        normals: &'a [Vec3],
+    },
 }
 
 /// One mesh placed in the world, with its shading.
@@ -35,17 +57,21 @@ pub struct Object<'a> {
     pub transform: Affine3,
     /// Luminance source.
     pub intensities: Intensities<'a>,
-    /// Flat, exact Gouraud or fast Gouraud.
+    /// Flat, exact Gouraud, fast Gouraud or Phong (Phong needs [`Intensities::Lit`]: with
+    /// given levels it interpolates them as exact Gouraud).
     pub shade: ShadeMode,
     /// Luminance → palette index.
     pub ramp: LuminanceRamp,
+    /// Ordered 4×4 dithering between adjacent ramp levels
+    /// ([`dither`](crate::shade::dither)), against banding on short ramps.
+    pub dither: bool,
     /// Skip polygons facing away from the eye (closed meshes).
     pub cull_back_faces: bool,
 }
 
 impl<'a> Object<'a> {
     /// An object with identity transform, uniform full intensity, exact Gouraud shading, the
-    /// grey ramp and back-face culling.
+    /// grey ramp without dithering and back-face culling.
     pub fn new(mesh: Mesh<'a>) -> Self {
         Object {
             mesh,
@@ -53,27 +79,35 @@ impl<'a> Object<'a> {
             intensities: Intensities::Uniform(255),
             shade: ShadeMode::GouraudExact,
             ramp: LuminanceRamp::GREY,
+            dither: false,
             cull_back_faces: true,
         }
     }
 
-    /// The intensity of `vertex` in `polygon` (saturating to 0 when a table is too short; the
-    /// renderer checks table lengths before drawing).
+    /// The given intensity of `vertex` in `polygon` (saturating to 0 when a table is too
+    /// short — the renderer checks table lengths before drawing — and 0 for lit objects, whose
+    /// levels the renderer computes).
     #[inline(always)]
     pub(crate) fn intensity(&self, polygon: usize, vertex: u16) -> u8 {
         match self.intensities {
             Intensities::Uniform(l) => l,
             Intensities::PerVertex(t) => t.get(vertex as usize).copied().unwrap_or(0),
             Intensities::PerPolygon(t) => t.get(polygon).copied().unwrap_or(0),
+            Intensities::Lit { .. } => 0,
         }
     }
 }
 
-/// A camera and the objects it sees.
+/// A camera, its lights and the objects it sees.
 #[derive(Debug, Clone, Copy)]
 pub struct Scene<'a> {
     /// The observer.
     pub camera: Camera,
+    /// Ambient intensity `I_a` (`0..=255`) for lit objects.
+    pub ambient: u8,
+    /// Lights in the world frame (at most [`MAX_LIGHTS`](crate::shade::lighting::MAX_LIGHTS)),
+    /// for lit objects.
+    pub lights: &'a [Light],
     /// The objects, drawn in order (the depth buffer resolves visibility).
     pub objects: &'a [Object<'a>],
     /// Palette index the frame is cleared to.

@@ -175,6 +175,8 @@ impl CoreMesh {
             camera: self.camera,
             objects: &objects,
             background: 0,
+            ambient: 0,
+            lights: &[],
         };
         let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];

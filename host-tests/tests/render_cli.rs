@@ -209,6 +209,42 @@ fn bad_scenes_fail_with_messages_naming_the_problem() {
     );
     assert!(err.contains("material 3"), "{err}");
 
+    // The core's lighting: materials, lights, Phong.
+    let lit = "[[object]]\ngenerator = \"cube\"\nmaterial = { ka = 0.2, kd = 0.7 }\n";
+    let err = fails("no-lighting.toml", lit);
+    assert!(err.contains("[lighting]"), "{err}");
+    let err = fails(
+        "phong-unlit.toml",
+        "[[object]]\ngenerator = \"cube\"\nshade = \"phong\"\n",
+    );
+    assert!(err.contains("phong") && err.contains("line 1"), "{err}");
+    let err = fails(
+        "coefficient.toml",
+        &format!("[lighting]\n{}", lit.replace("0.7", "2.5")),
+    );
+    assert!(err.contains("`kd` must be in [0, 2)"), "{err}");
+    let err = fails(
+        "shininess.toml",
+        "[lighting]\n[[object]]\ngenerator = \"cube\"\nmaterial = { n = 0 }\n",
+    );
+    assert!(err.contains("`n` must be in 1..=200"), "{err}");
+    let err = fails(
+        "two-kinds.toml",
+        "[lighting]\n[[lighting.light]]\npoint = [1, 2, 3]\ntoward = [0, 1, 0]\nintensity = 9\n",
+    );
+    assert!(err.contains("exactly one of `point` or `toward`"), "{err}");
+    let light = "[[lighting.light]]\ntoward = [0, 1, 0]\nintensity = 9\n";
+    let err = fails(
+        "five-lights.toml",
+        &format!("[lighting]\n{}", light.repeat(5)),
+    );
+    assert!(err.contains("5 lights (at most 4)"), "{err}");
+    let err = fails(
+        "zero-toward.toml",
+        "[lighting]\n[[lighting.light]]\ntoward = [0, 0, 0]\nintensity = 9\n",
+    );
+    assert!(err.contains("must not be zero"), "{err}");
+
     // A scene file that does not exist.
     let dir = out_dir("errors");
     let missing = dir.join("missing-scene.toml");

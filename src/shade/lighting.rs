@@ -382,27 +382,40 @@ pub fn light_faces(
         .get_mut(..mesh.polygon_count())
         .ok_or(LightingError::OutputTooSmall)?;
     let m = model_view(transform, camera)?;
-    let vertices = mesh.vertices();
     for (o, poly) in out.iter_mut().zip(mesh.polygons()) {
-        let mut sum = [0i64; 3];
-        for &i in poly {
-            let b = vertices
-                .get(i as usize)
-                .copied()
-                .unwrap_or(Vec3::ZERO)
-                .bits();
-            for k in 0..3 {
-                sum[k] += b[k] as i64;
-            }
-        }
-        let count = poly.len().max(1) as i64;
-        // Mean rounded to nearest; |sum| < 2^31 · count, so the mean fits i32.
-        let c = sum.map(|s| (s * 2 + count).div_euclid(2 * count) as i32);
-        let centre = m.transform_point(Vec3::from_bits(c[0], c[1], c[2]));
-        let n = mesh.face_normal(poly).unwrap_or(Vec3::ZERO);
-        *o = illumination.intensity(material, centre, wide(m.transform_vector(n)));
+        *o = light_polygon(mesh, poly, &m, illumination, material);
     }
     Ok(())
+}
+
+/// The flat-shading intensity of one polygon of `mesh`: lit at its centroid (the mean of its
+/// vertices, rounded) with its face normal, both moved to the observer frame by `model_view`
+/// (model → observer). A degenerate polygon (no normal) gets the ambient term only.
+pub fn light_polygon(
+    mesh: &Mesh<'_>,
+    polygon: &[u16],
+    model_view: &Affine3,
+    illumination: &Illumination,
+    material: &Material,
+) -> u8 {
+    let vertices = mesh.vertices();
+    let mut sum = [0i64; 3];
+    for &i in polygon {
+        let b = vertices
+            .get(i as usize)
+            .copied()
+            .unwrap_or(Vec3::ZERO)
+            .bits();
+        for k in 0..3 {
+            sum[k] += b[k] as i64;
+        }
+    }
+    let count = polygon.len().max(1) as i64;
+    // Mean rounded to nearest; |sum| < 2^31 · count, so the mean fits i32.
+    let c = sum.map(|s| (s * 2 + count).div_euclid(2 * count) as i32);
+    let centre = model_view.transform_point(Vec3::from_bits(c[0], c[1], c[2]));
+    let n = mesh.face_normal(polygon).unwrap_or(Vec3::ZERO);
+    illumination.intensity(material, centre, wide(model_view.transform_vector(n)))
 }
 
 #[cfg(test)]

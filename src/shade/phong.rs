@@ -8,7 +8,10 @@
 //! components), and runs the generic [`depth_span`] with [`PhongShading`], whose `index`
 //! renormalises the interpolated normal with the integer square root (the course's warning:
 //! interpolated normals are not unit vectors) and evaluates [`Illumination`] — only for pixels
-//! that pass the depth test.
+//! that pass the depth test. The renderer draws lit objects with
+//! [`ShadeMode::Phong`](super::span_writer::ShadeMode::Phong) through it
+//! ([`Renderer::rasterize`](crate::render::Renderer::rasterize)), after culling and 3D
+//! clipping, which carries the observer-frame normals as three attributes.
 //!
 //! ## Numeric contract
 //! - Normals are normalised to Q15 at the vertices and stored offset,
@@ -23,21 +26,12 @@
 //! - Lighting as [`lighting`](super::lighting): integer only.
 
 use super::attributes::{AttributePlane, Exact, Interpolant, PlaneError, RowStarts};
-use super::dither::{draw_triangle_dithered, Bayer4};
-use super::lighting::{
-    light_faces, light_vertices, unit_q15, Illumination, LightingError, Material, ONE,
-};
-use super::span_writer::{
-    depth_span, draw_triangle, DrawError, LuminanceRamp, Quantizer, ShadeMode, Shading,
-};
-use crate::geometry::camera::Camera;
-use crate::geometry::matrix::Affine3;
-use crate::geometry::mesh::Mesh;
+use super::dither::Bayer4;
+use super::lighting::{unit_q15, Illumination, Material, ONE};
+use super::span_writer::{depth_span, DrawError, LuminanceRamp, Quantizer, Shading};
 use crate::geometry::vector::Vec3;
-use crate::raster::triangle::{cross, fill_triangle};
+use crate::raster::triangle::fill_triangle;
 use crate::raster::SubpixelPoint;
-use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer};
-use crate::scene::{Intensities, Object};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// Offset of stored positions (`i32` raw → `u32`).
@@ -170,181 +164,6 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     })
     .map_err(DrawError::Fill)?;
     Ok((covered, written))
-}
-
-/// How a lit object is shaded by [`draw_lit_object`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LitMode {
-    /// Lighting per polygon at its centroid ([`light_faces`]), one level per polygon.
-    Flat,
-    /// Lighting per vertex ([`light_vertices`]), levels interpolated by the 16.16 DDA.
-    GouraudFast,
-    /// Lighting per vertex, levels interpolated exactly.
-    GouraudExact,
-    /// Normals and positions interpolated, lighting per pixel ([`draw_triangle_phong`]).
-    Phong,
-}
-
-/// A mesh with its placement, material and shading, for [`draw_lit_object`].
-#[derive(Debug, Clone, Copy)]
-pub struct LitObject<'a> {
-    /// The geometry (model frame).
-    pub mesh: Mesh<'a>,
-    /// Model → world.
-    pub transform: Affine3,
-    /// Reflection coefficients.
-    pub material: Material,
-    /// Intensity → palette index.
-    pub ramp: LuminanceRamp,
-    /// Shading mode.
-    pub mode: LitMode,
-    /// Ordered 4×4 dithering between adjacent levels.
-    pub dither: bool,
-}
-
-/// Caller memory for [`draw_lit_object`]: one slot per mesh vertex in `prepared` and
-/// `normals`, one per vertex and per polygon in `levels` (the larger count).
-#[derive(Debug)]
-pub struct LitScratch<'s, const S: u32> {
-    /// The vertex stage's output.
-    pub prepared: &'s mut [PreparedVertex<S>],
-    /// Vertex normals.
-    pub normals: &'s mut [Vec3],
-    /// Per-vertex or per-polygon intensities.
-    pub levels: &'s mut [u8],
-}
-
-/// Why a lit object was not drawn.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LitError {
-    /// Lighting set-up (scratch sizes, transform).
-    Lighting(LightingError),
-    /// The vertex stage.
-    Render(RenderError),
-    /// A triangle was rejected.
-    Draw(DrawError),
-}
-
-/// Lights and draws one object: lighting (per polygon, per vertex or per pixel by
-/// `object.mode`) and the vertex stage of `renderer`. Undithered flat and Gouraud objects then
-/// go through the renderer's polygon stage ([`Renderer::rasterize`]: culling, 3D clipping);
-/// Phong and dithered objects draw every front-facing triangle of the polygon fans whose
-/// vertices all projected (polygons crossing a frustum plane are skipped: that path does not
-/// clip yet; the standard scenes need none). Returns the pixels covered. The same code runs in the `zscan chart`
-/// measurements and in the bench cases.
-pub fn draw_lit_object<D: DepthValue, const S: u32>(
-    renderer: &Renderer<S>,
-    camera: &Camera,
-    illumination: &Illumination,
-    object: &LitObject<'_>,
-    scratch: LitScratch<'_, S>,
-    frame: &mut Framebuffer<'_>,
-    depth: &mut DepthBuffer<'_, D>,
-) -> Result<u32, LitError> {
-    let mesh = &object.mesh;
-    let mut o = Object::new(*mesh);
-    o.transform = object.transform;
-    renderer
-        .prepare(&o, scratch.prepared)
-        .map_err(LitError::Render)?;
-    let (m, t) = (&object.material, &object.transform);
-    match object.mode {
-        LitMode::Flat => light_faces(mesh, t, camera, illumination, m, scratch.levels),
-        LitMode::GouraudFast | LitMode::GouraudExact => light_vertices(
-            mesh,
-            t,
-            camera,
-            illumination,
-            m,
-            scratch.normals,
-            scratch.levels,
-        ),
-        LitMode::Phong => mesh
-            .vertex_normals(scratch.normals)
-            .map_err(|_| LightingError::OutputTooSmall),
-    }
-    .map_err(LitError::Lighting)?;
-    let to_observer = t
-        .then(camera.view_transform())
-        .map_err(|e| LitError::Lighting(LightingError::Transform(e)))?;
-    let ctx = PhongContext {
-        illumination,
-        material: *m,
-        ramp: object.ramp,
-        dither: object.dither,
-    };
-    let shade = match object.mode {
-        LitMode::Flat => ShadeMode::Flat,
-        LitMode::GouraudFast => ShadeMode::GouraudFast,
-        _ => ShadeMode::GouraudExact,
-    };
-    let prepared = &*scratch.prepared;
-    let (normals, levels) = (&*scratch.normals, &*scratch.levels);
-    if object.mode != LitMode::Phong && !object.dither {
-        // Flat and Gouraud levels go through the main renderer's polygon stage, which clips
-        // polygons crossing the frustum instead of skipping them.
-        o.intensities = match object.mode {
-            LitMode::Flat => Intensities::PerPolygon(levels),
-            _ => Intensities::PerVertex(levels),
-        };
-        o.shade = shade;
-        o.ramp = object.ramp;
-        let mut stats = RenderStats::default();
-        renderer
-            .rasterize(&o, prepared, frame, depth, &mut stats)
-            .map_err(LitError::Render)?;
-        return Ok(stats.pixels_covered);
-    }
-    let mut covered = 0u32;
-    for (k, poly) in mesh.polygons().enumerate() {
-        let vertex = |j: usize| prepared.get(poly[j] as usize).copied().unwrap_or_default();
-        if poly.len() < 3
-            || poly
-                .iter()
-                .any(|&i| prepared.get(i as usize).is_none_or(|p| p.outcode != 0))
-        {
-            continue;
-        }
-        if cross(vertex(0).screen, vertex(1).screen, vertex(2).screen) >= 0 {
-            continue; // back face (clockwise on the y-down screen is front)
-        }
-        for f in 1..poly.len() - 1 {
-            let js = [0, f, f + 1];
-            let pv = js.map(vertex);
-            let s = pv.map(|p| p.screen);
-            let r = if object.mode == LitMode::Phong {
-                let c = |j: usize| PhongVertex {
-                    screen: s[j],
-                    depth: pv[j].depth,
-                    position: pv[j].view,
-                    normal: to_observer.transform_vector(
-                        normals
-                            .get(poly[js[j]] as usize)
-                            .copied()
-                            .unwrap_or(Vec3::ZERO),
-                    ),
-                };
-                draw_triangle_phong(frame, depth, [c(0), c(1), c(2)], &ctx)
-            } else {
-                let lum = |j: usize| {
-                    let i = if object.mode == LitMode::Flat {
-                        k
-                    } else {
-                        poly[js[j]] as usize
-                    };
-                    levels.get(i).copied().unwrap_or(0) as u32
-                };
-                let vals = [0, 1, 2].map(|j| [pv[j].depth, lum(j)]);
-                if object.dither {
-                    draw_triangle_dithered(frame, depth, s, vals, object.ramp, shade)
-                } else {
-                    draw_triangle(frame, depth, s, vals, object.ramp, shade)
-                }
-            };
-            covered += r.map_err(LitError::Draw)?.0;
-        }
-    }
-    Ok(covered)
 }
 
 #[cfg(test)]

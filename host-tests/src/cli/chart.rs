@@ -8,14 +8,14 @@
 //! `k_a = 0.15, k_d = 0.55, k_s = 0.45, n = 20`, each variant — flat (per-face lighting at the
 //! centroid), fast Gouraud, exact Gouraud (per-vertex lighting), Phong (per-pixel lighting),
 //! each with and without the 4×4 ordered dither — renders a frame through a 32-level ramp:
-//! lighting, vertex stage, culling, fill, depth test, shading (the standard scenes need no
-//! clipping; polygons that would are skipped, none are).
+//! vertex normals, lighting, vertex stage, culling, fill, depth test, shading (the core's
+//! renderer with a lit object, `Intensities::Lit`).
 //!
 //! - **x, host**: instructions of the whole frame (valgrind callgrind, only inside
 //!   `zscan_chart_region`) divided by the covered pixels.
 //! - **x, Cortex-M4** (second panel, with `--m4 FILE`): the same frames as bench cases
 //!   `lit_<scene>_<mode>[_dither]` (`scene::lit` in `benches/cases.rs`, calling the same
-//!   [`draw_lit_object`] with the same light, material and ramp), counted by `zscan bench
+//!   renderer with the same light, material and ramp), counted by `zscan bench
 //!   --no-host > FILE` (QEMU mps2-an386 + qemu-icount, harness overhead subtracted) and divided
 //!   by the same covered-pixel counts. The firmware's framebuffer checksums equal the host's.
 //! - **y**: per covered pixel, the error in LUT levels of the index against the `f64` reference
@@ -30,13 +30,12 @@ use crate::scenes::{self, Scene};
 use std::path::PathBuf;
 use std::process::Command;
 use zscan::geometry::camera::Camera;
-use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::Mesh;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{PreparedVertex, Renderer};
-use zscan::shade::lighting::{Illumination, Light, Material};
-use zscan::shade::phong::{draw_lit_object, LitMode, LitObject, LitScratch};
-use zscan::shade::span_writer::LuminanceRamp;
+use zscan::render::{PreparedVertex, RenderStats, Renderer};
+use zscan::shade::lighting::{Light, Material};
+use zscan::scene::{Intensities, Object};
+use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
 use zscan::target::{DepthBuffer, Framebuffer};
 
 /// Arguments of `zscan chart`.
@@ -62,11 +61,11 @@ const AMBIENT: u8 = 255;
 const LIGHT: u8 = 255;
 const MATERIAL: Material = Material::from_thousandths(150, 550, 450, 20);
 
-const MODES: [(LitMode, &str); 4] = [
-    (LitMode::Flat, "flat"),
-    (LitMode::GouraudFast, "gouraud_fast"),
-    (LitMode::GouraudExact, "gouraud_exact"),
-    (LitMode::Phong, "phong"),
+const MODES: [(ShadeMode, &str); 4] = [
+    (ShadeMode::Flat, "flat"),
+    (ShadeMode::GouraudFast, "gouraud_fast"),
+    (ShadeMode::GouraudExact, "gouraud_exact"),
+    (ShadeMode::Phong, "phong"),
 ];
 const SCENES: [&str; 2] = ["sphere", "bunny"];
 
@@ -74,7 +73,7 @@ const SCENES: [&str; 2] = ["sphere", "bunny"];
 #[derive(Debug, Clone, Copy)]
 struct Variant {
     scene: &'static str,
-    mode: LitMode,
+    mode: ShadeMode,
     mode_name: &'static str,
     dither: bool,
 }
@@ -115,7 +114,6 @@ struct Prepared {
     camera: Camera,
     scratch: Vec<PreparedVertex<4>>,
     normals: Vec<Vec3>,
-    levels: Vec<u8>,
     pixels: Vec<u8>,
     depth: Vec<u16>,
 }
@@ -138,11 +136,10 @@ impl Prepared {
             .collect::<Result<_, _>>()
             .map_err(|_| "more than 65536 vertices")?;
         let (w, h) = (scene.camera.width as usize, scene.camera.height as usize);
-        let (nv, nt) = (vertices.len(), scene.triangles.len());
+        let nv = vertices.len();
         Ok(Prepared {
             scratch: vec![PreparedVertex::default(); nv],
             normals: vec![Vec3::ZERO; nv],
-            levels: vec![0; nv.max(nt)],
             pixels: vec![0; w * h],
             depth: vec![0; w * h],
             scene,
@@ -170,38 +167,39 @@ fn light() -> Light {
     }
 }
 
-/// One frame of `v` into `p.pixels` through the core's [`draw_lit_object`] (the code the
-/// bench cases run on the Cortex-M4): lighting, vertex stage, culling, drawing. Returns the
+/// One frame of `v` into `p.pixels` through the core's renderer (the code the bench cases run
+/// on the Cortex-M4): vertex normals, lighting, vertex stage, culling, drawing. Returns the
 /// covered pixels, or an error message.
 fn render(p: &mut Prepared, v: &Variant) -> Result<u32, String> {
     let (w, h) = p.size();
     let mesh = Mesh::triangles(&p.vertices, &p.indices).map_err(|e| format!("{e:?}"))?;
-    let ill = Illumination::new(&p.camera, AMBIENT, &[light()]).map_err(|e| format!("{e:?}"))?;
-    let renderer = Renderer::<4>::new(&p.camera).map_err(|e| e.to_string())?;
+    let renderer = Renderer::<4>::new(&p.camera)
+        .and_then(|r| r.with_lights(AMBIENT, &[light()]))
+        .map_err(|e| e.to_string())?;
     let mut fb = Framebuffer::new(&mut p.pixels, w, h).map_err(|e| e.to_string())?;
     let mut zb = DepthBuffer::new(&mut p.depth, w, h).map_err(|e| e.to_string())?;
     fb.clear(BACKGROUND);
     zb.clear();
-    let object = LitObject {
-        mesh,
-        transform: Affine3::IDENTITY,
+    if v.mode != ShadeMode::Flat {
+        mesh.vertex_normals(&mut p.normals)
+            .map_err(|e| format!("{e:?}"))?;
+    }
+    let mut object = Object::new(mesh);
+    object.intensities = Intensities::Lit {
         material: MATERIAL,
-        ramp: LuminanceRamp {
-            first: 0,
-            levels: LEVELS,
-        },
-        mode: v.mode,
-        dither: v.dither,
+        normals: &p.normals,
     };
-    let scratch = LitScratch {
-        prepared: &mut p.scratch,
-        normals: &mut p.normals,
-        levels: &mut p.levels,
+    object.shade = v.mode;
+    object.ramp = LuminanceRamp {
+        first: 0,
+        levels: LEVELS,
     };
-    draw_lit_object(
-        &renderer, &p.camera, &ill, &object, scratch, &mut fb, &mut zb,
-    )
-    .map_err(|e| format!("{e:?}"))
+    object.dither = v.dither;
+    let mut stats = RenderStats::default();
+    renderer
+        .draw_object(&object, &mut p.scratch, &mut fb, &mut zb, &mut stats)
+        .map_err(|e| e.to_string())?;
+    Ok(stats.pixels_covered)
 }
 
 /// The measured region: callgrind collects exactly this call.
@@ -434,7 +432,7 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
 /// Colours of the modes (flat, fast Gouraud, exact Gouraud, Phong).
 const COLOURS: [(u8, u8, u8); 4] = [(120, 120, 120), (230, 140, 0), (200, 30, 30), (30, 90, 200)];
 
-fn mode_index(m: LitMode) -> usize {
+fn mode_index(m: ShadeMode) -> usize {
     MODES.iter().position(|(x, _)| *x == m).unwrap_or(0)
 }
 

@@ -8,10 +8,11 @@
 //! |---|---|
 //! | `[camera]` | `eye` (`[0,0,3]`), `target` (`[0,0,0]`), `up` (`[0,1,0]`), `fov_deg` (60), `fov_axis` = `"vertical"` \| `"horizontal"` \| `"diagonal"`, `near` (0.5), `far` (10) |
 //! | `[viewport]` | `width` (320), `height` (240), `principal` (`[(w−1)/2, (h−1)/2]`, pixels are lattice points), `pixel_aspect` = `[r_x, r_y]` (`[1,1]`) |
-//! | `[render]` | `depth_bits` = 16 \| 32 (16), `subpixel_bits` (4, the only value accepted), `background` palette index (0), `shade` = `"flat"` \| `"gouraud"` \| `"gouraud-fast"` (`"gouraud"`), `cull` back faces (true) |
-//! | `[light]` | `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
+//! | `[render]` | `depth_bits` = 16 \| 32 (16), `subpixel_bits` (4, the only value accepted), `background` palette index (0), `shade` = `"flat"` \| `"gouraud"` \| `"gouraud-fast"` \| `"phong"` (`"gouraud"`), `cull` back faces (true), `dither` (false: 4×4 ordered dithering between ramp levels) |
+//! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
+//! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]` or `toward = [x,y,z]`, and `intensity` `0..=255` |
 //! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
-//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material`, `shade`, `cull` |
+//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither` |
 //!
 //! Generators (the core's [`zscan::geometry::generators`], buffers allocated here):
 //! `"cube"` (the unit cube `[0,1]³`, no parameters; `center = true` makes it `[−½,½]³`),
@@ -29,12 +30,17 @@
 //! once to the core's I16F16 (the object's core transform is the identity).
 //!
 //! ## Lighting
-//! The core has no lighting stage yet (a later issue), so intensities are computed here, in
-//! `f64`, with SCENES.md's model: `round(255·clamp(ka + kd·max(0, N·L), 0, 1))` with `L` the
-//! normalised `[light] direction`. Objects shaded `"flat"` use face normals and a per-polygon
-//! table; Gouraud objects use vertex normals (normalised sums of the un-normalised fan
-//! triangle cross products of the polygons around the vertex) and a per-vertex table.
-//! Normals come from the placed mesh.
+//! Two sources, chosen per object by its `material`:
+//! - **the core** (`material = { ramp, ka, kd, ks, n }`): the course's model with the
+//!   `[lighting]` ambient and lights (point or directional), integer only, evaluated per
+//!   polygon (flat), per vertex (Gouraud) or per pixel (`"phong"`); vertex normals are the
+//!   core's `Mesh::vertex_normals` of the placed mesh. This is what a device runs.
+//! - **the host** (`material` = a ramp index): intensities computed here, in `f64`, with
+//!   SCENES.md's model, `round(255·clamp(ka + kd·max(0, N·L), 0, 1))` with `L` the normalised
+//!   `[light] direction` — the standard benchmark scenes' definition. Objects shaded `"flat"`
+//!   use face normals and a per-polygon table; Gouraud objects use vertex normals
+//!   (normalised sums of the un-normalised fan triangle cross products of the polygons around
+//!   the vertex) and a per-vertex table. `"phong"` needs the core's lighting (an error here).
 //!
 //! ## Output
 //! The frame (8-bit indices) goes through the LUT to the image (`.png`, `.ppm`, `.pgm` by
@@ -56,6 +62,7 @@ use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{PreparedVertex, RenderStats, Renderer};
 use zscan::scene::{Intensities, Object, Scene};
+use zscan::shade::lighting::{Light, Material, MAX_LIGHTS, MAX_SHININESS};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
 use zscan::target::{DepthValue, Framebuffer, Lut};
 
@@ -100,6 +107,8 @@ pub struct SceneFile {
     /// `[light]`.
     #[serde(default)]
     pub light: LightSection,
+    /// `[lighting]`: the core's lighting stage (ambient and lights).
+    pub lighting: Option<LightingSection>,
     /// `[lut]`.
     #[serde(default)]
     pub lut: LutSection,
@@ -193,6 +202,8 @@ pub struct RenderSection {
     pub shade: ShadeKey,
     /// Default back-face culling of the objects.
     pub cull: bool,
+    /// Default ordered dithering of the objects.
+    pub dither: bool,
 }
 
 impl Default for RenderSection {
@@ -203,6 +214,7 @@ impl Default for RenderSection {
             background: 0,
             shade: ShadeKey::Gouraud,
             cull: true,
+            dither: false,
         }
     }
 }
@@ -217,6 +229,8 @@ pub enum ShadeKey {
     Gouraud,
     /// Fast (16.16) Gouraud, vertex normals.
     GouraudFast,
+    /// Per-pixel lighting of interpolated normals (objects lit by the core only).
+    Phong,
 }
 
 impl ShadeKey {
@@ -225,8 +239,154 @@ impl ShadeKey {
             ShadeKey::Flat => ShadeMode::Flat,
             ShadeKey::Gouraud => ShadeMode::GouraudExact,
             ShadeKey::GouraudFast => ShadeMode::GouraudFast,
+            ShadeKey::Phong => ShadeMode::Phong,
         }
     }
+}
+
+/// `[lighting]`: ambient intensity and lights for objects whose `material` gives reflection
+/// coefficients (lit by the core, integer only).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightingSection {
+    /// Ambient intensity `I_a`, `0..=255`.
+    #[serde(default)]
+    pub ambient: u8,
+    /// `[[lighting.light]]` entries (at most 4).
+    #[serde(default, rename = "light")]
+    pub lights: Vec<LightKey>,
+}
+
+/// One `[[lighting.light]]`: exactly one of `point` (a position) or `toward` (a direction
+/// toward a light at infinity), and its intensity `0..=255`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightKey {
+    /// Position of a point light (world).
+    pub point: Option<[f64; 3]>,
+    /// Direction toward a directional light (world, any non-zero length).
+    pub toward: Option<[f64; 3]>,
+    /// Intensity `I_p`, `0..=255`.
+    pub intensity: u8,
+}
+
+/// An object's `material`: a palette ramp index, or a table with the ramp and the reflection
+/// coefficients of the core's lighting model.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(untagged)]
+pub enum MaterialKey {
+    /// Index of the material's ramp in a shaded LUT (lit by `[light]`, SCENES.md's model).
+    Ramp(u8),
+    /// Lit by the core with `[lighting]`: `{ ramp, ka, kd, ks, n }`.
+    Lit(LitMaterialKey),
+}
+
+impl Default for MaterialKey {
+    fn default() -> Self {
+        MaterialKey::Ramp(0)
+    }
+}
+
+impl MaterialKey {
+    fn ramp(&self) -> u8 {
+        match self {
+            MaterialKey::Ramp(r) => *r,
+            MaterialKey::Lit(m) => m.ramp,
+        }
+    }
+}
+
+/// Reflection coefficients (course chapter 4): `ka`, `kd`, `ks` in `[0, 2)`, `n` in `1..=200`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LitMaterialKey {
+    /// Ramp index in a shaded LUT (0).
+    #[serde(default)]
+    pub ramp: u8,
+    /// Ambient reflection (0.1).
+    #[serde(default = "default_ka")]
+    pub ka: f64,
+    /// Diffuse reflection (0.7).
+    #[serde(default = "default_kd")]
+    pub kd: f64,
+    /// Specular reflection (0.3).
+    #[serde(default = "default_ks")]
+    pub ks: f64,
+    /// Specular exponent (20).
+    #[serde(default = "default_n")]
+    pub n: u8,
+}
+
+fn default_ka() -> f64 {
+    0.1
+}
+fn default_kd() -> f64 {
+    0.7
+}
+fn default_ks() -> f64 {
+    0.3
+}
+fn default_n() -> u8 {
+    20
+}
+
+impl LitMaterialKey {
+    /// The core material (Q15 coefficients, rounded once).
+    fn material(&self) -> Result<Material, String> {
+        let q = |name: &str, v: f64| {
+            if !(v.is_finite() && (0.0..2.0).contains(&v)) {
+                return Err(format!("material `{name}` must be in [0, 2), got {v}"));
+            }
+            Ok((v * 32768.0).round().min(65535.0) as u16)
+        };
+        if !(1..=MAX_SHININESS).contains(&self.n) {
+            return Err(format!(
+                "material `n` must be in 1..={MAX_SHININESS}, got {}",
+                self.n
+            ));
+        }
+        Ok(Material {
+            ka: q("ka", self.ka)?,
+            kd: q("kd", self.kd)?,
+            ks: q("ks", self.ks)?,
+            n: self.n,
+        })
+    }
+}
+
+fn lights(l: &LightingSection) -> Result<Vec<Light>, String> {
+    if l.lights.len() > MAX_LIGHTS {
+        return Err(format!(
+            "[lighting] has {} lights (at most {MAX_LIGHTS})",
+            l.lights.len()
+        ));
+    }
+    let p = |a: [f64; 3]| -> Result<Vec3, String> {
+        if !finite(&a) || a.iter().any(|c| c.abs() > 1024.0) {
+            return Err(format!("[lighting] light coordinates must be finite and within ±1024, got {a:?}"));
+        }
+        Ok(Vec3::new(coord(a[0]), coord(a[1]), coord(a[2])))
+    };
+    l.lights
+        .iter()
+        .map(|k| match (k.point, k.toward) {
+            (Some(q), None) => Ok(Light::Point {
+                position: p(q)?,
+                intensity: k.intensity,
+            }),
+            (None, Some(t)) => {
+                let toward = p(t)?;
+                if toward == Vec3::ZERO {
+                    return Err("[lighting] a light's `toward` must not be zero".into());
+                }
+                Ok(Light::Directional {
+                    toward,
+                    intensity: k.intensity,
+                })
+            }
+            _ => Err("[[lighting.light]] needs exactly one of `point` or `toward`".into()),
+        })
+        .collect()
 }
 
 /// `[light]`: one directional light, SCENES.md's model.
@@ -347,13 +507,15 @@ pub struct ObjectSection {
     /// Translation.
     #[serde(default)]
     pub translate: [f64; 3],
-    /// Material index (shaded LUT).
+    /// Palette ramp index, or ramp and reflection coefficients (lit by the core).
     #[serde(default)]
-    pub material: u8,
+    pub material: MaterialKey,
     /// Shading (default `[render] shade`).
     pub shade: Option<ShadeKey>,
     /// Back-face culling (default `[render] cull`).
     pub cull: Option<bool>,
+    /// Ordered dithering (default `[render] dither`).
+    pub dither: Option<bool>,
 }
 
 /// A mesh in `f64` on the host: positions and polygons (counter-clockwise outward).
@@ -376,14 +538,20 @@ pub struct PreparedObject {
     pub sizes: Vec<u8>,
     /// The common polygon size, if any.
     pub uniform: Option<u8>,
-    /// Intensities, per vertex (Gouraud) or per polygon (flat).
+    /// Intensities, per vertex (Gouraud) or per polygon (flat); empty for core-lit objects.
     pub intensities: Vec<u8>,
+    /// Reflection coefficients of an object lit by the core.
+    pub lit: Option<Material>,
+    /// Vertex normals (world frame, the core's `Mesh::vertex_normals`) of a core-lit object.
+    pub normals: Vec<Vec3>,
     /// Shading.
     pub shade: ShadeKey,
     /// Palette ramp.
     pub ramp: LuminanceRamp,
     /// Back-face culling.
     pub cull: bool,
+    /// Ordered dithering.
+    pub dither: bool,
 }
 
 impl PreparedObject {
@@ -395,14 +563,18 @@ impl PreparedObject {
         let mesh = Mesh::new(&self.vertices, &self.indices, sizes)
             .map_err(|e| format!("mesh: {e:?} (world coordinates must stay within ±1024)"))?;
         let mut o = Object::new(mesh);
-        o.intensities = if self.shade == ShadeKey::Flat {
-            Intensities::PerPolygon(&self.intensities)
-        } else {
-            Intensities::PerVertex(&self.intensities)
+        o.intensities = match self.lit {
+            Some(material) => Intensities::Lit {
+                material,
+                normals: &self.normals,
+            },
+            None if self.shade == ShadeKey::Flat => Intensities::PerPolygon(&self.intensities),
+            None => Intensities::PerVertex(&self.intensities),
         };
         o.shade = self.shade.mode();
         o.ramp = self.ramp;
         o.cull_back_faces = self.cull;
+        o.dither = self.dither;
         Ok(o)
     }
 }
@@ -418,6 +590,10 @@ pub struct LoadedScene {
     pub lut: Lut<Rgb888>,
     /// Background index.
     pub background: u8,
+    /// Ambient intensity of `[lighting]`.
+    pub ambient: u8,
+    /// Lights of `[lighting]` (world frame).
+    pub lights: Vec<Light>,
     /// 16 or 32.
     pub depth_bits: u32,
     /// Triangles of the meshes (a polygon of `n` vertices counts `n − 2`).
@@ -698,13 +874,17 @@ fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, St
 }
 
 /// Rounds a placed, lit mesh into the core's tables.
-fn prepare(
-    mesh: &HostMesh,
+/// How an object is shaded, as the scene file says.
+struct Look {
     intensities: Vec<u8>,
+    lit: Option<Material>,
     shade: ShadeKey,
     ramp: LuminanceRamp,
     cull: bool,
-) -> Result<PreparedObject, String> {
+    dither: bool,
+}
+
+fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
     if mesh.vertices.len() > 65_536 {
         return Err(format!(
             "{} vertices: the core indexes at most 65536",
@@ -737,16 +917,31 @@ fn prepare(
         }
         vertices.push(Vec3::new(coord(v[0]), coord(v[1]), coord(v[2])));
     }
-    Ok(PreparedObject {
+    let mut o = PreparedObject {
+        normals: Vec::new(),
         vertices,
         indices,
         sizes,
         uniform,
-        intensities,
-        shade,
-        ramp,
-        cull,
-    })
+        intensities: look.intensities,
+        lit: look.lit,
+        shade: look.shade,
+        ramp: look.ramp,
+        cull: look.cull,
+        dither: look.dither,
+    };
+    if o.lit.is_some() {
+        let mut normals = vec![Vec3::ZERO; o.vertices.len()];
+        let sizes = match o.uniform {
+            Some(n) => PolygonSizes::Uniform(n),
+            None => PolygonSizes::PerPolygon(&o.sizes),
+        };
+        Mesh::new(&o.vertices, &o.indices, sizes)
+            .and_then(|m| m.vertex_normals(&mut normals))
+            .map_err(|e| format!("vertex normals: {e:?}"))?;
+        o.normals = normals;
+    }
+    Ok(o)
 }
 
 fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String> {
@@ -863,28 +1058,64 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
         place(&mut mesh, o).map_err(err)?;
         let ramp = match file.lut.kind {
             LutKind::Grey => LuminanceRamp::GREY,
-            LutKind::Shaded => *ramps.get(o.material as usize).ok_or_else(|| {
+            LutKind::Shaded => *ramps.get(o.material.ramp() as usize).ok_or_else(|| {
                 err(format!(
                     "material {} but [lut] has {} colours",
-                    o.material,
+                    o.material.ramp(),
                     ramps.len()
                 ))
             })?,
         };
         let shade = o.shade.unwrap_or(file.render.shade);
-        let table = intensities(&mesh, shade == ShadeKey::Flat, &file.light);
+        let lit = match o.material {
+            MaterialKey::Lit(m) => {
+                if file.lighting.is_none() {
+                    return Err(err(
+                        "a material with reflection coefficients needs a [lighting] section"
+                            .into(),
+                    ));
+                }
+                Some(m.material().map_err(err)?)
+            }
+            MaterialKey::Ramp(_) if shade == ShadeKey::Phong => {
+                return Err(err(
+                    "shade = \"phong\" needs a material with reflection coefficients \
+                     (material = { ka, kd, ks, n }) and [lighting]"
+                        .into(),
+                ))
+            }
+            MaterialKey::Ramp(_) => None,
+        };
+        let table = if lit.is_some() {
+            Vec::new()
+        } else {
+            intensities(&mesh, shade == ShadeKey::Flat, &file.light)
+        };
         triangles_in += mesh
             .polygons
             .iter()
             .map(|p| p.len().saturating_sub(2) as u64)
             .sum::<u64>();
-        let cull = o.cull.unwrap_or(file.render.cull);
-        objects.push(prepare(&mesh, table, shade, ramp, cull).map_err(err)?);
+        let look = Look {
+            intensities: table,
+            lit,
+            shade,
+            ramp,
+            cull: o.cull.unwrap_or(file.render.cull),
+            dither: o.dither.unwrap_or(file.render.dither),
+        };
+        objects.push(prepare(&mesh, look).map_err(err)?);
     }
+    let (ambient, lights) = match &file.lighting {
+        Some(l) => (l.ambient, lights(l).map_err(|e| format!("{name}: {e}"))?),
+        None => (0, Vec::new()),
+    };
     Ok(LoadedScene {
         camera,
         objects,
         lut,
+        ambient,
+        lights,
         background: file.render.background,
         depth_bits: file.render.depth_bits,
         triangles_in,
@@ -926,9 +1157,11 @@ impl LoadedScene {
             camera: self.camera,
             objects: &objects,
             background: self.background,
+            ambient: self.ambient,
+            lights: &self.lights,
         };
         let renderer =
-            Renderer::<SUBPIXEL_BITS>::new(&self.camera).map_err(|e| format!("camera: {e}"))?;
+            Renderer::<SUBPIXEL_BITS>::for_scene(&scene).map_err(|e| format!("camera: {e}"))?;
         let most = self.objects.iter().map(|o| o.vertices.len()).max();
         let mut scratch = vec![PreparedVertex::default(); most.unwrap_or(0)];
         let band = band_rows.unwrap_or(h).clamp(1, h);
