@@ -34,14 +34,19 @@ pub const LINEAR_FRAC: u32 = 24;
 pub const UNIT_FRAC: u32 = 30;
 
 /// Saturates an `i64` to the `i32` range.
+///
+/// Written as "the low word, unless it does not sign-extend back to `v`": on a 32-bit core the
+/// common in-range case is one shift, one compare and a branch (the two-sided clamp compiled to
+/// about 15 instructions per value on a Cortex-M4 in the vertex transform).
 #[inline(always)]
 pub const fn saturate_i32(v: i64) -> i32 {
-    if v > i32::MAX as i64 {
-        i32::MAX
-    } else if v < i32::MIN as i64 {
+    let low = v as i32;
+    if low as i64 == v {
+        low
+    } else if v < 0 {
         i32::MIN
     } else {
-        v as i32
+        i32::MAX
     }
 }
 
