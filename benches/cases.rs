@@ -339,6 +339,8 @@ pub mod scene {
 
     /// Largest vertex table of the scenes (the bunny's).
     const MAX_VERTICES: usize = 1839;
+    /// Largest polygon table of the scenes (the bunny's).
+    const MAX_POLYGONS: usize = 3674;
 
     /// One standard scene as core tables.
     pub struct StandardScene {
@@ -518,8 +520,10 @@ pub mod scene {
     }
 
     /// The same frame drawn through one 320×`rows` band buffer pair with
-    /// [`render_in_bands`](zscan::render::render_in_bands) (the vertex stage runs once per
-    /// band); each finished band is copied into `fb` where a device would flush it.
+    /// [`render_in_bands`](zscan::render::render_in_bands), with scratch for every vertex and
+    /// polygon (vertex stage, rejection and culling once per frame; each band visits the
+    /// polygons that reach it); each finished band is copied into `fb` where a device would
+    /// flush it.
     pub fn frame_in_bands(fb: &mut Framebuffer<'_>, s: &StandardScene, rows: u16) -> u32 {
         const MAX_ROWS: usize = 16;
         let rows = rows.min(MAX_ROWS as u16);
@@ -527,6 +531,7 @@ pub mod scene {
         let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
         let Some(r) = renderer() else { return 0 };
         let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let mut polygons = [zscan::render::PolygonRows::default(); MAX_POLYGONS];
         let objects = [object(s, ShadeMode::GouraudExact)];
         let scene = zscan::scene::Scene {
             camera: *r.camera(),
@@ -541,7 +546,10 @@ pub mod scene {
             &mut band,
             &mut depth,
             (super::WIDTH, super::HEIGHT, rows),
-            &mut scratch,
+            zscan::render::BandScratch {
+                vertices: &mut scratch,
+                polygons: &mut polygons,
+            },
             |frame, _| {
                 for (y, row) in frame.rows() {
                     if let Some(out) = fb.row_mut(y) {

@@ -1,26 +1,31 @@
 //! The frame: geometry → clipping → projection → raster → shading → target, for whole scenes.
 //!
 //! Role in the pipeline: the glue that runs every stage in order. A [`Renderer`] holds what is
-//! fixed for a frame (projector, frustum, view transform). For each [`Object`]:
+//! fixed for a frame (projector, frustum, view transform, lights). For each [`Object`]:
 //!
 //! 1. **Vertex stage** ([`Renderer::prepare`]), once per vertex: model → observer frame with one
 //!    combined [`Affine3`], the vertex's [`Frustum`] outcode, and, when it is inside the
 //!    frustum (near, far and the guard band), its projection: sub-pixel screen position and
-//!    normalised depth. Results go to a caller-provided scratch slice (no heap), one
+//!    normalised depth; for lit Gouraud objects, the vertex's lit level. Results go to a caller-provided scratch slice (no heap), one
 //!    [`PreparedVertex`] per mesh vertex.
-//! 2. **Polygon stage** ([`Renderer::rasterize`]), once per polygon: outcodes all outside one
+//! 2. **Polygon stage** ([`Renderer::rasterize`]), once per polygon (one generic loop,
+//!    `PolygonStage`, for every corner attribute and triangle writer): outcodes all outside one
 //!    plane → rejected; all inside → back-face test on the projected polygon's signed area
 //!    (exact integers) and drawn from the prepared vertices; otherwise → back-face test in the
 //!    observer frame (exact, `i128`), Sutherland–Hodgman against the planes it crosses
 //!    (course exercise 12), projection of the clipped vertices. Polygons are drawn as fans of
 //!    triangles — exact for convex polygons, whose fan triangles tile them with the fill rule.
-//! 3. **Raster** ([`draw_triangle`]): the exact triangle fill with depth test and shading.
+//! 3. **Raster** ([`draw_triangle`], or [`draw_triangle_phong`] for lit Phong objects): the
+//!    exact triangle fill with depth test and shading.
 //!
 //! ## Bands
 //! Frame and depth buffer may be a band of rows ([`Framebuffer::band`]): the raster stage
 //! writes only the rows the buffers hold, so drawing a picture band by band, flushing each band
-//! to the display before the next, gives the same pixels as one pass (tested). The vertex stage
-//! runs again for each band (its cost is reported with the benchmarks).
+//! to the display before the next, gives the same pixels as one pass (tested).
+//! [`render_in_bands`] runs the vertex stage once per frame when its scratch holds every
+//! object's vertices, and with a polygon table ([`PolygonRows`], [`Renderer::polygon_rows`])
+//! decides rejection, culling and each polygon's rows once, so that each band visits only the
+//! polygons that reach it (the costs are reported with the benchmarks).
 //!
 //! ## Numeric contract
 //! Mesh coordinates `|c| ≤ 1024` ([`MAX_MESH_COORD_BITS`](crate::geometry::mesh::MAX_MESH_COORD_BITS));
@@ -55,6 +60,9 @@ const CLIP_CAPACITY: usize = MAX_POLYGON_VERTICES + 6;
 
 /// Outcode bit marking a vertex that could not be projected (forces the clipping path).
 const UNPROJECTED: u8 = 0x80;
+/// What [`PolygonStage::outcodes`] returns for a polygon wholly outside one plane (no real
+/// union of outcodes has every bit set: bit 6 is unused).
+const REJECTED: u8 = 0xFF;
 
 /// Why a frame or object could not be rendered.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -165,6 +173,56 @@ impl<const S: u32> Default for PreparedVertex<S> {
     }
 }
 
+/// What the polygon stage does with one polygon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Path {
+    /// Rejected, culled, or outside the band.
+    Skip,
+    /// Every vertex projected: drawn from the prepared vertices.
+    Projected,
+    /// Crosses a frustum plane: clipped, projected, drawn.
+    Clip,
+}
+
+/// A polygon's fate in a frame drawn in bands, decided once by [`Renderer::polygon_rows`]:
+/// the rows `top..bottom` its projection can touch (clamped to `0..=65535`), never drawn
+/// (rejected or culled), or needing the clipper in every band it reaches. 4 bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PolygonRows {
+    top: u16,
+    bottom: u16,
+}
+
+impl PolygonRows {
+    /// Rejected or culled: no band draws it.
+    pub const NEVER: PolygonRows = PolygonRows {
+        top: u16::MAX,
+        bottom: 0,
+    };
+    /// Crosses a frustum plane: every band runs the clipper (and the raster's own band limit).
+    pub const CLIP: PolygonRows = PolygonRows {
+        top: u16::MAX,
+        bottom: u16::MAX,
+    };
+
+    /// Rows `top..bottom` (half-open, any `i32`), clamped to `0..=65535` (band rows are
+    /// within that range, so the overlap test is unchanged). A clamped `(65535, 65535)` is
+    /// [`CLIP`](Self::CLIP), which draws the same pixels by the slower path.
+    pub fn rows(top: i32, bottom: i32) -> PolygonRows {
+        let c = |r: i32| r.clamp(0, u16::MAX as i32) as u16;
+        PolygonRows {
+            top: c(top),
+            bottom: c(bottom),
+        }
+    }
+
+    /// True when the polygon may touch rows `band.0..band.1`.
+    #[inline(always)]
+    fn meets(self, band: (i32, i32)) -> bool {
+        (self.bottom as i32) > band.0 && (self.top as i32) < band.1
+    }
+}
+
 /// Everything fixed for a frame: the camera's projector, frustum and view transform, and the
 /// lights in the observer frame.
 #[derive(Debug, Clone, Copy)]
@@ -251,7 +309,9 @@ impl<const S: u32> Renderer<S> {
             }
             let level = match lit {
                 Some((material, normals)) => {
-                    let n = normals.get(i).map_or([0; 3], |n| m.transform_vector(*n).bits());
+                    let n = normals
+                        .get(i)
+                        .map_or([0; 3], |n| m.transform_vector(*n).bits());
                     let n = [n[0] as i64, n[1] as i64, n[2] as i64];
                     self.illumination.intensity(&material, view, n)
                 }
@@ -278,6 +338,80 @@ impl<const S: u32> Renderer<S> {
         &self,
         object: &Object<'_>,
         scratch: &[PreparedVertex<S>],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        self.rasterize_with(object, scratch, None, frame, depth, stats)
+    }
+
+    /// [`rasterize`](Self::rasterize) for one band, with the object's polygon table from
+    /// [`polygon_rows`](Self::polygon_rows) (as long as its polygon table): a polygon is
+    /// visited only when its rows meet the band, and rejection and culling are not repeated.
+    /// `polygons_in`, `rejected` and `culled` were counted by `polygon_rows`.
+    pub fn rasterize_rows<D: DepthValue>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        rows: &[PolygonRows],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        if rows.len() < object.mesh.polygon_count() {
+            return Err(RenderError::ScratchTooSmall {
+                needed: object.mesh.polygon_count(),
+            });
+        }
+        self.rasterize_with(object, scratch, Some(rows), frame, depth, stats)
+    }
+
+    /// The band pre-pass of an object whose vertices `prepare` put in `scratch`: for each
+    /// polygon, [`PolygonRows::NEVER`] when it is rejected (wholly outside one plane) or culled,
+    /// [`PolygonRows::CLIP`] when it crosses a plane, else the rows its projection touches.
+    /// Counts `polygons_in`, `rejected` and `culled` into `stats`.
+    pub fn polygon_rows(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        out: &mut [PolygonRows],
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        let mesh = &object.mesh;
+        let needed = mesh.vertices().len();
+        let prepared = scratch
+            .get(..needed)
+            .ok_or(RenderError::ScratchTooSmall { needed })?;
+        let out = out
+            .get_mut(..mesh.polygon_count())
+            .ok_or(RenderError::ScratchTooSmall {
+                needed: mesh.polygon_count(),
+            })?;
+        let stage = PolygonStage {
+            renderer: self,
+            object,
+            prepared,
+            rows: (0, 0),
+            banded: false,
+            table: None,
+        };
+        if let PolygonSizes::Uniform(3) = mesh.sizes() {
+            for (o, poly) in out.iter_mut().zip(mesh.indices().chunks_exact(3)) {
+                *o = stage.classify(poly, stats)?;
+            }
+        } else {
+            for (o, poly) in out.iter_mut().zip(mesh.polygons()) {
+                *o = stage.classify(poly, stats)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn rasterize_with<D: DepthValue>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        table: Option<&[PolygonRows]>,
         frame: &mut Framebuffer<'_>,
         depth: &mut DepthBuffer<'_, D>,
         stats: &mut RenderStats,
@@ -313,35 +447,40 @@ impl<const S: u32> Renderer<S> {
             prepared,
             rows,
             banded: rows.0 > 0 || rows.1 < self.camera.viewport().height as i32,
+            table,
         };
-        if let Intensities::Lit { material, normals } = object.intensities {
+        if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
+            (object.intensities, object.shade)
+        {
             let model_view = self.model_view(object)?;
-            if object.shade == ShadeMode::Phong {
-                let ctx = PhongContext {
-                    illumination: &self.illumination,
-                    material,
-                    ramp: object.ramp,
-                    dither: object.dither,
-                };
-                let normal = |i: u16| {
-                    let n = normals.get(i as usize).copied().unwrap_or(Vec3::ZERO);
-                    model_view.transform_vector(n).bits()
-                };
-                return stage.run(
-                    stats,
-                    |_, poly, k| normal(poly[k]),
-                    |c| {
-                        let corner = |c: &Corner<S, 3>| PhongVertex {
-                            screen: c.screen,
-                            depth: c.depth,
-                            position: c.view,
-                            normal: Vec3::from_bits(c.attrs[0], c.attrs[1], c.attrs[2]),
-                        };
-                        draw_triangle_phong(frame, depth, [0, 1, 2].map(|k| corner(&c[k])), &ctx)
-                    },
-                );
-            }
-            // Flat: one level per polygon, computed for its first corner and reused.
+            let ctx = PhongContext {
+                illumination: &self.illumination,
+                material,
+                ramp: object.ramp,
+                dither: object.dither,
+            };
+            let normal = |i: u16| {
+                let n = normals.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+                model_view.transform_vector(n).bits()
+            };
+            return stage.run(
+                stats,
+                |_, poly, k| normal(poly[k]),
+                |c| {
+                    let corner = |c: &Corner<S, 3>| PhongVertex {
+                        screen: c.screen,
+                        depth: c.depth,
+                        position: c.view,
+                        normal: Vec3::from_bits(c.attrs[0], c.attrs[1], c.attrs[2]),
+                    };
+                    draw_triangle_phong(frame, depth, [0, 1, 2].map(|k| corner(&c[k])), &ctx)
+                },
+            );
+        }
+        if let Intensities::Lit { material, .. } = object.intensities {
+            // Flat: one level per polygon, computed for its first corner and reused; Gouraud:
+            // the vertex stage's levels.
+            let model_view = self.model_view(object)?;
             let last = Cell::new((usize::MAX, 0u8));
             let level = |pi: usize, poly: &[u16], k: usize| {
                 if object.shade != ShadeMode::Flat {
@@ -426,6 +565,8 @@ struct PolygonStage<'r, 'o, const S: u32> {
     rows: (i32, i32),
     /// The buffers hold only part of the viewport's rows.
     banded: bool,
+    /// The object's band pre-pass ([`Renderer::polygon_rows`]), if any.
+    table: Option<&'r [PolygonRows]>,
 }
 
 impl<const S: u32> PolygonStage<'_, '_, S> {
@@ -438,23 +579,176 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: impl Fn(usize, &[u16], usize) -> [i32; N],
         mut draw: impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
+        // Two loops in separate functions, so that each keeps its drawing paths inline.
+        match self.table {
+            Some(table) => self.run_table(table, stats, &attrs, &mut draw),
+            None => self.run_all(stats, &attrs, &mut draw),
+        }
+    }
+
+    /// Every polygon, deciding rejection, band and culling for each.
+    #[inline(never)]
+    fn run_all<const N: usize>(
+        &self,
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
         // Triangle meshes (the common case) go through the same body with slices of a known
         // length, which the compiler unrolls.
         if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
             for (pi, poly) in self.object.mesh.indices().chunks_exact(3).enumerate() {
-                self.polygon(pi, poly, stats, &attrs, &mut draw)?;
+                let path = self.decide(poly, stats)?;
+                self.follow(path, pi, poly, stats, attrs, draw)?;
             }
         } else {
             for (pi, poly) in self.object.mesh.polygons().enumerate() {
-                self.polygon(pi, poly, stats, &attrs, &mut draw)?;
+                let path = self.decide(poly, stats)?;
+                self.follow(path, pi, poly, stats, attrs, draw)?;
             }
         }
         Ok(())
     }
 
-    /// One polygon `pi` (its vertex indices `poly`) through the stage.
+    /// The polygons the band table sends to this band (rejection and culling were decided
+    /// once for all bands).
+    #[inline(never)]
+    fn run_table<const N: usize>(
+        &self,
+        table: &[PolygonRows],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        let path = |r: PolygonRows| match r {
+            PolygonRows::CLIP => Path::Clip,
+            r if r.meets(self.rows) => Path::Projected,
+            _ => Path::Skip,
+        };
+        if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
+            let triangles = self.object.mesh.indices().chunks_exact(3);
+            for ((pi, poly), r) in triangles.enumerate().zip(table) {
+                match path(*r) {
+                    Path::Skip => {}
+                    p => self.follow(p, pi, poly, stats, attrs, draw)?,
+                }
+            }
+        } else {
+            for ((pi, poly), r) in self.object.mesh.polygons().enumerate().zip(table) {
+                self.follow(path(*r), pi, poly, stats, attrs, draw)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Draws one polygon by the path decided for it.
     #[inline(always)]
-    fn polygon<const N: usize>(
+    fn follow<const N: usize>(
+        &self,
+        path: Path,
+        pi: usize,
+        poly: &[u16],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        match path {
+            Path::Skip => Ok(()),
+            Path::Projected => self.projected(pi, poly, stats, attrs, draw),
+            Path::Clip => self.clipped(pi, poly, stats, attrs, draw),
+        }
+    }
+
+    /// Without a table: rejection, the band's rows (before any other work for projected
+    /// polygons in a band), culling.
+    #[inline(always)]
+    fn decide(&self, poly: &[u16], stats: &mut RenderStats) -> Result<Path, RenderError> {
+        stats.polygons_in += 1;
+        let any = self.outcodes(poly, stats)?;
+        if any == REJECTED {
+            return Ok(Path::Skip);
+        }
+        let vertex = |k: usize| &self.prepared[poly[k] as usize];
+        if any == 0 {
+            if self.banded && !self.projected_rows(poly).meets(self.rows) {
+                return Ok(Path::Skip);
+            }
+            if self.object.cull_back_faces && screen_area(poly.len(), |k| vertex(k).screen) >= 0 {
+                stats.culled += 1;
+                return Ok(Path::Skip);
+            }
+            return Ok(Path::Projected);
+        }
+        if self.object.cull_back_faces && !faces_eye_observer(poly.len(), |k| vertex(k).view) {
+            stats.culled += 1;
+            return Ok(Path::Skip);
+        }
+        Ok(Path::Clip)
+    }
+
+    /// The band pre-pass of one polygon (see [`Renderer::polygon_rows`]); the same decisions
+    /// as [`decide`](Self::decide).
+    #[inline(always)]
+    fn classify(&self, poly: &[u16], stats: &mut RenderStats) -> Result<PolygonRows, RenderError> {
+        stats.polygons_in += 1;
+        let any = self.outcodes(poly, stats)?;
+        if any == REJECTED {
+            return Ok(PolygonRows::NEVER);
+        }
+        let vertex = |k: usize| &self.prepared[poly[k] as usize];
+        let culled = if any == 0 {
+            self.object.cull_back_faces && screen_area(poly.len(), |k| vertex(k).screen) >= 0
+        } else {
+            self.object.cull_back_faces && !faces_eye_observer(poly.len(), |k| vertex(k).view)
+        };
+        if culled {
+            stats.culled += 1;
+            return Ok(PolygonRows::NEVER);
+        }
+        Ok(if any == 0 {
+            self.projected_rows(poly)
+        } else {
+            PolygonRows::CLIP
+        })
+    }
+
+    /// The union of the polygon's vertex outcodes, or [`REJECTED`] (counted) when all are
+    /// outside one plane.
+    #[inline(always)]
+    fn outcodes(&self, poly: &[u16], stats: &mut RenderStats) -> Result<u8, RenderError> {
+        if poly.len() > MAX_POLYGON_VERTICES {
+            return Err(RenderError::PolygonTooLarge);
+        }
+        let (mut any, mut all) = (0u8, 0xFFu8);
+        for &i in poly {
+            let c = self
+                .prepared
+                .get(i as usize)
+                .map_or(UNPROJECTED, |p| p.outcode);
+            any |= c;
+            all &= c;
+        }
+        if all & !UNPROJECTED != 0 {
+            stats.rejected += 1;
+            return Ok(REJECTED);
+        }
+        Ok(any)
+    }
+
+    /// The rows of a polygon whose vertices all projected: `⌈y_min⌉ .. ⌈y_max⌉`.
+    #[inline(always)]
+    fn projected_rows(&self, poly: &[u16]) -> PolygonRows {
+        let (mut y_lo, mut y_hi) = (i32::MAX, i32::MIN);
+        for &i in poly {
+            let y = self.prepared[i as usize].screen.y;
+            (y_lo, y_hi) = (y_lo.min(y), y_hi.max(y));
+        }
+        PolygonRows::rows(ceil_shift(y_lo, S), ceil_shift(y_hi, S))
+    }
+
+    /// Draws a polygon whose vertices all projected, as a fan.
+    #[inline(always)]
+    fn projected<const N: usize>(
         &self,
         pi: usize,
         poly: &[u16],
@@ -462,60 +756,33 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
-        let (object, prepared, rows) = (self.object, self.prepared, self.rows);
-        stats.polygons_in += 1;
-        if poly.len() > MAX_POLYGON_VERTICES {
-            return Err(RenderError::PolygonTooLarge);
-        }
-        let (mut any, mut all) = (0u8, 0xFFu8);
-        for &i in poly {
-            let c = prepared.get(i as usize).map_or(UNPROJECTED, |p| p.outcode);
-            any |= c;
-            all &= c;
-        }
-        if all & !UNPROJECTED != 0 {
-            stats.rejected += 1;
-            return Ok(());
-        }
-        let vertex = |k: usize| &prepared[poly[k] as usize];
-        if any == 0 {
-            // In a band, a polygon wholly above or below the buffer's rows is skipped before
-            // any other work (its rows are ⌈y_min⌉ ..= ⌈y_max⌉ − 1).
-            if self.banded {
-                let (mut y_lo, mut y_hi) = (i32::MAX, i32::MIN);
-                for k in 0..poly.len() {
-                    let y = vertex(k).screen.y;
-                    (y_lo, y_hi) = (y_lo.min(y), y_hi.max(y));
-                }
-                if ceil_shift(y_hi, S) <= rows.0 || ceil_shift(y_lo, S) >= rows.1 {
-                    return Ok(());
-                }
+        let corner = |k: usize| {
+            let p = &self.prepared[poly[k] as usize];
+            Corner {
+                screen: p.screen,
+                depth: p.depth,
+                view: p.view,
+                attrs: attrs(pi, poly, k),
             }
-            if object.cull_back_faces && screen_area(poly.len(), |k| vertex(k).screen) >= 0 {
-                stats.culled += 1;
-                return Ok(());
-            }
-            let corner = |k: usize| {
-                let p = vertex(k);
-                Corner {
-                    screen: p.screen,
-                    depth: p.depth,
-                    view: p.view,
-                    attrs: attrs(pi, poly, k),
-                }
-            };
-            fan(poly.len(), corner, draw, stats)?;
-            return Ok(());
-        }
-        if object.cull_back_faces && !faces_eye_observer(poly.len(), |k| vertex(k).view) {
-            stats.culled += 1;
-            return Ok(());
-        }
+        };
+        fan(poly.len(), corner, draw, stats)
+    }
+
+    /// Clips a polygon crossing the frustum (Sutherland–Hodgman), projects and draws it.
+    fn clipped<const N: usize>(
+        &self,
+        pi: usize,
+        poly: &[u16],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
         stats.clipped += 1;
         let mut input: Vec<ClipVertex<N>, CLIP_CAPACITY> = Vec::new();
-        for k in 0..poly.len() {
+        for (k, &i) in poly.iter().enumerate() {
+            let view = self.prepared.get(i as usize).map_or(Vec3::ZERO, |p| p.view);
             // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
-            let _ = input.push(ClipVertex::new(vertex(k).view, attrs(pi, poly, k)));
+            let _ = input.push(ClipVertex::new(view, attrs(pi, poly, k)));
         }
         let clipped = self
             .renderer
@@ -536,8 +803,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
                 attrs: c.attrs,
             });
         }
-        fan(corners.len(), |k| corners[k], draw, stats)?;
-        Ok(())
+        fan(corners.len(), |k| corners[k], draw, stats)
     }
 }
 
@@ -556,13 +822,24 @@ fn fan<const S: u32, const N: usize>(
     }
     let c0 = corner(0);
     for k in 1..n - 1 {
-        let (covered, written) = draw([c0, corner(k), corner(k + 1)]).map_err(RenderError::Draw)?;
-        if covered > 0 || written > 0 {
-            stats.triangles_drawn += 1;
-        }
-        stats.pixels_covered += covered;
-        stats.pixels_written += written;
+        draw_counted([c0, corner(k), corner(k + 1)], draw, stats)?;
     }
+    Ok(())
+}
+
+/// Draws one triangle, counting it into `stats` when it covered or wrote pixels.
+#[inline(always)]
+fn draw_counted<const S: u32, const N: usize>(
+    tri: [Corner<S, N>; 3],
+    draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    stats: &mut RenderStats,
+) -> Result<(), RenderError> {
+    let (covered, written) = draw(tri).map_err(RenderError::Draw)?;
+    if covered > 0 || written > 0 {
+        stats.triangles_drawn += 1;
+    }
+    stats.pixels_covered += covered;
+    stats.pixels_written += written;
     Ok(())
 }
 
@@ -623,39 +900,59 @@ pub fn render_scene<D: DepthValue, const S: u32>(
     Ok(stats)
 }
 
+/// Caller memory of [`render_in_bands`]; each part is a documented memory/time switch.
+#[derive(Debug)]
+pub struct BandScratch<'a, const S: u32> {
+    /// Prepared vertices (28 bytes each). Holding the vertices of **all** objects together,
+    /// the vertex stage runs once per frame; holding only the largest object's, it runs again
+    /// for every band.
+    pub vertices: &'a mut [PreparedVertex<S>],
+    /// Polygon table (4 bytes per polygon), used when `vertices` holds all objects and this
+    /// holds all objects' polygons: rejection, culling and each polygon's rows are decided
+    /// once per frame ([`Renderer::polygon_rows`]) and a band visits only the polygons that
+    /// reach it. Otherwise (e.g. `&mut []`) every band tests every polygon.
+    pub polygons: &'a mut [PolygonRows],
+}
+
 /// Draws a `width × height` picture band by band through one band-sized pair of buffers:
 /// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band,
 /// then calls `band_done` with the finished band — flush it to the display there (e.g.
 /// [`flush`](crate::target::flush)). The picture is the same as one pass (the raster stage
-/// writes exactly the rows a buffer holds).
+/// writes exactly the rows a buffer holds), whatever the scratch ([`BandScratch`]).
 ///
-/// `pixels` and `depths` need `width × band_rows` elements. Memory/time switch: when `scratch`
-/// holds the vertices of **all** objects together, the vertex stage runs once per frame;
-/// otherwise (scratch for the largest object only) it runs again for every band.
-/// Statistics are summed over bands: pixel counts add up to the picture's; `polygons_in`,
-/// `rejected` and `clipped` count each band's pass; `culled` counts, per band, the back faces
-/// that reach the band's rows (a band skips projected polygons above or below it first).
+/// `pixels` and `depths` need `width × band_rows` elements. Statistics are summed over bands:
+/// pixel counts add up to the picture's and `clipped` counts each band's clipper runs. With
+/// the polygon table, `polygons_in`, `rejected` and `culled` are counted once per frame;
+/// without it, once per band pass (`culled` then counts, per band, the back faces that reach
+/// the band's rows: a band skips projected polygons above or below it first).
 pub fn render_in_bands<D: DepthValue, const S: u32>(
     renderer: &Renderer<S>,
     scene: &Scene<'_>,
     pixels: &mut [u8],
     depths: &mut [D],
     (width, height, band_rows): (u16, u16, u16),
-    scratch: &mut [PreparedVertex<S>],
+    scratch: BandScratch<'_, S>,
     mut band_done: impl FnMut(&Framebuffer<'_>, &DepthBuffer<'_, D>),
 ) -> Result<RenderStats, RenderError> {
+    let BandScratch { vertices, polygons } = scratch;
     let band_rows = band_rows.clamp(1, height.max(1));
     let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
-    let prepare_once = scratch.len() >= total;
+    let total_polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
+    let prepare_once = vertices.len() >= total;
+    let table = prepare_once && polygons.len() >= total_polygons;
+    let mut stats = RenderStats::default();
     if prepare_once {
-        let mut at = 0;
+        let (mut at, mut pat) = (0, 0);
         for object in scene.objects {
-            let n = object.mesh.vertices().len();
-            renderer.prepare(object, &mut scratch[at..at + n])?;
-            at += n;
+            let (n, np) = (object.mesh.vertices().len(), object.mesh.polygon_count());
+            renderer.prepare(object, &mut vertices[at..at + n])?;
+            if table {
+                let out = &mut polygons[pat..pat + np];
+                renderer.polygon_rows(object, &vertices[at..at + n], out, &mut stats)?;
+            }
+            (at, pat) = (at + n, pat + np);
         }
     }
-    let mut stats = RenderStats::default();
     let mut top = 0u16;
     while top < height {
         let rows = band_rows.min(height - top);
@@ -668,15 +965,21 @@ pub fn render_in_bands<D: DepthValue, const S: u32>(
         if prepare_once {
             frame.clear(scene.background);
             depth.clear();
-            let mut at = 0;
+            let (mut at, mut pat) = (0, 0);
             for object in scene.objects {
-                let n = object.mesh.vertices().len();
-                let prepared = &scratch[at..at + n];
-                renderer.rasterize(object, prepared, &mut frame, &mut depth, &mut stats)?;
-                at += n;
+                let (n, np) = (object.mesh.vertices().len(), object.mesh.polygon_count());
+                let prepared = &vertices[at..at + n];
+                let (f, z, st) = (&mut frame, &mut depth, &mut stats);
+                if table {
+                    let t = &polygons[pat..pat + np];
+                    renderer.rasterize_rows(object, prepared, t, f, z, st)?;
+                } else {
+                    renderer.rasterize(object, prepared, f, z, st)?;
+                }
+                (at, pat) = (at + n, pat + np);
             }
         } else {
-            stats += render_scene(renderer, scene, &mut frame, &mut depth, scratch)?;
+            stats += render_scene(renderer, scene, &mut frame, &mut depth, vertices)?;
         }
         band_done(&frame, &depth);
         top += rows;

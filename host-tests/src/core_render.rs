@@ -11,7 +11,9 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{render_in_bands, PreparedVertex, RenderStats, Renderer};
+use zscan::render::{
+    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer,
+};
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
 use zscan::target::DepthValue;
@@ -161,11 +163,22 @@ impl CoreMesh {
         Ok(o)
     }
 
-    /// Renders the frame, in one pass (`band_rows = None`) or band by band.
+    /// Renders the frame, in one pass (`band_rows = None`) or band by band, without the
+    /// polygon table (every band tests every polygon).
     pub fn render<D: DepthValue>(
         &self,
         shade: ShadeMode,
         band_rows: Option<u16>,
+    ) -> Result<CoreFrame<D>, String> {
+        self.render_with(shade, band_rows, false)
+    }
+
+    /// [`render`](Self::render), with or without `render_in_bands`' polygon table.
+    pub fn render_with<D: DepthValue>(
+        &self,
+        shade: ShadeMode,
+        band_rows: Option<u16>,
+        polygon_table: bool,
     ) -> Result<CoreFrame<D>, String> {
         let vp = *self.camera.viewport();
         let (w, h) = (vp.width, vp.height);
@@ -180,8 +193,14 @@ impl CoreMesh {
         };
         let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
+        let polygons = if polygon_table { objects[0].mesh.polygon_count() } else { 0 };
+        let mut table = vec![PolygonRows::default(); polygons];
+        let band_scratch = BandScratch {
+            vertices: &mut scratch,
+            polygons: &mut table,
+        };
         let (pixels, depth, stats) =
-            render_picture(&renderer, &scene, (w, h), band_rows, &mut scratch)?;
+            render_picture(&renderer, &scene, (w, h), band_rows, band_scratch)?;
         Ok(CoreFrame {
             pixels,
             depth,
@@ -199,7 +218,7 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     scene: &CoreScene<'_>,
     (w, h): (u16, u16),
     band_rows: Option<u16>,
-    scratch: &mut [PreparedVertex<SB>],
+    scratch: BandScratch<'_, SB>,
 ) -> Result<(Vec<u8>, Vec<D>, RenderStats), String> {
     let band = band_rows.unwrap_or(h).clamp(1, h.max(1));
     let n = w as usize * band as usize;

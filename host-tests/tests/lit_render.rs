@@ -17,7 +17,9 @@ use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::Mesh;
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{render_in_bands, PreparedVertex, RenderError, RenderStats, Renderer};
+use zscan::render::{
+    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
+};
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::shade::lighting::{
     light_faces, light_vertices, Illumination, Light, LightingError, Material,
@@ -279,10 +281,11 @@ fn lit_bands_equal_one_pass() {
             };
             let r = Renderer::<4>::for_scene(&scene).unwrap();
             let (one, _) = frame(&r, &objects[0]);
-            for rows in [1u16, 5, 72] {
+            for (rows, table) in [(1u16, false), (5, false), (72, false), (1, true), (5, true)] {
                 let n = W as usize * rows as usize;
                 let (mut band, mut depth) = (vec![0u8; n], vec![0u16; n]);
                 let mut scratch = vec![PreparedVertex::<4>::default(); NV];
+                let mut polygons = vec![PolygonRows::default(); if table { NI / 3 } else { 0 }];
                 let mut picture = vec![0u8; W as usize * H as usize];
                 render_in_bands(
                     &r,
@@ -290,7 +293,10 @@ fn lit_bands_equal_one_pass() {
                     &mut band,
                     &mut depth,
                     (W, H, rows),
-                    &mut scratch,
+                    BandScratch {
+                        vertices: &mut scratch,
+                        polygons: &mut polygons,
+                    },
                     |f, _| {
                         for (y, row) in f.rows() {
                             let at = y as usize * W as usize;
@@ -299,7 +305,10 @@ fn lit_bands_equal_one_pass() {
                     },
                 )
                 .unwrap();
-                assert!(picture == one, "{shade:?} dither {dither}, bands of {rows}");
+                assert!(
+                    picture == one,
+                    "{shade:?} dither {dither}, bands of {rows}, table {table}"
+                );
             }
         }
     }

@@ -652,6 +652,23 @@ fn bands_give_the_same_frame() {
                 if rows == 240 {
                     assert_eq!(s, o, "{}", scene.name);
                 }
+                // With the polygon table: the same pixels; rejection and culling counted once,
+                // the clipper still runs in every band.
+                let t: CoreFrame<u16> = mesh.render_with(shade, Some(rows), true).unwrap();
+                assert!(t.pixels == one16.pixels && t.depth == one16.depth);
+                let ts = t.stats;
+                assert_eq!(
+                    (ts.polygons_in, ts.culled, ts.rejected),
+                    (o.polygons_in, o.culled, o.rejected),
+                    "{}",
+                    scene.name
+                );
+                assert_eq!(ts.clipped, o.clipped * bands, "{}", scene.name);
+                assert_eq!(
+                    (ts.pixels_covered, ts.pixels_written),
+                    (o.pixels_covered, o.pixels_written)
+                );
+                assert_eq!(ts.triangles_drawn, s.triangles_drawn, "{}", scene.name);
             }
         }
     }

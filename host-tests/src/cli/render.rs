@@ -60,7 +60,7 @@ use zscan::geometry::generators;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{PreparedVertex, RenderStats, Renderer};
+use zscan::render::{BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer};
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::shade::lighting::{Light, Material, MAX_LIGHTS, MAX_SHININESS};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
@@ -1162,12 +1162,25 @@ impl LoadedScene {
         };
         let renderer =
             Renderer::<SUBPIXEL_BITS>::for_scene(&scene).map_err(|e| format!("camera: {e}"))?;
-        let most = self.objects.iter().map(|o| o.vertices.len()).max();
-        let mut scratch = vec![PreparedVertex::default(); most.unwrap_or(0)];
+        // The vertex stage once per frame and the polygon table (render_in_bands' faster
+        // switches): scratch for every object's vertices and polygons.
+        let vertices: usize = objects.iter().map(|o| o.mesh.vertices().len()).sum();
+        let polygons: usize = objects.iter().map(|o| o.mesh.polygon_count()).sum();
+        let mut scratch = vec![PreparedVertex::default(); vertices];
+        let mut table = vec![PolygonRows::default(); polygons];
         let band = band_rows.unwrap_or(h).clamp(1, h);
         let bands = h.div_ceil(band) as u32;
         let (pixels, depth, stats) =
-            crate::core_render::render_picture(&renderer, &scene, (w, h), band_rows, &mut scratch)
+            crate::core_render::render_picture(
+                &renderer,
+                &scene,
+                (w, h),
+                band_rows,
+                BandScratch {
+                    vertices: &mut scratch,
+                    polygons: &mut table,
+                },
+            )
                 .map_err(|e| format!("render: {e}"))?;
         Ok(Frame {
             pixels,
