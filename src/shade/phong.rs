@@ -42,7 +42,7 @@ const POS_OFFSET: u32 = 1 << 31;
 pub struct PhongVertex<const S: u32> {
     /// Sub-pixel screen position.
     pub screen: SubpixelPoint<S>,
-    /// Normalised depth (as [`draw_triangle`]).
+    /// Normalised depth (as [`draw_triangle`](super::span_writer::draw_triangle)).
     pub depth: u32,
     /// Observer-frame position.
     pub position: Vec3,
@@ -120,7 +120,7 @@ fn corner_values<const S: u32>(v: &PhongVertex<S>) -> [u32; 7] {
 }
 
 /// Draws a depth-tested, Phong-shaded triangle. Pixels, bands and the return value
-/// `(covered, written)` as [`draw_triangle`].
+/// `(covered, written)` as [`draw_triangle`](super::span_writer::draw_triangle).
 pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
