@@ -37,7 +37,6 @@
 //! Integer only (no `f32`): usable per pixel on an FPU-less core.
 
 use crate::geometry::camera::Camera;
-use crate::geometry::isqrt::isqrt_u64;
 use crate::geometry::matrix::{Affine3, MatrixError};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::vector::Vec3;
@@ -138,14 +137,55 @@ pub struct Illumination {
     count: usize,
 }
 
+/// `2^61 / √len2` for `len2 ∈ [2^58, 2^62)`, within a relative `2^-28`, with 32-bit
+/// operations only: the squared length scaled by `4^k` into `x ∈ [2^62, 2^64)`; a 16-bit
+/// square root of its top word (Heron's iteration from above with 32-bit divisions, exact
+/// floor) as `t0` (relative error `< 2^-15`); one Newton step `t1 = (t0 + x/t0)/2` with
+/// `x/t0` from the reciprocal of [`reciprocal`](crate::project::reciprocal) (relative
+/// `2^-30`), leaving `t1` within a relative `2^-29` of `√x`; then `2^(61+k)/t1` from a second
+/// reciprocal.
+#[inline]
+pub fn inv_len_q61(len2: u64) -> u64 {
+    // x = len2·4^k ∈ [2^62, 2^64), k ∈ {1, 2} for len2 ∈ [2^58, 2^62) (k = 0 above).
+    let k = (len2.leading_zeros() / 2).min(31);
+    let x = len2 << (2 * k);
+    let h = (x >> 32) as u32; // [2^30, 2^32)
+    // ⌊√h⌋ ∈ [2^15, 2^16): Heron from above (s ≥ √h), stopping when it no longer decreases.
+    let mut s = 1u32 << 16;
+    loop {
+        let t = (s + h / s) >> 1;
+        if t >= s {
+            break;
+        }
+        s = t;
+    }
+    // t0 = (s + ½)·2^16 ∈ [2^31, 2^32): √x up to the 16-bit root's error.
+    let t0 = (s << 16) | (1 << 15);
+    let (r0, n0) = crate::project::reciprocal(t0); // ≈ 2^62 / (t0·2^n0), n0 = 0
+    let (xh, xl) = (x >> 32, x & 0xFFFF_FFFF);
+    // x·r0 / 2^(62 − n0): x < 2^64 and r0 ≤ 2^31, split in words (each product < 2^63).
+    let xr = (xh * r0 as u64 + ((xl * r0 as u64) >> 32)) >> (30 - n0.min(30));
+    let t1 = ((t0 as u64 + xr) >> 1).clamp(1 << 31, u32::MAX as u64) as u32;
+    let (r1, n1) = crate::project::reciprocal(t1); // ≈ 2^62 / t1 (n1 = 0)
+    // len = t1 / 2^k, so 2^61 / len = 2^(61 + k) / t1 = r1 · 2^(k − 1 + n1).
+    let e = k as i32 - 1 + n1 as i32;
+    if e >= 0 {
+        (r1 as u64) << e
+    } else {
+        (r1 as u64) >> (-e)
+    }
+}
+
 /// The Q15 unit vector along `v`, or `None` for zero: per-pixel work in Phong shading.
 ///
-/// As [`unit_bits`](crate::geometry::vector::unit_bits) (the largest component brought to `[2^29, 2^30)`, exact integer square
-/// root of the squared length `< 3·2^60`) but with one division instead of three: the
-/// reciprocal `q = ⌊2^61 / len⌋` (`len ∈ [2^29, 2^31)`, so `q ∈ (2^30, 2^32]`) and the
-/// components `round(c·q / 2^46)` (`|c·q| < 2^62`). `q` is low by less than one part in 2^30,
-/// so each component is within one unit of [`unit_bits`](crate::geometry::vector::unit_bits)`(v, 15)` (tested); components are in
-/// `[-32768, 32768]`.
+/// As [`unit_bits`](crate::geometry::vector::unit_bits) (the largest component brought to
+/// `[2^29, 2^30)`, so the squared length is in `[2^58, 3·2^60)`) but without a 64-bit square
+/// root or division, which are slow library loops on 32-bit cores (about 1,000 instructions
+/// per call on a Cortex-M4): [`inv_len_q61`] gives `q ≈ 2^61 / len` (`len ∈ [2^29, 2^31)`, so
+/// `q ∈ (2^30, 2^32]`) within a relative `2^-28`, and the components are
+/// `round(c·q / 2^46)` (`|c·q| < 2^62`): within `2^-13` unit of the exactly computed ones,
+/// hence within one unit of [`unit_bits`](crate::geometry::vector::unit_bits)`(v, 15)`
+/// (tested); components are in `[-32768, 32768]`.
 #[inline]
 pub fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
     let max = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
@@ -167,11 +207,7 @@ pub fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
         })
     };
     let len2: u64 = w.iter().map(|c| c.unsigned_abs().pow(2)).sum();
-    let len = isqrt_u64(len2) as u64; // ≥ 2^29
-    if len == 0 {
-        return None;
-    }
-    let q = (1u64 << 61) / len;
+    let q = inv_len_q61(len2);
     Some(w.map(|c| {
         let m = ((c.unsigned_abs() * q + (1 << 45)) >> 46).min(ONE as u64) as i32;
         if c < 0 {
