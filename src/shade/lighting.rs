@@ -149,7 +149,8 @@ pub fn inv_len_q61(len2: u64) -> u64 {
     // x = len2·4^k ∈ [2^62, 2^64), k ∈ {1, 2} for len2 ∈ [2^58, 2^62) (k = 0 above).
     let k = (len2.leading_zeros() / 2).min(31);
     let x = len2 << (2 * k);
-    let h = (x >> 32) as u32; // [2^30, 2^32)
+    // The top word, h ∈ [2^30, 2^32).
+    let h = (x >> 32) as u32;
     // ⌊√h⌋ ∈ [2^15, 2^16): Heron from above (s ≥ √h), stopping when it no longer decreases.
     let mut s = 1u32 << 16;
     loop {
@@ -166,7 +167,8 @@ pub fn inv_len_q61(len2: u64) -> u64 {
     // x·r0 / 2^(62 − n0): x < 2^64 and r0 ≤ 2^31, split in words (each product < 2^63).
     let xr = (xh * r0 as u64 + ((xl * r0 as u64) >> 32)) >> (30 - n0.min(30));
     let t1 = ((t0 as u64 + xr) >> 1).clamp(1 << 31, u32::MAX as u64) as u32;
-    let (r1, n1) = crate::project::reciprocal(t1); // ≈ 2^62 / t1 (n1 = 0)
+    // r1 ≈ 2^62 / t1 (n1 = 0).
+    let (r1, n1) = crate::project::reciprocal(t1);
     // len = t1 / 2^k, so 2^61 / len = 2^(61 + k) / t1 = r1 · 2^(k − 1 + n1).
     let e = k as i32 - 1 + n1 as i32;
     if e >= 0 {
