@@ -193,7 +193,11 @@ impl CoreMesh {
         };
         let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
-        let polygons = if polygon_table { objects[0].mesh.polygon_count() } else { 0 };
+        let polygons = if polygon_table {
+            objects[0].mesh.polygon_count()
+        } else {
+            0
+        };
         let mut table = vec![PolygonRows::default(); polygons];
         let band_scratch = BandScratch {
             vertices: &mut scratch,

@@ -103,7 +103,12 @@ impl Sphere {
         Mesh::triangles(&self.vertices, &self.indices).unwrap()
     }
 
-    fn object<'a>(&'a self, intensities: Intensities<'a>, shade: ShadeMode, dither: bool) -> Object<'a> {
+    fn object<'a>(
+        &'a self,
+        intensities: Intensities<'a>,
+        shade: ShadeMode,
+        dither: bool,
+    ) -> Object<'a> {
         let mut o = Object::new(self.mesh());
         o.intensities = intensities;
         o.shade = shade;
@@ -139,7 +144,10 @@ fn frame(r: &Renderer<4>, object: &Object<'_>) -> (Vec<u8>, RenderStats) {
 }
 
 fn renderer(cam: &Camera) -> Renderer<4> {
-    Renderer::new(cam).unwrap().with_lights(40, &lights()).unwrap()
+    Renderer::new(cam)
+        .unwrap()
+        .with_lights(40, &lights())
+        .unwrap()
 }
 
 const MODES: [ShadeMode; 4] = [
@@ -372,7 +380,10 @@ fn bad_lighting_input_is_an_error() {
     );
     let five = [lights()[0]; 5];
     assert_eq!(
-        Renderer::<4>::new(&cam).unwrap().with_lights(0, &five).err(),
+        Renderer::<4>::new(&cam)
+            .unwrap()
+            .with_lights(0, &five)
+            .err(),
         Some(RenderError::Lighting(LightingError::TooManyLights))
     );
     let zero = [Light::Directional {
@@ -380,7 +391,10 @@ fn bad_lighting_input_is_an_error() {
         intensity: 9,
     }];
     assert_eq!(
-        Renderer::<4>::new(&cam).unwrap().with_lights(0, &zero).err(),
+        Renderer::<4>::new(&cam)
+            .unwrap()
+            .with_lights(0, &zero)
+            .err(),
         Some(RenderError::Lighting(LightingError::ZeroDirection))
     );
 }

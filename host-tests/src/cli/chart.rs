@@ -33,8 +33,8 @@ use zscan::geometry::camera::Camera;
 use zscan::geometry::mesh::Mesh;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{PreparedVertex, RenderStats, Renderer};
-use zscan::shade::lighting::{Light, Material};
 use zscan::scene::{Intensities, Object};
+use zscan::shade::lighting::{Light, Material};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
 use zscan::target::{DepthBuffer, Framebuffer};
 

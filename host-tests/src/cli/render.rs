@@ -363,7 +363,9 @@ fn lights(l: &LightingSection) -> Result<Vec<Light>, String> {
     }
     let p = |a: [f64; 3]| -> Result<Vec3, String> {
         if !finite(&a) || a.iter().any(|c| c.abs() > 1024.0) {
-            return Err(format!("[lighting] light coordinates must be finite and within ±1024, got {a:?}"));
+            return Err(format!(
+                "[lighting] light coordinates must be finite and within ±1024, got {a:?}"
+            ));
         }
         Ok(Vec3::new(coord(a[0]), coord(a[1]), coord(a[2])))
     };
@@ -1071,8 +1073,7 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
             MaterialKey::Lit(m) => {
                 if file.lighting.is_none() {
                     return Err(err(
-                        "a material with reflection coefficients needs a [lighting] section"
-                            .into(),
+                        "a material with reflection coefficients needs a [lighting] section".into(),
                     ));
                 }
                 Some(m.material().map_err(err)?)
@@ -1170,18 +1171,17 @@ impl LoadedScene {
         let mut table = vec![PolygonRows::default(); polygons];
         let band = band_rows.unwrap_or(h).clamp(1, h);
         let bands = h.div_ceil(band) as u32;
-        let (pixels, depth, stats) =
-            crate::core_render::render_picture(
-                &renderer,
-                &scene,
-                (w, h),
-                band_rows,
-                BandScratch {
-                    vertices: &mut scratch,
-                    polygons: &mut table,
-                },
-            )
-                .map_err(|e| format!("render: {e}"))?;
+        let (pixels, depth, stats) = crate::core_render::render_picture(
+            &renderer,
+            &scene,
+            (w, h),
+            band_rows,
+            BandScratch {
+                vertices: &mut scratch,
+                polygons: &mut table,
+            },
+        )
+        .map_err(|e| format!("render: {e}"))?;
         Ok(Frame {
             pixels,
             depth,
