@@ -41,6 +41,9 @@
 //! Vertex coordinates satisfy `|X|, |Y| ≤ MAX_COORD = 2^28 − 1` and `S ≤ 16`. Then
 //! `|DX|, DY < 2^29`, `|num| < 2^59` and `den < 2^45`: the set-up fits `i64`. The incremental
 //! state fits `i32` (`0 ≤ k < DY < 2^29`, `k + r < 2^30`), and so do the ends (`|x| ≤ 2^28`).
+//! On 32-bit targets a *narrow* edge (`|DX|, DY < 2^13`, [`Edge::is_narrow`]) divides in `i32`
+//! instead: the whole pixels of `X0` are taken out of the numerator, which leaves terms below
+//! `2^29` ([`Edge::divide_narrow`]); same quotient and remainder (tested).
 
 use super::euclid::{div_floor_i32, div_floor_i64};
 
@@ -112,8 +115,50 @@ impl Edge {
     /// The span end on row `y` by direct evaluation (one division): `xG` for a left edge,
     /// `xD` for a right edge. Meaningful for rows the edge covers.
     pub fn end_at<const S: u32>(&self, y: i32, side: EdgeSide) -> i32 {
+        self.divide::<S>(y, side).0
+    }
+
+    /// True when `|DX|, DY < 2^13`: [`Edge::divide_narrow`] applies.
+    #[inline(always)]
+    pub const fn is_narrow(&self) -> bool {
+        const LIM: u32 = 1 << 13;
+        let dx = self.x1.wrapping_sub(self.x0);
+        let dy = self.y1.wrapping_sub(self.y0);
+        dx.wrapping_add(LIM as i32 - 1) as u32 <= 2 * LIM - 2 && (dy as u32) < LIM
+    }
+
+    /// `(end, k)` on row `y` (covered by the edge): the end of [`Edge::end_at`] and
+    /// `k = ⌊rem / F⌋ < DY` for the remainder `0 ≤ rem < F·DY` of its division (the
+    /// [`IncrementalWalker`]'s error term; `rem` itself may exceed `i32`). On 32-bit targets a
+    /// narrow edge takes [`Edge::divide_narrow`]; both give the same result.
+    #[inline(always)]
+    fn divide<const S: u32>(&self, y: i32, side: EdgeSide) -> (i32, i32) {
+        if cfg!(not(target_pointer_width = "64")) && self.is_narrow() {
+            return self.divide_narrow::<S>(y, side);
+        }
         let (n, den) = self.biased_numerator::<S>(y, side);
-        div_floor_i64(n, den).0 as i32
+        let (x, rem) = div_floor_i64(n, den);
+        (x as i32, (rem >> S) as i32)
+    }
+
+    /// The end and `⌊rem / F⌋` of row `y` (as `Edge::divide`) in 32-bit operations, for a
+    /// narrow edge ([`Edge::is_narrow`]) and a row it covers. `X0 = F·⌊X0/F⌋ + (X0 mod F)` and
+    /// the whole pixels `⌊X0/F⌋` come out of the division unchanged, so it divides
+    /// `(X0 mod F)·DY + (y·F − Y0)·DX + bias` by `F·DY`: with `S ≤ 16`, `0 ≤ y·F − Y0 < DY` on a
+    /// covered row and `|DX|, DY < 2^13`, the terms are below `2^29`, `2^26` and `2^29`, so the
+    /// sum fits `i32`.
+    #[inline(always)]
+    pub fn divide_narrow<const S: u32>(&self, y: i32, side: EdgeSide) -> (i32, i32) {
+        let (dx, dy) = (self.x1 - self.x0, self.y1 - self.y0);
+        let den = dy << S;
+        let rows_below = (y << S) - self.y0;
+        let bias = match side {
+            EdgeSide::Left => den - 1,
+            EdgeSide::Right => -1,
+        };
+        let num = (self.x0 & ((1 << S) - 1)) * dy + rows_below * dx + bias;
+        let (x, rem) = div_floor_i32(num, den);
+        (x + (self.x0 >> S), rem >> S)
     }
 }
 
@@ -196,19 +241,11 @@ pub struct IncrementalWalker {
 impl EdgeWalker for IncrementalWalker {
     #[inline]
     fn start<const S: u32>(edge: &Edge, side: EdgeSide, y: i32) -> Self {
-        let (n, den) = edge.biased_numerator::<S>(y, side);
-        let (x, rem) = div_floor_i64(n, den); // 0 ≤ rem < F·DY
-        let x = x as i32;
+        let (x, k) = edge.divide::<S>(y, side); // 0 ≤ k < DY
         let dx = edge.x1 - edge.x0;
         let dy = edge.y1 - edge.y0;
         let (q, r) = div_floor_i32(dx, dy);
-        IncrementalWalker {
-            x,
-            k: (rem >> S) as i32,
-            q,
-            r,
-            dy,
-        }
+        IncrementalWalker { x, k, q, r, dy }
     }
 
     #[inline(always)]
@@ -303,6 +340,59 @@ mod tests {
                 walk::<IncrementalWalker, 2>(&e, side);
             }
         }
+    }
+
+    /// The 32-bit division of narrow edges equals the i64 one (which the host takes).
+    #[test]
+    fn narrow_division_equals_wide() {
+        let mut seed = 0x1357_9BDF_2468_ACE0u64;
+        let mut rnd = |m: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i32 - m
+        };
+        fn check<const S: u32>(e: &Edge) {
+            for side in [EdgeSide::Left, EdgeSide::Right] {
+                let (y0, y1) = (e.first_row::<S>(), e.end_row::<S>());
+                for y in [y0, y0 + 1, (y0 + y1) / 2, y1 - 2, y1 - 1] {
+                    if y < y0 || y >= y1 {
+                        continue;
+                    }
+                    let (n, den) = e.biased_numerator::<S>(y, side);
+                    let (x, rem) = div_floor_i64(n, den);
+                    let want = (x as i32, (rem >> S) as i32);
+                    assert_eq!(e.divide_narrow::<S>(y, side), want, "{e:?}");
+                    assert_eq!(e.divide::<S>(y, side), want, "{e:?}");
+                }
+            }
+        }
+        let lim = (1 << 13) - 1;
+        for i in 0..20_000 {
+            let (x0, y0) = (rnd(MAX_COORD), rnd(MAX_COORD - lim));
+            let dx = [rnd(lim), rnd(40), lim, -lim][i % 4];
+            let dy = 1 + [rnd(lim - 1).abs(), rnd(40).abs(), lim - 1, 0][i % 4];
+            let Some(x1) = x0.checked_add(dx).filter(|x| x.abs() <= MAX_COORD) else {
+                continue;
+            };
+            let e = Edge {
+                x0,
+                y0,
+                x1,
+                y1: y0 + dy,
+            };
+            assert!(e.is_narrow());
+            check::<0>(&e);
+            check::<4>(&e);
+            check::<16>(&e);
+        }
+        let wide = Edge {
+            x0: 0,
+            y0: 0,
+            x1: 1 << 13,
+            y1: 5,
+        };
+        assert!(!wide.is_narrow());
     }
 
     #[test]

@@ -105,29 +105,38 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
     }
     let mut long_w = W::start::<S>(&long, EdgeSide::Left, y_first);
     let middle_left = area < 0;
+    // One row loop for both halves (the span code is inlined once): the short walker starts
+    // on the top edge, or on the bottom edge when the first visible row is past the middle
+    // vertex, and switches to the bottom edge at row `y_mid`.
+    let (mut short_w, mut rows_end) = if y_first < y_mid {
+        (
+            W::start::<S>(&top, EdgeSide::Left, y_first),
+            y_mid.min(y_end),
+        )
+    } else {
+        (W::start::<S>(&bottom, EdgeSide::Left, y_first), y_end)
+    };
     let mut y = y_first;
-    for (short, rows_end) in [(top, y_mid.min(y_end)), (bottom, y_end)] {
-        if y >= rows_end {
-            continue;
-        }
-        let mut short_w = W::start::<S>(&short, EdgeSide::Left, y);
-        let (left, right) = if middle_left {
-            (&mut short_w, &mut long_w)
-        } else {
-            (&mut long_w, &mut short_w)
-        };
+    loop {
         while y < rows_end {
-            let x0 = left.x().max(window.x0);
-            let x1 = right.x().min(window.x1);
+            // Select the ends by value (no pointer to a walker escapes: both stay in registers).
+            let (xs, xl) = (short_w.x(), long_w.x());
+            let (left, right) = if middle_left { (xs, xl) } else { (xl, xs) };
+            let x0 = left.max(window.x0);
+            let x1 = right.min(window.x1);
             if x0 < x1 {
                 emit(Span { y, x0, x1 });
             }
-            left.step();
-            right.step();
+            long_w.step();
+            short_w.step();
             y += 1;
         }
+        if y >= y_end {
+            return Ok(());
+        }
+        short_w = W::start::<S>(&bottom, EdgeSide::Left, y);
+        rows_end = y_end;
     }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -7,6 +7,13 @@
 //! are generic over [`Interpolant`], so a flat attribute ([`Constant`]) costs nothing per pixel
 //! and the exact ([`Exact`]) and fast ([`Dda`]) variants share one loop.
 //!
+//! Two set-ups give the same values: [`AttributePlane`] (any triangle; `i64` products, span
+//! starts carried row to row by [`RowStarts`] on 32-bit targets) and [`SmallPlane`] (a
+//! bounding box below `2^K` sub-pixel units, `K = 10` at `S = 4`: every product, division and
+//! remainder fits 32 bits, so a span start is two multiply-adds and one 32-bit division per
+//! attribute and the set-up has no 64-bit division). Span loops take either through
+//! [`SpanStarts`].
+//!
 //! ## What is computed
 //! With vertices `P0, P1, P2` (sub-pixel units, `F = 2^S`) and values `A0, A1, A2`, the affine
 //! interpolant at pixel `(x, y)` (the point `p = (x·F, y·F)`) is `A(p) = A0 + M(p) / D` with
@@ -33,8 +40,11 @@
 //! - `|A1 − A0|, |A2 − A0| ≤ 2^32` and coordinate differences `< 2^29` give `|gx|, |gy| < 2^62`.
 //!   `M` at a covered pixel is bounded by `D·2^32 < 2^62`; it is evaluated with wrapping
 //!   products, exact because the true result is in range.
+//! - [`SmallPlane`]: `D < 2^(2K)` and the decomposition of its doc keep every intermediate
+//!   below `2^31` (`i32`) or `2^32` (`u32`); quotients that only move values are kept mod
+//!   `2^32`, like the values themselves.
 
-use crate::raster::euclid::Divisor;
+use crate::raster::euclid::{div_floor_i32, div_floor_i64, Divisor};
 use crate::raster::SubpixelPoint;
 
 /// Why an attribute plane could not be set up.
@@ -430,6 +440,304 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     }
 }
 
+/// Where the exact span starts of one triangle come from: [`RowStarts`] over an
+/// [`AttributePlane`] (any triangle) or a [`SmallPlane`] (32-bit arithmetic). Span loops are
+/// generic over it, so both feed the same span machinery.
+pub trait SpanStarts<const N: usize> {
+    /// Whether span loops may start [`ExactRun`]s from these values (each start costs a
+    /// 64-bit division). False for [`SmallPlane`]: its triangles' spans are short, and plain
+    /// [`Exact`] stepping measured cheaper on the Cortex-M4 (standard sphere −10 %, host +2 %).
+    const RUNS_PAY: bool = true;
+    /// The exact values at `(x, y)`, a covered pixel, ready to step right.
+    fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N];
+    /// Attribute `i < N` at `(x, y)` (a covered pixel) as [`AttributePlane::dda`] gives it.
+    fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda;
+    /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
+    fn run_limit(&self) -> u32;
+}
+
+impl<const N: usize, const S: u32> SpanStarts<N> for RowStarts<'_, N, S> {
+    #[inline(always)]
+    fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N] {
+        self.at(x, y)
+    }
+
+    #[inline(always)]
+    fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda {
+        self.plane.dda(i, x, y)
+    }
+
+    #[inline(always)]
+    fn run_limit(&self) -> u32 {
+        self.plane.run_limit()
+    }
+}
+
+/// `log2` of the largest bounding box (in `2^-S` pixel units, each side) a [`SmallPlane`]
+/// accepts: 10 (64 pixels at `S = 4`) for `S ≤ 12`, less above so that `2^S · 2^(2K) ≤ 2^32`.
+pub const fn small_bits(s: u32) -> u32 {
+    let k = (32 - s) / 2;
+    if k < 10 {
+        k
+    } else {
+        10
+    }
+}
+
+/// The exact affine interpolant of `N` attributes over a *small* triangle, in 32-bit
+/// arithmetic only: the same values (and remainders) as [`AttributePlane::exact`] and
+/// [`AttributePlane::dda`], without 64-bit products or divisions on 32-bit targets.
+///
+/// ## Numeric contract
+/// With `K = `[`small_bits`]`(S)`, the triangle's bounding box is narrower and lower than
+/// `2^K` sub-pixel units (checked by [`SmallPlane::new`]). Then every vertex difference is
+/// below `2^K` in magnitude and `D ≤ W·H < 2^(2K)`, and with `A1 − A0 = D·Q1 + R1`,
+/// `A2 − A0 = D·Q2 + R2` (`0 ≤ R < D`, one 32-bit division of `|A − A0| < 2^32` each):
+///
+/// - `gx = D·(Q1·dy2 − Q2·dy1) + (R1·dy2 − R2·dy1)` (signs as the module doc), whose second
+///   part is below `2·2^(2K)·2^K = 2^(3K+1) ≤ 2^31`: one `i32` floored division splits it, giving
+///   `gx = D·g1 + g0` with `0 ≤ g0 < D` and `g1` kept mod `2^32` (it only ever moves values,
+///   which wrap mod `2^32`); the same for `gy = D·h1 + h0`.
+/// - a step right adds `2F·gx` to `2M + D`: quotient `F·g1 + ⌊F·g0 / D⌋`, remainder
+///   `2·(F·g0 mod D)`, with `F·g0 < 2^(S+2K) ≤ 2^32`.
+/// - at a covered pixel `p`, `|p − P0| < 2^K` on both axes, so `M(p) = D·(g1·px + h1·py) + E`
+///   with `|E| = |g0·px + h0·py| < 2^(3K+1) ≤ 2^31`; one floored division `E = D·e1 + e0` and
+///   `2e0 + D < 3D` give the rounded quotient and remainder.
+/// - the 16.16 [`Dda`] needs `⌊e0·2^16 / D⌋` and `⌊g0·2^(16+S) / D⌋`, long divisions of a
+///   fraction `n / D < 1` eight bits at a time (`n·2^8 < 2^(2K+8) ≤ 2^28`).
+///
+/// On 64-bit targets the split of `gx` and `gy` is one `i64` division each (the hardware's),
+/// which gives the same `g1 mod 2^32, g0`.
+#[derive(Debug, Clone)]
+pub struct SmallPlane<const N: usize, const S: u32> {
+    origin: SubpixelPoint<S>,
+    base: [u32; N],
+    /// `D` (twice the area, positive, `< 2^(2K)`).
+    d: u32,
+    /// Per attribute `(g1 mod 2^32, g0, h1 mod 2^32, h0)`: `gx = D·g1 + g0`, `gy = D·h1 + h0`.
+    split: [(u32, u32, u32, u32); N],
+    /// Per attribute, `(q, r)` of one pixel step right.
+    step_x: [(u32, u32); N],
+}
+
+impl<const N: usize, const S: u32> SmallPlane<N, S> {
+    /// The plane of `values[i]` at vertex `v[i]`, or `None` when the bounding box is not below
+    /// `2^K` units on both axes ([`small_bits`]) or the triangle has zero area.
+    #[inline(always)]
+    pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Option<Self> {
+        let lim = 1i32 << small_bits(S);
+        let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
+        let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
+        // |δ| < 2^K for the three edges' differences: the bounding box is below 2^K.
+        let small = |t: i32| (t.wrapping_add(lim - 1) as u32) < (2 * lim - 1) as u32;
+        if !(small(dx1)
+            && small(dx2)
+            && small(dx2.wrapping_sub(dx1))
+            && small(dy1)
+            && small(dy2)
+            && small(dy2.wrapping_sub(dy1)))
+        {
+            return None;
+        }
+        let cross = dx1 * dy2 - dy1 * dx2; // |products| < 2^(2K)
+        if cross == 0 {
+            return None;
+        }
+        let negative = cross < 0;
+        let d = cross.unsigned_abs();
+        let mut split = [(0, 0, 0, 0); N];
+        let mut step_x = [(0, 0); N];
+        for i in 0..N {
+            let a1 = values[1][i] as i64 - values[0][i] as i64;
+            let a2 = values[2][i] as i64 - values[0][i] as i64;
+            let (g1, g0) = split_gradient(a1, a2, dy2, dy1, negative, d);
+            let (h1, h0) = split_gradient(a2, a1, dx1, dx2, negative, d);
+            // F·g0 < 2^(S+2K) ≤ 2^32.
+            let fg0 = g0 << S;
+            step_x[i] = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
+            split[i] = (g1, g0, h1, h0);
+        }
+        Some(SmallPlane {
+            origin: v[0],
+            base: values[0],
+            d,
+            split,
+            step_x,
+        })
+    }
+
+    /// `(x·F − X0, y·F − Y0)` for pixel `(x, y)`.
+    #[inline(always)]
+    fn offset(&self, x: i32, y: i32) -> (i32, i32) {
+        (
+            (x << S).wrapping_sub(self.origin.x),
+            (y << S).wrapping_sub(self.origin.y),
+        )
+    }
+
+    /// `(g1·px + h1·py mod 2^32, e1, e0)`: `M = D·(whole + e1) + e0`, `0 ≤ e0 < D`.
+    #[inline(always)]
+    fn m(&self, i: usize, px: i32, py: i32) -> (u32, i32, u32) {
+        let (g1, g0, h1, h0) = self.split[i];
+        let whole = g1
+            .wrapping_mul(px as u32)
+            .wrapping_add(h1.wrapping_mul(py as u32));
+        // |E| < 2^(3K+1) ≤ 2^31 (see the numeric contract).
+        let e = (g0 as i32)
+            .wrapping_mul(px)
+            .wrapping_add((h0 as i32).wrapping_mul(py));
+        let (e1, e0) = div_floor_i32(e, self.d as i32);
+        (whole, e1, e0 as u32)
+    }
+
+    /// Attribute `i < N` at the covered pixel `(x, y)`, ready to step right exactly: equal to
+    /// [`AttributePlane::exact`] of the same triangle.
+    #[inline(always)]
+    pub fn exact(&self, i: usize, x: i32, y: i32) -> Exact {
+        let (px, py) = self.offset(x, y);
+        self.exact_from(i, px, py)
+    }
+
+    #[inline(always)]
+    fn exact_from(&self, i: usize, px: i32, py: i32) -> Exact {
+        let (whole, e1, e0) = self.m(i, px, py);
+        // 2M + D = 2D·(whole + e1) + (2·e0 + D), and D ≤ 2·e0 + D < 3D.
+        let two_d = 2 * self.d;
+        let t = 2 * e0 + self.d;
+        let carry = (t >= two_d) as u32;
+        Exact {
+            value: self.base[i]
+                .wrapping_add(whole)
+                .wrapping_add(e1 as u32)
+                .wrapping_add(carry),
+            rem: t - carry * two_d,
+            q: self.step_x[i].0,
+            r: self.step_x[i].1,
+            two_d,
+        }
+    }
+
+    /// Attribute `i < N` at the covered pixel `(x, y)` as a 16.16 [`Dda`]: equal to
+    /// [`AttributePlane::dda`] of the same triangle.
+    #[inline]
+    pub fn dda(&self, i: usize, x: i32, y: i32) -> Dda {
+        let (px, py) = self.offset(x, y);
+        let (whole, e1, e0) = self.m(i, px, py);
+        // ⌊M·2^16 / D⌋ = 2^16·(whole + e1) + ⌊e0·2^16 / D⌋ (mod 2^32).
+        let start = (self.base[i].wrapping_add(whole).wrapping_add(e1 as u32) << 16)
+            .wrapping_add(frac_bits(e0, self.d, 16));
+        let (g1, g0, _, _) = self.split[i];
+        // ⌊gx·2^(16+S) / D⌋ = 2^(16+S)·g1 + ⌊g0·2^(16+S) / D⌋ (mod 2^32).
+        let inc = g1
+            .wrapping_shl(16 + S)
+            .wrapping_add(frac_bits(g0, self.d, 16 + S));
+        Dda {
+            acc: start.wrapping_add(1 << 15),
+            inc,
+        }
+    }
+
+    /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
+    pub fn run_limit(&self) -> u32 {
+        u32::MAX / (2 * self.d)
+    }
+}
+
+impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
+    const RUNS_PAY: bool = false;
+    #[inline(always)]
+    fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N] {
+        let (px, py) = self.offset(x, y);
+        // A loop, not `array::from_fn` (which the compiler leaves out of line).
+        let mut out = [Exact {
+            value: 0,
+            rem: 0,
+            q: 0,
+            r: 0,
+            two_d: 1,
+        }; N];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.exact_from(i, px, py);
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda {
+        self.dda(i, x, y)
+    }
+
+    #[inline(always)]
+    fn run_limit(&self) -> u32 {
+        SmallPlane::run_limit(self)
+    }
+}
+
+/// `(g1 mod 2^32, g0)` with `±(a1·c1 − a2·c2) = D·g1 + g0`, `0 ≤ g0 < D` (minus when
+/// `negative`), for `|a| < 2^32`, `|c| < 2^K`, `D < 2^(2K)` (see [`SmallPlane`]).
+#[inline(always)]
+fn split_gradient(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: u32) -> (u32, u32) {
+    if cfg!(target_pointer_width = "64") {
+        // One hardware division of the exact i64 gradient (|g| < 2^(33+K)).
+        let g = a1 * c1 as i64 - a2 * c2 as i64;
+        let g = if negative { -g } else { g };
+        let (g1, g0) = div_floor_i64(g, d as i64);
+        return (g1 as u32, g0 as u32);
+    }
+    split_gradient_narrow(a1, a2, c1, c2, negative, d)
+}
+
+/// [`split_gradient`] in 32-bit operations (the 32-bit targets' form; same results).
+#[inline(always)]
+fn split_gradient_narrow(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: u32) -> (u32, u32) {
+    let (q1, r1) = div_floor_by_u32(a1, d);
+    let (q2, r2) = div_floor_by_u32(a2, d);
+    // |r1·c1 − r2·c2| < 2·D·2^K ≤ 2^31.
+    let gq = q1
+        .wrapping_mul(c1 as u32)
+        .wrapping_sub(q2.wrapping_mul(c2 as u32));
+    let gr = (r1 as i32)
+        .wrapping_mul(c1)
+        .wrapping_sub((r2 as i32).wrapping_mul(c2));
+    let (gq, gr) = if negative {
+        (gq.wrapping_neg(), gr.wrapping_neg())
+    } else {
+        (gq, gr)
+    };
+    let (u, g0) = div_floor_i32(gr, d as i32);
+    (gq.wrapping_add(u as u32), g0 as u32)
+}
+
+/// `(⌊a / d⌋ mod 2^32, a mod d)` for `|a| < 2^32` and `0 < d < 2^31`: one 32-bit division of
+/// `|a|`.
+#[inline(always)]
+fn div_floor_by_u32(a: i64, d: u32) -> (u32, u32) {
+    let m = a.unsigned_abs() as u32;
+    let (q, r) = (m / d, m % d);
+    if a >= 0 {
+        (q, r)
+    } else if r == 0 {
+        (q.wrapping_neg(), 0)
+    } else {
+        ((!q), d - r) // −q − 1
+    }
+}
+
+/// `⌊n·2^bits / d⌋ mod 2^32` for `0 ≤ n < d < 2^24`: long division eight bits at a time
+/// (`n·2^8 < 2^32`).
+#[inline(always)]
+fn frac_bits(mut n: u32, d: u32, mut bits: u32) -> u32 {
+    let mut q = 0u32;
+    while bits > 0 {
+        let c = bits.min(8);
+        n <<= c;
+        q = (q << c).wrapping_add(n / d);
+        n %= d;
+        bits -= c;
+    }
+    q
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -543,6 +851,110 @@ mod tests {
             }
         }
         assert!(pixels > 100_000, "{pixels}");
+    }
+
+    /// The 32-bit plane gives the general plane's exact values, remainders, steps and DDAs at
+    /// every covered pixel, for boxes up to its limit and attribute differences up to 2^32.
+    fn small_plane_matches<const S: u32>(seed: u64, count: usize) -> (u64, u64) {
+        let mut seed = seed;
+        let mut rnd = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let lim = 1u64 << small_bits(S);
+        let window = crate::raster::Window::new(-100, -100, 200, 200);
+        let (mut pixels, mut planes) = (0u64, 0);
+        for i in 0..count {
+            // Boxes from a few sub-pixel units to the limit (and a little over: rejected).
+            let m = [24, 200.min(lim), lim, lim + 1, lim + 60][i % 5];
+            let o = (rnd(2000) as i32 - 1000, rnd(2000) as i32 - 1000);
+            let v =
+                [0; 3].map(|_| SubpixelPoint::<S>::new(o.0 + rnd(m) as i32, o.1 + rnd(m) as i32));
+            let a = [0; 3].map(|_| match i % 3 {
+                0 => [rnd(1 << 32) as u32, rnd(256) as u32],
+                1 => [u32::MAX - rnd(3) as u32, rnd(2) as u32 * 255],
+                _ => [rnd(1 << 20) as u32 + (3 << 30), rnd(1 << 15) as u32],
+            });
+            let general = AttributePlane::<2, S>::new(v, a);
+            let Some(small) = SmallPlane::<2, S>::new(v, a) else {
+                let xs = v.map(|p| p.x);
+                let ys = v.map(|p| p.y);
+                let w = xs.iter().max().unwrap() - xs.iter().min().unwrap();
+                let h = ys.iter().max().unwrap() - ys.iter().min().unwrap();
+                assert!(
+                    w as u64 >= lim || h as u64 >= lim || general.is_err(),
+                    "{v:?}"
+                );
+                continue;
+            };
+            let general = general.unwrap();
+            assert_eq!(small.run_limit(), general.run_limit());
+            planes += 1;
+            crate::raster::triangle::fill_triangle(v, &window, |s| {
+                for x in s.x0..s.x1 {
+                    for i in 0..2 {
+                        let (mut g, mut e) = (general.exact(i, x, s.y), small.exact(i, x, s.y));
+                        for _ in 0..2 {
+                            assert_eq!(
+                                (e.value(), e.remainder()),
+                                (g.value(), g.remainder()),
+                                "attr {i} at ({x},{}) of {v:?} {a:?}",
+                                s.y
+                            );
+                            g.step();
+                            e.step();
+                        }
+                    }
+                    let (g, e) = (general.dda(1, x, s.y), small.dda(1, x, s.y));
+                    assert_eq!((e.acc, e.inc), (g.acc, g.inc), "dda at ({x},{}) {v:?}", s.y);
+                    pixels += 1;
+                }
+            })
+            .unwrap();
+        }
+        (planes, pixels)
+    }
+
+    #[test]
+    fn small_plane_equals_general_plane() {
+        let (planes, pixels) = small_plane_matches::<4>(0x5DEE_CE66_D1CE_4E5B, 6000);
+        assert!(planes > 2000 && pixels > 200_000, "{planes} {pixels}");
+        let (planes, pixels) = small_plane_matches::<0>(0x0123_4567_89AB_CDEF, 2000);
+        assert!(planes > 500 && pixels > 100_000, "{planes} {pixels}");
+        // S = 14: K = 9, boxes below 2^9 units (1/32 pixel): few pixels, exact planes.
+        let (planes, _) = small_plane_matches::<14>(0xFEDC_BA98_7654_3210, 2000);
+        assert!(planes > 500, "{planes}");
+    }
+
+    /// The 32-bit split of a gradient equals the i64 one (the host takes the i64 form).
+    #[test]
+    fn narrow_gradient_split_equals_wide() {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut rnd = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        for i in 0..200_000 {
+            let k = 1 + (i % 10) as u32;
+            let d = 1 + rnd((1 << (2 * k)) - 1) as u32;
+            let a = |r: u64| r as i64 - (1 << 32) + 1;
+            let (a1, a2) = (a(rnd((1 << 33) - 1)), a(rnd((1 << 33) - 1)));
+            let c = |r: u64| r as i32 - (1 << k) + 1;
+            let (c1, c2) = (c(rnd((2 << k) - 1)), c(rnd((2 << k) - 1)));
+            let negative = i % 2 == 0;
+            let g =
+                (a1 as i128 * c1 as i128 - a2 as i128 * c2 as i128) * if negative { -1 } else { 1 };
+            let want = (
+                g.div_euclid(d as i128) as u32,
+                g.rem_euclid(d as i128) as u32,
+            );
+            assert_eq!(split_gradient(a1, a2, c1, c2, negative, d), want);
+            assert_eq!(split_gradient_narrow(a1, a2, c1, c2, negative, d), want);
+        }
     }
 
     #[test]
