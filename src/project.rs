@@ -187,6 +187,14 @@ impl<const S: u32> Projector<S> {
         Coord::from_bits(self.far)
     }
 
+    /// The depth mapping's constants `(A, K_m, K_e)`: [`project_point`](Self::project_point)
+    /// computes `D(z) = A − K_m·2^K_e / z` (`z` raw I16F16, `A < 2^61`, `K_m < 2^32`), so a
+    /// caller can invert a stored depth with the very constants that produced it
+    /// (`z = K_m·2^K_e / (A − D)`; used by the shadow pass's back-projection).
+    pub fn depth_constants(&self) -> (u64, u32, u32) {
+        (self.depth_a, self.depth_km, self.depth_ke)
+    }
+
     /// The principal point in sub-pixel units.
     pub fn principal(&self) -> SubpixelPoint<S> {
         SubpixelPoint::new(self.i0, self.j0)
