@@ -444,16 +444,10 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
 /// [`AttributePlane`] (any triangle) or a [`SmallPlane`] (32-bit arithmetic). Span loops are
 /// generic over it, so both feed the same span machinery.
 pub trait SpanStarts<const N: usize> {
-    /// Whether span loops may start [`ExactRun`]s from these values (each start costs a
-    /// 64-bit division). False for [`SmallPlane`]: its triangles' spans are short, and plain
-    /// [`Exact`] stepping measured cheaper on the Cortex-M4 (standard sphere −10 %, host +2 %).
-    const RUNS_PAY: bool = true;
     /// The exact values at `(x, y)`, a covered pixel, ready to step right.
     fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N];
     /// Attribute `i < N` at `(x, y)` (a covered pixel) as [`AttributePlane::dda`] gives it.
     fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda;
-    /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
-    fn run_limit(&self) -> u32;
 }
 
 impl<const N: usize, const S: u32> SpanStarts<N> for RowStarts<'_, N, S> {
@@ -465,11 +459,6 @@ impl<const N: usize, const S: u32> SpanStarts<N> for RowStarts<'_, N, S> {
     #[inline(always)]
     fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda {
         self.plane.dda(i, x, y)
-    }
-
-    #[inline(always)]
-    fn run_limit(&self) -> u32 {
-        self.plane.run_limit()
     }
 }
 
@@ -525,20 +514,11 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
     /// `2^K` units on both axes ([`small_bits`]) or the triangle has zero area.
     #[inline(always)]
     pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Option<Self> {
-        let lim = 1i32 << small_bits(S);
-        let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
-        let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
-        // |δ| < 2^K for the three edges' differences: the bounding box is below 2^K.
-        let small = |t: i32| (t.wrapping_add(lim - 1) as u32) < (2 * lim - 1) as u32;
-        if !(small(dx1)
-            && small(dx2)
-            && small(dx2.wrapping_sub(dx1))
-            && small(dy1)
-            && small(dy2)
-            && small(dy2.wrapping_sub(dy1)))
-        {
+        if !Self::fits(&v) {
             return None;
         }
+        let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
+        let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
         let cross = dx1 * dy2 - dy1 * dx2; // |products| < 2^(2K)
         if cross == 0 {
             return None;
@@ -564,6 +544,23 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
             split,
             step_x,
         })
+    }
+
+    /// True when the bounding box of `v` is below `2^K` units on both axes ([`small_bits`]):
+    /// the triangles [`SmallPlane::new`] accepts, if they have area.
+    #[inline(always)]
+    pub fn fits(v: &[SubpixelPoint<S>; 3]) -> bool {
+        let lim = 1i32 << small_bits(S);
+        let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
+        let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
+        // |δ| < 2^K for the three edges' differences: the bounding box is below 2^K.
+        let small = |t: i32| (t.wrapping_add(lim - 1) as u32) < (2 * lim - 1) as u32;
+        small(dx1)
+            && small(dx2)
+            && small(dx2.wrapping_sub(dx1))
+            && small(dy1)
+            && small(dy2)
+            && small(dy2.wrapping_sub(dy1))
     }
 
     /// `(x·F − X0, y·F − Y0)` for pixel `(x, y)`.
@@ -644,7 +641,6 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
 }
 
 impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
-    const RUNS_PAY: bool = false;
     #[inline(always)]
     fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N] {
         let (px, py) = self.offset(x, y);
@@ -665,11 +661,6 @@ impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
     #[inline(always)]
     fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda {
         self.dda(i, x, y)
-    }
-
-    #[inline(always)]
-    fn run_limit(&self) -> u32 {
-        SmallPlane::run_limit(self)
     }
 }
 

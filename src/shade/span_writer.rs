@@ -25,7 +25,7 @@ use super::attributes::{
 use crate::raster::euclid::Divisor;
 use crate::raster::polygon::FillError;
 use crate::raster::triangle::fill_triangle;
-use crate::raster::{SubpixelPoint, Window};
+use crate::raster::{Span, SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// Luminance (`0..=255`) to a ramp of `levels` palette entries starting at `first`:
@@ -252,6 +252,13 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
 /// [`draw_triangle`] with luminance mapped to indices by the [`Quantizer`] that
 /// `quantizer_at(x, y)` gives for the span starting at pixel `(x, y)` (a dithered ramp, say).
 /// Flat shading uses the rounded mean of the vertex luminances.
+///
+/// The shading is decided once per triangle, and each decision runs the one span loop
+/// (`TriangleSpans::run`) with its own span kind (`SpanKind`): constant depth and colour
+/// (no plane at all), flat colour over the exact depth plane (a one-attribute plane), exact or
+/// fast Gouraud (two attributes). A constant depth under Gouraud shading takes the depth plane,
+/// whose value is then the vertex depth at every pixel (zero gradient: `M = 0`, the rounded
+/// quotient `⌊D / 2D⌋ = 0`), the value the constant would give.
 pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
@@ -276,27 +283,23 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
         ShadeMode::Phong => ShadeMode::GouraudExact,
         m => m,
     };
-    let const_depth = constant(0).then(|| Constant(values[0][0]));
     let spans = TriangleSpans {
         v,
         window,
-        const_depth,
-        mode,
-        flat_lum: Constant(flat_lum),
-        quantizer_at,
+        targets: Targets::new(frame, depth),
     };
-    // The longest span is at most the bounding box's width in pixels plus one.
-    let xs = [v[0].x, v[1].x, v[2].x];
-    let width = ((xs.iter().max().unwrap_or(&0) - xs.iter().min().unwrap_or(&0)) >> S) as u32 + 2;
-    if let Some(small) = SmallPlane::<2, S>::new(v, values) {
-        return spans.draw_with(frame, depth, small, width);
+    match mode {
+        ShadeMode::Flat if constant(0) => spans.constant(values[0][0], flat_lum, quantizer_at),
+        ShadeMode::Flat => spans.planar(
+            values.map(|a| [a[0]]),
+            FlatKind {
+                luminance: Constant(flat_lum),
+                quantizer_at,
+            },
+        ),
+        ShadeMode::GouraudFast => spans.planar(values, FastKind(quantizer_at)),
+        ShadeMode::GouraudExact | ShadeMode::Phong => spans.planar(values, ExactKind(quantizer_at)),
     }
-    let plane = match AttributePlane::<2, S>::new(v, values) {
-        Ok(p) => p,
-        Err(PlaneError::Degenerate) => return Ok((0, 0)),
-        Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
-    };
-    spans.draw_with(frame, depth, RowStarts::new(&plane), width)
 }
 
 /// Bounding-box width (pixels) from which a triangle's spans use [`ExactRun`].
@@ -339,85 +342,233 @@ impl FromExact for ExactRunFrom {
     }
 }
 
-/// One triangle's span drawing, set up (see [`draw_triangle_quantized`]).
-struct TriangleSpans<QF, const S: u32> {
-    v: [SubpixelPoint<S>; 3],
-    window: Window,
-    const_depth: Option<Constant>,
-    mode: ShadeMode,
-    flat_lum: Constant,
+/// What one span of a triangle writes, given its `N` exact interpolants at the span start:
+/// chosen once per triangle, so the span loop holds one kind only.
+trait SpanKind<const N: usize> {
+    /// Writes the span (`colours`, `depths`: its pixels) starting at pixel `(x, y)`; `attrs[0]`
+    /// is the depth. Returns the pixels written.
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<N>>(
+        &self,
+        colours: &mut [u8],
+        depths: &mut [D],
+        attrs: [I; N],
+        starts: &St,
+        x: i32,
+        y: i32,
+    ) -> u32;
+}
+
+/// Flat colour over the exact depth plane (one attribute).
+struct FlatKind<QF> {
+    luminance: Constant,
     quantizer_at: QF,
 }
 
-impl<Q: Quantizer, QF: Fn(i32, i32) -> Q, const S: u32> TriangleSpans<QF, S> {
-    /// Draws with the exact starts of `starts`, as [`Exact`] or, when every span of this
-    /// `width` (bounding box plus one, pixels) stays within the run limit, [`ExactRun`].
+impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<1> for FlatKind<QF> {
     #[inline(always)]
-    fn draw_with<D: DepthValue, St: SpanStarts<2>>(
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<1>>(
         &self,
-        frame: &mut Framebuffer<'_>,
-        depth: &mut DepthBuffer<'_, D>,
-        starts: St,
-        width: u32,
-    ) -> Result<(u32, u32), DrawError> {
-        // ExactRun costs a 64-bit division per span start and saves ~6 instructions per pixel.
-        // Threshold measured with callgrind on the standard cube, sphere and bunny (4, 16, 32 and
-        // never tried; 16 was best on all three), when every triangle took the general plane;
-        // small planes keep Exact ([`SpanStarts::RUNS_PAY`]).
-        if St::RUNS_PAY && (MIN_RUN_WIDTH..=starts.run_limit()).contains(&width) {
-            self.draw::<D, ExactRunFrom, St>(frame, depth, starts)
-        } else {
-            self.draw::<D, Exact, St>(frame, depth, starts)
+        colours: &mut [u8],
+        depths: &mut [D],
+        [z]: [I; 1],
+        _: &St,
+        x: i32,
+        y: i32,
+    ) -> u32 {
+        let shading = Gouraud {
+            luminance: self.luminance,
+            quantizer: (self.quantizer_at)(x, y),
+        };
+        depth_span(colours, depths, z, shading)
+    }
+}
+
+/// Exact Gouraud: depth and luminance planes.
+struct ExactKind<QF>(QF);
+
+impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for ExactKind<QF> {
+    #[inline(always)]
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>>(
+        &self,
+        colours: &mut [u8],
+        depths: &mut [D],
+        [z, luminance]: [I; 2],
+        _: &St,
+        x: i32,
+        y: i32,
+    ) -> u32 {
+        let shading = Gouraud {
+            luminance,
+            quantizer: (self.0)(x, y),
+        };
+        depth_span(colours, depths, z, shading)
+    }
+}
+
+/// Fast Gouraud: the exact depth, the luminance as a 16.16 [`Dda`](super::attributes::Dda)
+/// (its start costs a division: only this kind computes it).
+struct FastKind<QF>(QF);
+
+impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
+    #[inline(always)]
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>>(
+        &self,
+        colours: &mut [u8],
+        depths: &mut [D],
+        [z, _]: [I; 2],
+        starts: &St,
+        x: i32,
+        y: i32,
+    ) -> u32 {
+        let shading = Gouraud {
+            luminance: starts.dda_at(1, x, y),
+            quantizer: (self.0)(x, y),
+        };
+        depth_span(colours, depths, z, shading)
+    }
+}
+
+/// The colour and depth buffers of one triangle as whole slices, sliced per span without the
+/// per-span row and column checks of [`Framebuffer::span_mut`]: the spans come from
+/// [`fill_triangle`] inside [`drawable_window`], whose rows both buffers hold and whose
+/// columns are `0..width` of both. Each span slice is still a checked `get_mut` (a span outside
+/// the slices is skipped, never a panic).
+struct Targets<'t, D> {
+    colours: &'t mut [u8],
+    colour_stride: usize,
+    colour_top: i32,
+    depths: &'t mut [D],
+    depth_stride: usize,
+    depth_top: i32,
+}
+
+impl<'t, D: DepthValue> Targets<'t, D> {
+    #[inline(always)]
+    fn new(frame: &'t mut Framebuffer<'_>, depth: &'t mut DepthBuffer<'_, D>) -> Self {
+        let (colour_stride, colour_top) = (frame.stride(), frame.top());
+        let (depth_stride, depth_top) = (depth.width() as usize, depth.top());
+        Targets {
+            colours: frame.pixels_mut(),
+            colour_stride,
+            colour_top,
+            depths: depth.samples_mut(),
+            depth_stride,
+            depth_top,
         }
     }
 
+    /// The pixels of span `s` (inside the drawable window) in both buffers.
     #[inline(always)]
-    fn draw<D: DepthValue, F: FromExact, St: SpanStarts<2>>(
-        &self,
-        frame: &mut Framebuffer<'_>,
-        depth: &mut DepthBuffer<'_, D>,
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
+        let len = s.x1.wrapping_sub(s.x0) as usize;
+        let at = |y: i32, top: i32, stride: usize| {
+            (y.wrapping_sub(top) as usize)
+                .wrapping_mul(stride)
+                .wrapping_add(s.x0 as usize)
+        };
+        let c = at(s.y, self.colour_top, self.colour_stride);
+        let z = at(s.y, self.depth_top, self.depth_stride);
+        Some((
+            self.colours.get_mut(c..c.wrapping_add(len))?,
+            self.depths.get_mut(z..z.wrapping_add(len))?,
+        ))
+    }
+}
+
+/// One triangle's span drawing, set up (see [`draw_triangle_quantized`]).
+struct TriangleSpans<'t, D, const S: u32> {
+    v: [SubpixelPoint<S>; 3],
+    window: Window,
+    targets: Targets<'t, D>,
+}
+
+impl<D: DepthValue, const S: u32> TriangleSpans<'_, D, S> {
+    /// Constant depth `z` and flat luminance `lum`: no plane. A triangle too large for a plane
+    /// still reports [`DrawError::TooLarge`], as the other kinds do.
+    #[inline(always)]
+    fn constant<Q: Quantizer>(
+        mut self,
+        z: u32,
+        lum: u32,
+        quantizer_at: impl Fn(i32, i32) -> Q,
+    ) -> Result<(u32, u32), DrawError> {
+        if SmallPlane::<1, S>::fits(&self.v) {
+            // Below the small planes' limit the area is far below the general limit.
+        } else if let Err(e) = AttributePlane::<1, S>::new(self.v, [[z]; 3]) {
+            return match e {
+                PlaneError::Degenerate => Ok((0, 0)),
+                PlaneError::TooLarge => Err(DrawError::TooLarge),
+            };
+        }
+        let (mut covered, mut written) = (0u32, 0u32);
+        let targets = &mut self.targets;
+        fill_triangle(self.v, &self.window, |s| {
+            covered += s.x1.wrapping_sub(s.x0) as u32;
+            let Some((c, zs)) = targets.span(&s) else {
+                return;
+            };
+            let shading = Gouraud {
+                luminance: Constant(lum),
+                quantizer: quantizer_at(s.x0, s.y),
+            };
+            written += depth_span(c, zs, Constant(z), shading);
+        })
+        .map_err(DrawError::Fill)?;
+        Ok((covered, written))
+    }
+
+    /// The exact plane of `values` (attribute 0 is the depth), small or general, and the span
+    /// loop over it with span kind `kind`.
+    #[inline(always)]
+    fn planar<K: SpanKind<N>, const N: usize>(
+        self,
+        values: [[u32; N]; 3],
+        kind: K,
+    ) -> Result<(u32, u32), DrawError> {
+        // Small planes step plain Exact values: their spans are short, and ExactRun starts
+        // (a 64-bit division each) measured dearer on the Cortex-M4 (standard sphere +10 %).
+        if let Some(small) = SmallPlane::<N, S>::new(self.v, values) {
+            return self.run::<Exact, _, K, N>(small, kind);
+        }
+        let plane = match AttributePlane::<N, S>::new(self.v, values) {
+            Ok(p) => p,
+            Err(PlaneError::Degenerate) => return Ok((0, 0)),
+            Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
+        };
+        // The longest span is at most the bounding box's width in pixels plus one.
+        let xs = self.v.map(|p| p.x);
+        let width =
+            ((xs.iter().max().unwrap_or(&0) - xs.iter().min().unwrap_or(&0)) >> S) as u32 + 2;
+        // ExactRun costs a 64-bit division per span start and saves ~6 instructions per pixel.
+        // Threshold measured with callgrind on the standard cube, sphere and bunny (4, 16, 32 and
+        // never tried; 16 was best on all three), when every triangle took the general plane.
+        if (MIN_RUN_WIDTH..=plane.run_limit()).contains(&width) {
+            self.run::<ExactRunFrom, _, K, N>(RowStarts::new(&plane), kind)
+        } else {
+            self.run::<Exact, _, K, N>(RowStarts::new(&plane), kind)
+        }
+    }
+
+    /// The span loop: every span of the fill, sliced from the buffers, its exact starts taken
+    /// from `starts` (made [`ExactRun`]s by `F`), written by `kind`.
+    #[inline(always)]
+    fn run<F: FromExact, St: SpanStarts<N>, K: SpanKind<N>, const N: usize>(
+        mut self,
         mut starts: St,
+        kind: K,
     ) -> Result<(u32, u32), DrawError> {
         let (mut covered, mut written) = (0u32, 0u32);
-        let mut per_triangle: Option<[F; 2]> = None;
+        let mut per_triangle: Option<[F; N]> = None;
+        let targets = &mut self.targets;
         fill_triangle(self.v, &self.window, |s| {
-            let (x0, x1) = (s.x0 as usize, s.x1 as usize);
-            covered += (x1 - x0) as u32;
-            let (Some(c), Some(z)) = (frame.span_mut(s.y, x0, x1), depth.span_mut(s.y, x0, x1))
-            else {
+            covered += s.x1.wrapping_sub(s.x0) as u32;
+            let Some((c, z)) = targets.span(&s) else {
                 return;
             };
-            let quantizer = (self.quantizer_at)(s.x0, s.y);
-            let flat = Gouraud {
-                luminance: self.flat_lum,
-                quantizer,
-            };
-            if let (Some(zc), ShadeMode::Flat) = (self.const_depth, self.mode) {
-                written += depth_span(c, z, zc, flat);
-                return;
-            }
-            let [ze, le] = starts.exact_at(s.x0, s.y);
-            let [fz, fl] = per_triangle.get_or_insert_with(|| [F::prepare(&ze), F::prepare(&le)]);
-            let (ze, le) = (fz.start(&ze), fl.start(&le));
-            let gouraud = Gouraud {
-                luminance: le,
-                quantizer,
-            };
-            // The DDA start costs a division: only the fast mode computes it.
-            let fast = || Gouraud {
-                luminance: starts.dda_at(1, s.x0, s.y),
-                quantizer,
-            };
-            written += match (self.const_depth, self.mode) {
-                (Some(zc), ShadeMode::Flat) => depth_span(c, z, zc, flat),
-                (None, ShadeMode::Flat) => depth_span(c, z, ze, flat),
-                (Some(zc), ShadeMode::GouraudFast) => depth_span(c, z, zc, fast()),
-                (Some(zc), ShadeMode::GouraudExact | ShadeMode::Phong) => {
-                    depth_span(c, z, zc, gouraud)
-                }
-                (None, ShadeMode::GouraudFast) => depth_span(c, z, ze, fast()),
-                (None, ShadeMode::GouraudExact | ShadeMode::Phong) => depth_span(c, z, ze, gouraud),
-            };
+            let e = starts.exact_at(s.x0, s.y);
+            let f = per_triangle.get_or_insert_with(|| e.each_ref().map(F::prepare));
+            let attrs = core::array::from_fn(|i| f[i].start(&e[i]));
+            written += kind.write(c, z, attrs, &starts, s.x0, s.y);
         })
         .map_err(DrawError::Fill)?;
         Ok((covered, written))

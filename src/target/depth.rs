@@ -112,6 +112,14 @@ impl<'a, D: DepthValue> DepthBuffer<'a, D> {
         self.samples.get_mut(s..s + self.width as usize)
     }
 
+    /// The whole buffer (rows `width` apart, the first row at absolute row [`top`](Self::top)),
+    /// for loops that slice many spans and have checked their rows and columns once (the
+    /// triangle writers, against the window both buffers hold).
+    #[inline(always)]
+    pub fn samples_mut(&mut self) -> &mut [D] {
+        self.samples
+    }
+
     /// Samples `x0..x1` of row `y` (absolute), or `None` unless `x0 ≤ x1 ≤ width` and the row
     /// is held. One range check: what the raster's span loops use.
     #[inline(always)]
