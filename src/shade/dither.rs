@@ -69,6 +69,15 @@ impl Quantizer for Bayer4 {
     }
 
     #[inline(always)]
+    fn index_byte(&self, lum: u8) -> u8 {
+        let levels = self.ramp.levels as u32;
+        let t = self.row[(self.phase & 3) as usize] as u32;
+        let level =
+            ((lum as u32 * levels + t).saturating_sub(128) >> 8).min(levels.saturating_sub(1));
+        self.ramp.first.wrapping_add(level as u8)
+    }
+
+    #[inline(always)]
     fn step(&mut self) {
         self.phase = self.phase.wrapping_add(1);
     }

