@@ -94,6 +94,12 @@ pub trait Quantizer: Copy {
     fn index_byte(&self, lum: u8) -> u8 {
         self.index(lum as u32)
     }
+    /// `Some(first)` when the mapping is `first + lum` (mod 256) at every pixel, as a ramp of
+    /// 256 levels: the triangle writers then interpolate `first + lum` itself and store it.
+    #[inline(always)]
+    fn offset(&self) -> Option<u8> {
+        None
+    }
     /// Moves one pixel right.
     fn step(&mut self);
 }
@@ -110,6 +116,11 @@ impl Quantizer for LuminanceRamp {
     fn index_byte(&self, lum: u8) -> u8 {
         self.first
             .wrapping_add(((lum as u32 * self.levels as u32) >> 8) as u8)
+    }
+
+    #[inline(always)]
+    fn offset(&self) -> Option<u8> {
+        (self.levels == 256).then_some(self.first)
     }
 
     #[inline(always)]
@@ -164,6 +175,28 @@ impl<L: Interpolant, Q: Quantizer> Shading for InRange<L, Q> {
         self.luminance.step();
         self.quantizer.step();
     }
+}
+
+/// The identity mapping, for luminances already offset to palette indices
+/// ([`Quantizer::offset`]): the index is the value's low byte.
+#[derive(Debug, Clone, Copy)]
+struct Direct;
+
+impl Quantizer for Direct {
+    const IS_CONSTANT: bool = true;
+
+    #[inline(always)]
+    fn index(&self, lum: u32) -> u8 {
+        lum as u8
+    }
+
+    #[inline(always)]
+    fn index_byte(&self, lum: u8) -> u8 {
+        lum
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {}
 }
 
 /// How a triangle's luminance becomes palette indices.
@@ -337,8 +370,22 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
                 quantizer_at,
             },
         ),
-        ShadeMode::GouraudFast => spans.planar(values, FastKind(quantizer_at)),
-        ShadeMode::GouraudExact | ShadeMode::Phong => spans.planar(values, ExactKind(quantizer_at)),
+        _ => {
+            // A 256-level ramp adds its first index: interpolating `first + lum` gives the
+            // same values shifted (exact rounding and the 16.16 start commute with adding an
+            // integer), and the loops store them as they are, with two fewer live values.
+            if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
+                let values = values.map(|[z, l]| [z, l + first as u32]);
+                return match mode {
+                    ShadeMode::GouraudFast => spans.planar(values, FastKind(|_, _| Direct)),
+                    _ => spans.planar(values, ExactKind(|_, _| Direct)),
+                };
+            }
+            match mode {
+                ShadeMode::GouraudFast => spans.planar(values, FastKind(quantizer_at)),
+                _ => spans.planar(values, ExactKind(quantizer_at)),
+            }
+        }
     }
 }
 
@@ -747,6 +794,62 @@ mod tests {
                 assert_eq!(fb.pixel(x, y), Some(want as u8), "({x},{y})");
             }
         }
+    }
+
+    /// A 256-level ramp's triangles interpolate `first + lum` directly
+    /// ([`Quantizer::offset`]): the same pixels as mapping each luminance through the ramp,
+    /// wrap-around past index 255 included, for exact and fast Gouraud.
+    #[test]
+    fn offset_ramps_draw_what_the_ramp_maps() {
+        /// The same mapping as the ramp, without offering the offset.
+        #[derive(Clone, Copy)]
+        struct Mapped(LuminanceRamp);
+        impl Quantizer for Mapped {
+            const IS_CONSTANT: bool = true;
+            fn index(&self, lum: u32) -> u8 {
+                self.0.index(lum)
+            }
+            fn step(&mut self) {}
+        }
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut rnd = |m: u32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % m as u64) as u32
+        };
+        let mut pixels = 0;
+        for _ in 0..200 {
+            let tri = [0; 3].map(|_| {
+                SubpixelPoint::<4>::new(rnd(24 * 16) as i32 - 64, rnd(24 * 16) as i32 - 64)
+            });
+            let values = [0; 3].map(|_| [rnd(u32::MAX), rnd(256)]);
+            let ramp = LuminanceRamp {
+                first: rnd(256) as u8,
+                levels: 256,
+            };
+            for mode in [ShadeMode::GouraudExact, ShadeMode::GouraudFast] {
+                let draw = |mapped: bool| {
+                    let mut px = [0u8; 20 * 20];
+                    let mut zs = [0u32; 20 * 20];
+                    let mut fb = Framebuffer::new(&mut px, 20, 20).unwrap();
+                    let mut zb = DepthBuffer::new(&mut zs, 20, 20).unwrap();
+                    zb.clear();
+                    let r = if mapped {
+                        draw_triangle_quantized(&mut fb, &mut zb, tri, values, mode, |_, _| {
+                            Mapped(ramp)
+                        })
+                    } else {
+                        draw_triangle_quantized(&mut fb, &mut zb, tri, values, mode, |_, _| ramp)
+                    };
+                    (r, px)
+                };
+                let (direct, mapped) = (draw(false), draw(true));
+                assert_eq!(direct, mapped, "{tri:?} {values:?} {ramp:?} {mode:?}");
+                pixels += direct.0.map_or(0, |(covered, _)| covered);
+            }
+        }
+        assert!(pixels > 10_000, "{pixels}");
     }
 
     /// Luminances above 255 saturate at the vertices, in every mode and with the dithered
