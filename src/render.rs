@@ -190,40 +190,56 @@ enum Path {
 
 /// A polygon's fate in a frame drawn in bands, decided once by [`Renderer::polygon_rows`]:
 /// the rows `top..bottom` its projection can touch (clamped to `0..=65535`), never drawn
-/// (rejected or culled), or needing the clipper in every band it reaches. 4 bytes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// (rejected or culled), or needing the clipper in every band it reaches. 4 bytes: one word,
+/// `top | bottom << 16`, so that a band's scan tests `bottom` with one comparison.
+#[derive(Clone, Copy, PartialEq, Eq, Default)]
 pub struct PolygonRows {
-    top: u16,
-    bottom: u16,
+    packed: u32,
+}
+
+impl core::fmt::Debug for PolygonRows {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("PolygonRows")
+            .field("top", &self.top())
+            .field("bottom", &self.bottom())
+            .finish()
+    }
 }
 
 impl PolygonRows {
     /// Rejected or culled: no band draws it.
-    pub const NEVER: PolygonRows = PolygonRows {
-        top: u16::MAX,
-        bottom: 0,
-    };
+    pub const NEVER: PolygonRows = PolygonRows::pack(u16::MAX, 0);
     /// Crosses a frustum plane: every band runs the clipper (and the raster's own band limit).
-    pub const CLIP: PolygonRows = PolygonRows {
-        top: u16::MAX,
-        bottom: u16::MAX,
-    };
+    pub const CLIP: PolygonRows = PolygonRows::pack(u16::MAX, u16::MAX);
+
+    const fn pack(top: u16, bottom: u16) -> PolygonRows {
+        PolygonRows {
+            packed: top as u32 | (bottom as u32) << 16,
+        }
+    }
+
+    #[inline(always)]
+    const fn top(self) -> u16 {
+        self.packed as u16
+    }
+
+    #[inline(always)]
+    const fn bottom(self) -> u16 {
+        (self.packed >> 16) as u16
+    }
 
     /// Rows `top..bottom` (half-open, any `i32`), clamped to `0..=65535` (band rows are
     /// within that range, so the overlap test is unchanged). A clamped `(65535, 65535)` is
     /// [`CLIP`](Self::CLIP), which draws the same pixels by the slower path.
     pub fn rows(top: i32, bottom: i32) -> PolygonRows {
         let c = |r: i32| r.clamp(0, u16::MAX as i32) as u16;
-        PolygonRows {
-            top: c(top),
-            bottom: c(bottom),
-        }
+        PolygonRows::pack(c(top), c(bottom))
     }
 
     /// True when the polygon may touch rows `band.0..band.1`.
     #[inline(always)]
     fn meets(self, band: (i32, i32)) -> bool {
-        (self.bottom as i32) > band.0 && (self.top as i32) < band.1
+        (self.bottom() as i32) > band.0 && (self.top() as i32) < band.1
     }
 }
 
@@ -406,11 +422,10 @@ impl<const S: u32> Renderer<S> {
             table: None,
         };
         if let PolygonSizes::Uniform(3) = mesh.sizes() {
-            for (o, poly) in out.iter_mut().zip(mesh.indices().chunks_exact(3)) {
-                *o = stage.classify_triangle(poly, stats)?;
-            }
+            stage.classify_triangles(out, stats)?;
         } else {
             for (o, poly) in out.iter_mut().zip(mesh.polygons()) {
+                stats.polygons_in += 1;
                 *o = stage.classify(poly, stats)?;
             }
         }
@@ -722,20 +737,43 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             // rows below the band's end (clamped so that the clipping entry and rows up to
             // 65535 pass) and above its start; `path` then decides exactly.
             let (b0, b1) = self.rows;
-            let (c0, c1) = (b0.min(u16::MAX as i32 - 1), b1.min(u16::MAX as i32 + 1));
+            let (c0, c1) = (
+                b0.clamp(-1, u16::MAX as i32 - 1),
+                b1.min(u16::MAX as i32 + 1),
+            );
+            // `bottom > c0` on the packed word: `c0 + 1` is in `0..=65535`.
+            let below = ((c0 + 1) as u32) << 16;
             let maybe = |r: &PolygonRows| {
-                r.bottom as i32 > c0 && ((r.top as i32) < c1 || *r == PolygonRows::CLIP)
+                r.packed >= below && ((r.top() as i32) < c1 || *r == PolygonRows::CLIP)
             };
-            let mut scan = table.iter();
-            while let Some(&r) = scan.find(|r| maybe(r)) {
-                let pi = table.len() - scan.len() - 1;
+            let mut one = |pi: usize, r: PolygonRows| {
                 let Some(poly) = indices.get(3 * pi..3 * pi + 3) else {
-                    break;
+                    return Ok(());
                 };
                 match path(r) {
-                    Path::Skip => {}
-                    Path::Projected => self.table_triangle(pi, poly, stats, attrs, draw)?,
-                    Path::Clip => self.clipped(pi, poly, stats, attrs, draw)?,
+                    Path::Skip => Ok(()),
+                    Path::Projected => self.table_triangle(pi, poly, stats, attrs, draw),
+                    Path::Clip => self.clipped(pi, poly, stats, attrs, draw),
+                }
+            };
+            // Two entries per step: most pairs are passed over with two tests.
+            let pairs = table.chunks_exact(2);
+            let odd = pairs.remainder();
+            for (j, pair) in pairs.enumerate() {
+                if let [r0, r1] = *pair {
+                    if maybe(&r0) || maybe(&r1) {
+                        if maybe(&r0) {
+                            one(2 * j, r0)?;
+                        }
+                        if maybe(&r1) {
+                            one(2 * j + 1, r1)?;
+                        }
+                    }
+                }
+            }
+            if let [r] = *odd {
+                if maybe(&r) {
+                    one(table.len() - 1, r)?;
                 }
             }
         } else {
@@ -862,10 +900,9 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     }
 
     /// The band pre-pass of one polygon (see [`Renderer::polygon_rows`]); the same decisions
-    /// as [`decide`](Self::decide).
+    /// as [`decide`](Self::decide). The caller counts the polygon in `polygons_in`.
     #[inline(always)]
     fn classify(&self, poly: &[u16], stats: &mut RenderStats) -> Result<PolygonRows, RenderError> {
-        stats.polygons_in += 1;
         let any = self.outcodes(poly, stats)?;
         if any == REJECTED {
             return Ok(PolygonRows::NEVER);
@@ -887,10 +924,49 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         })
     }
 
-    /// [`classify`](Self::classify) for a triangle (`poly`, 3 indices): three vertices in
-    /// range and projected (the common case) are classified from one read of each.
+    /// The band pre-pass of a triangle mesh (see [`Renderer::polygon_rows`]), into `out` (out
+    /// of line, so that its loop does not depend on the caller's code).
+    #[inline(never)]
+    fn classify_triangles(
+        &self,
+        out: &mut [PolygonRows],
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        if self.object.cull_back_faces {
+            self.classify_each::<true>(out, stats)
+        } else {
+            self.classify_each::<false>(out, stats)
+        }
+    }
+
+    /// [`classify_triangles`](Self::classify_triangles) with the object's culling flag
+    /// `CULL`; every triangle is counted in once (on an error, those up to the failing one).
     #[inline(always)]
-    fn classify_triangle(
+    fn classify_each<const CULL: bool>(
+        &self,
+        out: &mut [PolygonRows],
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        let triangles = self.object.mesh.indices().chunks_exact(3);
+        let n = out.len().min(triangles.len());
+        for (pi, (o, poly)) in out.iter_mut().zip(triangles).enumerate() {
+            match self.classify_triangle::<CULL>(poly, stats) {
+                Ok(r) => *o = r,
+                Err(e) => {
+                    stats.polygons_in += pi as u32 + 1;
+                    return Err(e);
+                }
+            }
+        }
+        stats.polygons_in += n as u32;
+        Ok(())
+    }
+
+    /// [`classify`](Self::classify) for a triangle (`poly`, 3 indices) of an object whose
+    /// culling flag is `CULL`, not counted in `polygons_in`: three vertices in range and
+    /// projected (the common case) are classified from one read of each.
+    #[inline(always)]
+    fn classify_triangle<const CULL: bool>(
         &self,
         poly: &[u16],
         stats: &mut RenderStats,
@@ -901,9 +977,8 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
                 (p.get(i0 as usize), p.get(i1 as usize), p.get(i2 as usize))
             {
                 if a.outcode | b.outcode | c.outcode == 0 {
-                    stats.polygons_in += 1;
                     let (a, b, c) = (a.screen, b.screen, c.screen);
-                    if self.object.cull_back_faces && !front_triangle(a, b, c) {
+                    if CULL && !front_triangle(a, b, c) {
                         stats.culled += 1;
                         return Ok(PolygonRows::NEVER);
                     }
