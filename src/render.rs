@@ -6,10 +6,13 @@
 //! 1. **Vertex stage** ([`Renderer::prepare`]), once per vertex: model → observer frame with one
 //!    combined [`Affine3`], the vertex's [`Frustum`] outcode, and, when it is inside the
 //!    frustum (near, far and the guard band), its projection: sub-pixel screen position and
-//!    normalised depth; for lit Gouraud objects, the vertex's lit level. Results go to a caller-provided scratch slice (no heap), one
+//!    normalised depth; for lit Gouraud objects, the vertex's lit level, and for levels given per
+//!    vertex, a copy of the vertex's level. Results go to a caller-provided scratch slice (no heap), one
 //!    [`PreparedVertex`] per mesh vertex.
-//! 2. **Polygon stage** ([`Renderer::rasterize`]), once per polygon (one generic loop,
-//!    `PolygonStage`, for every corner attribute and triangle writer): outcodes all outside one
+//! 2. **Polygon stage** ([`Renderer::rasterize`]), once per polygon (`PolygonStage`, generic
+//!    over corner attributes and triangle writer; triangle meshes have their own loop, which
+//!    reads each vertex once and, for an object drawn in one pass with culling, tests no
+//!    per-object flag per triangle): outcodes all outside one
 //!    plane → rejected; all inside → back-face test on the projected polygon's signed area
 //!    (exact integers) and drawn from the prepared vertices; otherwise → back-face test in the
 //!    observer frame (exact, `i128`), Sutherland–Hodgman against the planes it crosses
@@ -156,8 +159,9 @@ pub struct PreparedVertex<const S: u32> {
     pub depth: u32,
     /// Frustum outcode: bit `i` set when outside plane `i`; 0 when projected.
     pub outcode: u8,
-    /// Lit level `0..=255` of a Gouraud-shaded lit object's vertex (0 otherwise); it fits in
-    /// the structure's padding.
+    /// Level `0..=255` of the vertex: lit, for a Gouraud-shaded lit object, or given
+    /// ([`Intensities::PerVertex`], 0 past the end of a short table), where the polygon stage
+    /// reads it with the vertex; 0 otherwise. It fits in the structure's padding.
     pub level: u8,
 }
 
@@ -186,40 +190,56 @@ enum Path {
 
 /// A polygon's fate in a frame drawn in bands, decided once by [`Renderer::polygon_rows`]:
 /// the rows `top..bottom` its projection can touch (clamped to `0..=65535`), never drawn
-/// (rejected or culled), or needing the clipper in every band it reaches. 4 bytes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// (rejected or culled), or needing the clipper in every band it reaches. 4 bytes: one word,
+/// `top | bottom << 16`, so that a band's scan tests `bottom` with one comparison.
+#[derive(Clone, Copy, PartialEq, Eq, Default)]
 pub struct PolygonRows {
-    top: u16,
-    bottom: u16,
+    packed: u32,
+}
+
+impl core::fmt::Debug for PolygonRows {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("PolygonRows")
+            .field("top", &self.top())
+            .field("bottom", &self.bottom())
+            .finish()
+    }
 }
 
 impl PolygonRows {
     /// Rejected or culled: no band draws it.
-    pub const NEVER: PolygonRows = PolygonRows {
-        top: u16::MAX,
-        bottom: 0,
-    };
+    pub const NEVER: PolygonRows = PolygonRows::pack(u16::MAX, 0);
     /// Crosses a frustum plane: every band runs the clipper (and the raster's own band limit).
-    pub const CLIP: PolygonRows = PolygonRows {
-        top: u16::MAX,
-        bottom: u16::MAX,
-    };
+    pub const CLIP: PolygonRows = PolygonRows::pack(u16::MAX, u16::MAX);
+
+    const fn pack(top: u16, bottom: u16) -> PolygonRows {
+        PolygonRows {
+            packed: top as u32 | (bottom as u32) << 16,
+        }
+    }
+
+    #[inline(always)]
+    const fn top(self) -> u16 {
+        self.packed as u16
+    }
+
+    #[inline(always)]
+    const fn bottom(self) -> u16 {
+        (self.packed >> 16) as u16
+    }
 
     /// Rows `top..bottom` (half-open, any `i32`), clamped to `0..=65535` (band rows are
     /// within that range, so the overlap test is unchanged). A clamped `(65535, 65535)` is
     /// [`CLIP`](Self::CLIP), which draws the same pixels by the slower path.
     pub fn rows(top: i32, bottom: i32) -> PolygonRows {
         let c = |r: i32| r.clamp(0, u16::MAX as i32) as u16;
-        PolygonRows {
-            top: c(top),
-            bottom: c(bottom),
-        }
+        PolygonRows::pack(c(top), c(bottom))
     }
 
     /// True when the polygon may touch rows `band.0..band.1`.
     #[inline(always)]
     fn meets(self, band: (i32, i32)) -> bool {
-        (self.bottom as i32) > band.0 && (self.top as i32) < band.1
+        (self.bottom() as i32) > band.0 && (self.top() as i32) < band.1
     }
 }
 
@@ -297,6 +317,12 @@ impl<const S: u32> Renderer<S> {
             }
             _ => None,
         };
+        // Levels given per vertex are copied beside the vertex, where the polygon stage reads
+        // them with it.
+        let given = match object.intensities {
+            Intensities::PerVertex(t) => t,
+            _ => &[],
+        };
         for (i, (out, v)) in scratch.iter_mut().zip(vertices).enumerate() {
             let view = m.transform_point(*v);
             let mut outcode = self.frustum.outcode(view);
@@ -315,7 +341,7 @@ impl<const S: u32> Renderer<S> {
                     let n = [n[0] as i64, n[1] as i64, n[2] as i64];
                     self.illumination.intensity(&material, view, n)
                 }
-                None => 0,
+                None => given.get(i).copied().unwrap_or(0),
             };
             *out = PreparedVertex {
                 view,
@@ -396,11 +422,10 @@ impl<const S: u32> Renderer<S> {
             table: None,
         };
         if let PolygonSizes::Uniform(3) = mesh.sizes() {
-            for (o, poly) in out.iter_mut().zip(mesh.indices().chunks_exact(3)) {
-                *o = stage.classify(poly, stats)?;
-            }
+            stage.classify_triangles(out, stats)?;
         } else {
             for (o, poly) in out.iter_mut().zip(mesh.polygons()) {
+                stats.polygons_in += 1;
                 *o = stage.classify(poly, stats)?;
             }
         }
@@ -465,7 +490,7 @@ impl<const S: u32> Renderer<S> {
             };
             return stage.run(
                 stats,
-                |_, poly, k| normal(poly[k]),
+                |_, poly, k, _| normal(poly[k]),
                 |c| {
                     let corner = |c: &Corner<S, 3>| PhongVertex {
                         screen: c.screen,
@@ -477,30 +502,39 @@ impl<const S: u32> Renderer<S> {
                 },
             );
         }
-        if let Intensities::Lit { material, .. } = object.intensities {
-            // Flat: one level per polygon, computed for its first corner and reused; Gouraud:
-            // the vertex stage's levels.
-            let model_view = self.model_view(object)?;
-            let last = Cell::new((usize::MAX, 0u8));
-            let level = |pi: usize, poly: &[u16], k: usize| {
-                if object.shade != ShadeMode::Flat {
-                    return prepared.get(poly[k] as usize).map_or(0, |p| p.level);
-                }
-                if last.get().0 != pi {
-                    let l = light_polygon(mesh, poly, &model_view, &self.illumination, &material);
-                    last.set((pi, l));
-                }
-                last.get().1
-            };
-            return stage.run(
-                stats,
-                |pi, poly, k| [level(pi, poly, k) as i32],
-                |c| draw_levels(frame, depth, object, c),
-            );
+        match object.intensities {
+            Intensities::Lit { material, .. } if object.shade == ShadeMode::Flat => {
+                // One level per polygon, computed for its first corner and reused.
+                let model_view = self.model_view(object)?;
+                let last = Cell::new((usize::MAX, 0u8));
+                let level = |pi: usize, poly: &[u16]| {
+                    if last.get().0 != pi {
+                        let l =
+                            light_polygon(mesh, poly, &model_view, &self.illumination, &material);
+                        last.set((pi, l));
+                    }
+                    last.get().1
+                };
+                return stage.run(
+                    stats,
+                    |pi, poly, _, _| [level(pi, poly) as i32],
+                    |c| draw_levels(frame, depth, object, c),
+                );
+            }
+            Intensities::Lit { .. } | Intensities::PerVertex(_) => {
+                // Gouraud-lit or given per vertex: the level the vertex stage stored in the
+                // prepared vertex, read with it.
+                return stage.run(
+                    stats,
+                    |_, _, _, p| [p.map_or(0, |p| p.level as i32)],
+                    |c| draw_levels(frame, depth, object, c),
+                );
+            }
+            _ => {}
         }
         stage.run(
             stats,
-            |pi, poly, k| [object.intensity(pi, poly[k]) as i32],
+            |pi, poly, k, _| [object.intensity(pi, poly[k]) as i32],
             |c| draw_levels(frame, depth, object, c),
         )
     }
@@ -576,7 +610,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     fn run<const N: usize>(
         &self,
         stats: &mut RenderStats,
-        attrs: impl Fn(usize, &[u16], usize) -> [i32; N],
+        attrs: impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         mut draw: impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
         // Two loops in separate functions, so that each keeps its drawing paths inline.
@@ -591,23 +625,94 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     fn run_all<const N: usize>(
         &self,
         stats: &mut RenderStats,
-        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
-        // Triangle meshes (the common case) go through the same body with slices of a known
-        // length, which the compiler unrolls.
+        // Triangle meshes (the common case) have their own loops, which read each vertex
+        // once; other meshes go through `decide` and `follow`.
         if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
-            for (pi, poly) in self.object.mesh.indices().chunks_exact(3).enumerate() {
-                let path = self.decide(poly, stats)?;
-                self.follow(path, pi, poly, stats, attrs, draw)?;
+            // The frame's common case, a culled object drawn in one pass, has its own loop.
+            if !self.banded && self.object.cull_back_faces {
+                self.triangles::<true, N>(stats, attrs, draw)?;
+            } else {
+                self.triangles::<false, N>(stats, attrs, draw)?;
             }
         } else {
             for (pi, poly) in self.object.mesh.polygons().enumerate() {
-                let path = self.decide(poly, stats)?;
-                self.follow(path, pi, poly, stats, attrs, draw)?;
+                stats.polygons_in += 1;
+                self.polygon(pi, poly, stats, attrs, draw)?;
             }
         }
         Ok(())
+    }
+
+    /// Every triangle of a triangle mesh; `UNBANDED_CULLED` when the buffers hold every row
+    /// and the object culls back faces (the flags are then not read per triangle).
+    #[inline(always)]
+    fn triangles<const UNBANDED_CULLED: bool, const N: usize>(
+        &self,
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        // Every triangle is counted in, once (on an error, those up to the failing one); the
+        // polygon index is derived from the iterator, so that the loop carries it only for
+        // attributes that read it.
+        let mut triangles = self.object.mesh.indices().chunks_exact(3);
+        let n = triangles.len();
+        while let Some(poly) = triangles.next() {
+            let pi = n - 1 - triangles.len();
+            let r = self.triangle::<UNBANDED_CULLED, N>(pi, poly, stats, attrs, draw);
+            if r.is_err() {
+                stats.polygons_in += pi as u32 + 1;
+                return r;
+            }
+        }
+        stats.polygons_in += n as u32;
+        Ok(())
+    }
+
+    /// One triangle of a triangle mesh (`poly`, 3 indices) without a table, not counted in
+    /// `polygons_in`: three vertices in range and projected (the common case) go straight to
+    /// [`projected_triangle`](Self::projected_triangle), others through
+    /// [`decide`](Self::decide).
+    #[inline(always)]
+    fn triangle<const UNBANDED_CULLED: bool, const N: usize>(
+        &self,
+        pi: usize,
+        poly: &[u16],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        if let [i0, i1, i2] = *poly {
+            let p = self.prepared;
+            if let (Some(a), Some(b), Some(c)) =
+                (p.get(i0 as usize), p.get(i1 as usize), p.get(i2 as usize))
+            {
+                if a.outcode | b.outcode | c.outcode == 0 {
+                    let v = [a, b, c];
+                    return self
+                        .projected_triangle::<UNBANDED_CULLED, N>(pi, poly, v, stats, attrs, draw);
+                }
+            }
+        }
+        self.polygon(pi, poly, stats, attrs, draw)
+    }
+
+    /// One polygon by [`decide`](Self::decide) and [`follow`](Self::follow), not counted in
+    /// `polygons_in` (out of line: the triangle loops reach it rarely).
+    #[inline(never)]
+    fn polygon<const N: usize>(
+        &self,
+        pi: usize,
+        poly: &[u16],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        let path = self.decide(poly, stats)?;
+        self.follow(path, pi, poly, stats, attrs, draw)
     }
 
     /// The polygons the band table sends to this band (rejection and culling were decided
@@ -617,7 +722,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         &self,
         table: &[PolygonRows],
         stats: &mut RenderStats,
-        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
         let path = |r: PolygonRows| match r {
@@ -626,11 +731,49 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             _ => Path::Skip,
         };
         if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
-            let triangles = self.object.mesh.indices().chunks_exact(3);
-            for ((pi, poly), r) in triangles.enumerate().zip(table) {
-                match path(*r) {
-                    Path::Skip => {}
-                    p => self.follow(p, pi, poly, stats, attrs, draw)?,
+            let indices = self.object.mesh.indices();
+            let table = table.get(..indices.len() / 3).unwrap_or(table);
+            // The scan finds the entries that `path` may draw with one or two tests for most:
+            // rows below the band's end (clamped so that the clipping entry and rows up to
+            // 65535 pass) and above its start; `path` then decides exactly.
+            let (b0, b1) = self.rows;
+            let (c0, c1) = (
+                b0.clamp(-1, u16::MAX as i32 - 1),
+                b1.min(u16::MAX as i32 + 1),
+            );
+            // `bottom > c0` on the packed word: `c0 + 1` is in `0..=65535`.
+            let below = ((c0 + 1) as u32) << 16;
+            let maybe = |r: &PolygonRows| {
+                r.packed >= below && ((r.top() as i32) < c1 || *r == PolygonRows::CLIP)
+            };
+            let mut one = |pi: usize, r: PolygonRows| {
+                let Some(poly) = indices.get(3 * pi..3 * pi + 3) else {
+                    return Ok(());
+                };
+                match path(r) {
+                    Path::Skip => Ok(()),
+                    Path::Projected => self.table_triangle(pi, poly, stats, attrs, draw),
+                    Path::Clip => self.clipped(pi, poly, stats, attrs, draw),
+                }
+            };
+            // Two entries per step: most pairs are passed over with two tests.
+            let pairs = table.chunks_exact(2);
+            let odd = pairs.remainder();
+            for (j, pair) in pairs.enumerate() {
+                if let [r0, r1] = *pair {
+                    if maybe(&r0) || maybe(&r1) {
+                        if maybe(&r0) {
+                            one(2 * j, r0)?;
+                        }
+                        if maybe(&r1) {
+                            one(2 * j + 1, r1)?;
+                        }
+                    }
+                }
+            }
+            if let [r] = *odd {
+                if maybe(&r) {
+                    one(table.len() - 1, r)?;
                 }
             }
         } else {
@@ -641,6 +784,77 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         Ok(())
     }
 
+    /// A triangle of a table that found it projected and in the band: drawn from its prepared
+    /// vertices as [`projected`](Self::projected) does.
+    #[inline(always)]
+    fn table_triangle<const N: usize>(
+        &self,
+        pi: usize,
+        poly: &[u16],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        let p = self.prepared;
+        match *poly {
+            [i0, i1, i2] => match (p.get(i0 as usize), p.get(i1 as usize), p.get(i2 as usize)) {
+                (Some(a), Some(b), Some(c)) => {
+                    self.draw_projected(pi, poly, [a, b, c], stats, attrs, draw)
+                }
+                _ => self.projected(pi, poly, stats, attrs, draw),
+            },
+            _ => self.projected(pi, poly, stats, attrs, draw),
+        }
+    }
+
+    /// A triangle whose three vertices projected (`v`, the prepared vertices of `tri`): the
+    /// band's rows, culling and drawing, as [`decide`](Self::decide) and
+    /// [`projected`](Self::projected) do for it.
+    #[inline(always)]
+    fn projected_triangle<const UNBANDED_CULLED: bool, const N: usize>(
+        &self,
+        pi: usize,
+        tri: &[u16],
+        v: [&PreparedVertex<S>; 3],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        if !UNBANDED_CULLED && self.banded {
+            let (y0, y1, y2) = (v[0].screen.y, v[1].screen.y, v[2].screen.y);
+            let (lo, hi) = (y0.min(y1).min(y2), y0.max(y1).max(y2));
+            if !PolygonRows::rows(ceil_shift(lo, S), ceil_shift(hi, S)).meets(self.rows) {
+                return Ok(());
+            }
+        }
+        let cull = UNBANDED_CULLED || self.object.cull_back_faces;
+        if cull && !front_triangle(v[0].screen, v[1].screen, v[2].screen) {
+            stats.culled += 1;
+            return Ok(());
+        }
+        self.draw_projected(pi, tri, v, stats, attrs, draw)
+    }
+
+    /// Draws a triangle from its three prepared vertices `v` (those of `tri`).
+    #[inline(always)]
+    fn draw_projected<const N: usize>(
+        &self,
+        pi: usize,
+        tri: &[u16],
+        v: [&PreparedVertex<S>; 3],
+        stats: &mut RenderStats,
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
+    ) -> Result<(), RenderError> {
+        let corner = |k: usize| Corner {
+            screen: v[k].screen,
+            depth: v[k].depth,
+            view: v[k].view,
+            attrs: attrs(pi, tri, k, Some(v[k])),
+        };
+        draw_counted([corner(0), corner(1), corner(2)], draw, stats)
+    }
+
     /// Draws one polygon by the path decided for it.
     #[inline(always)]
     fn follow<const N: usize>(
@@ -649,7 +863,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         pi: usize,
         poly: &[u16],
         stats: &mut RenderStats,
-        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
         match path {
@@ -660,10 +874,9 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     }
 
     /// Without a table: rejection, the band's rows (before any other work for projected
-    /// polygons in a band), culling.
+    /// polygons in a band), culling. The caller counts the polygon in `polygons_in`.
     #[inline(always)]
     fn decide(&self, poly: &[u16], stats: &mut RenderStats) -> Result<Path, RenderError> {
-        stats.polygons_in += 1;
         let any = self.outcodes(poly, stats)?;
         if any == REJECTED {
             return Ok(Path::Skip);
@@ -687,10 +900,9 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     }
 
     /// The band pre-pass of one polygon (see [`Renderer::polygon_rows`]); the same decisions
-    /// as [`decide`](Self::decide).
+    /// as [`decide`](Self::decide). The caller counts the polygon in `polygons_in`.
     #[inline(always)]
     fn classify(&self, poly: &[u16], stats: &mut RenderStats) -> Result<PolygonRows, RenderError> {
-        stats.polygons_in += 1;
         let any = self.outcodes(poly, stats)?;
         if any == REJECTED {
             return Ok(PolygonRows::NEVER);
@@ -710,6 +922,72 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         } else {
             PolygonRows::CLIP
         })
+    }
+
+    /// The band pre-pass of a triangle mesh (see [`Renderer::polygon_rows`]), into `out` (out
+    /// of line, so that its loop does not depend on the caller's code).
+    #[inline(never)]
+    fn classify_triangles(
+        &self,
+        out: &mut [PolygonRows],
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        if self.object.cull_back_faces {
+            self.classify_each::<true>(out, stats)
+        } else {
+            self.classify_each::<false>(out, stats)
+        }
+    }
+
+    /// [`classify_triangles`](Self::classify_triangles) with the object's culling flag
+    /// `CULL`; every triangle is counted in once (on an error, those up to the failing one).
+    #[inline(always)]
+    fn classify_each<const CULL: bool>(
+        &self,
+        out: &mut [PolygonRows],
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        let triangles = self.object.mesh.indices().chunks_exact(3);
+        let n = out.len().min(triangles.len());
+        for (pi, (o, poly)) in out.iter_mut().zip(triangles).enumerate() {
+            match self.classify_triangle::<CULL>(poly, stats) {
+                Ok(r) => *o = r,
+                Err(e) => {
+                    stats.polygons_in += pi as u32 + 1;
+                    return Err(e);
+                }
+            }
+        }
+        stats.polygons_in += n as u32;
+        Ok(())
+    }
+
+    /// [`classify`](Self::classify) for a triangle (`poly`, 3 indices) of an object whose
+    /// culling flag is `CULL`, not counted in `polygons_in`: three vertices in range and
+    /// projected (the common case) are classified from one read of each.
+    #[inline(always)]
+    fn classify_triangle<const CULL: bool>(
+        &self,
+        poly: &[u16],
+        stats: &mut RenderStats,
+    ) -> Result<PolygonRows, RenderError> {
+        if let [i0, i1, i2] = *poly {
+            let p = self.prepared;
+            if let (Some(a), Some(b), Some(c)) =
+                (p.get(i0 as usize), p.get(i1 as usize), p.get(i2 as usize))
+            {
+                if a.outcode | b.outcode | c.outcode == 0 {
+                    let (a, b, c) = (a.screen, b.screen, c.screen);
+                    if CULL && !front_triangle(a, b, c) {
+                        stats.culled += 1;
+                        return Ok(PolygonRows::NEVER);
+                    }
+                    let (lo, hi) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
+                    return Ok(PolygonRows::rows(ceil_shift(lo, S), ceil_shift(hi, S)));
+                }
+            }
+        }
+        self.classify(poly, stats)
     }
 
     /// The union of the polygon's vertex outcodes, or [`REJECTED`] (counted) when all are
@@ -753,7 +1031,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         pi: usize,
         poly: &[u16],
         stats: &mut RenderStats,
-        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
         let corner = |k: usize| {
@@ -762,7 +1040,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
                 screen: p.screen,
                 depth: p.depth,
                 view: p.view,
-                attrs: attrs(pi, poly, k),
+                attrs: attrs(pi, poly, k, Some(p)),
             }
         };
         fan(poly.len(), corner, draw, stats)
@@ -774,15 +1052,16 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         pi: usize,
         poly: &[u16],
         stats: &mut RenderStats,
-        attrs: &impl Fn(usize, &[u16], usize) -> [i32; N],
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
         stats.clipped += 1;
         let mut input: Vec<ClipVertex<N>, CLIP_CAPACITY> = Vec::new();
         for (k, &i) in poly.iter().enumerate() {
-            let view = self.prepared.get(i as usize).map_or(Vec3::ZERO, |p| p.view);
+            let p = self.prepared.get(i as usize);
+            let view = p.map_or(Vec3::ZERO, |p| p.view);
             // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
-            let _ = input.push(ClipVertex::new(view, attrs(pi, poly, k)));
+            let _ = input.push(ClipVertex::new(view, attrs(pi, poly, k, p)));
         }
         let clipped = self
             .renderer
@@ -861,6 +1140,21 @@ fn screen_area<const S: u32>(n: usize, p: impl Fn(usize) -> SubpixelPoint<S>) ->
         sum = sum.wrapping_add(bx as i64 * cy as i64 - by as i64 * cx as i64);
     }
     sum
+}
+
+/// True when a projected triangle is a front face, [`screen_area`]`(3, …) < 0`, computed as
+/// `bx·cy + by·(−cx)` (one multiply and one multiply-accumulate). Projected coordinates are
+/// within `±MAX_COORD`, so the differences and their negations are below `2^29` in magnitude
+/// and each product below `2^58`: the sum is exact in `i64`, equal to `screen_area`'s.
+#[inline(always)]
+fn front_triangle<const S: u32>(
+    a: SubpixelPoint<S>,
+    b: SubpixelPoint<S>,
+    c: SubpixelPoint<S>,
+) -> bool {
+    let (bx, by) = (b.x.wrapping_sub(a.x), b.y.wrapping_sub(a.y));
+    let (cx, cy) = (c.x.wrapping_sub(a.x), c.y.wrapping_sub(a.y));
+    (bx as i64 * cy as i64).wrapping_add(by as i64 * cx.wrapping_neg() as i64) < 0
 }
 
 /// Back-face test in the observer frame (eye at the origin): the face is front-facing when
