@@ -11,7 +11,10 @@
 //!    [`WIDTH`] × [`HEIGHT`] framebuffer and returns the number of pixels it wrote (a pixel
 //!    written twice counts twice; keep the count a constant or cheap to compute, since it is
 //!    inside the measured region).
-//! 2. Add one line `Case { name: "my_case", run: my_case },` to [`CASES`].
+//! 2. Add one line `Case { name: "my_case", run: |fb, _| my_case(fb) },` to [`CASES`]. The
+//!    second argument is the harness's full-frame 16-bit depth storage ([`FB_LEN`] samples,
+//!    declared once like an application's depth buffer, contents unspecified: a case that
+//!    uses it clears it, as [`scene::frame`] does with `DepthBuffer::clear`).
 //!
 //! Names are single words (`[a-z0-9_]`), unique. [`CASES`]`[0]` is the empty calibration case;
 //! keep it first. The host test `host-tests/tests/bench_cases.rs` checks names and pixel counts.
@@ -34,171 +37,172 @@ pub const FB_LEN: usize = WIDTH as usize * HEIGHT as usize;
 pub struct Case {
     /// Unique single-word name.
     pub name: &'static str,
-    /// Draws into a cleared `WIDTH × HEIGHT` framebuffer; returns the pixels written.
-    pub run: fn(&mut Framebuffer<'_>) -> u32,
+    /// Draws into a cleared `WIDTH × HEIGHT` framebuffer, with the harness's depth storage
+    /// (`FB_LEN` samples, contents unspecified); returns the pixels written.
+    pub run: fn(&mut Framebuffer<'_>, &mut [u16]) -> u32,
 }
 
 /// All cases, in the order they run. `CASES[0]` is the empty calibration case.
 pub const CASES: &[Case] = &[
     Case {
         name: "empty",
-        run: empty,
+        run: |fb, _| empty(fb),
     },
     Case {
         name: "line_shallow",
-        run: line_shallow,
+        run: |fb, _| line_shallow(fb),
     },
     Case {
         name: "line_diagonal",
-        run: line_diagonal,
+        run: |fb, _| line_diagonal(fb),
     },
     Case {
         name: "line_steep",
-        run: line_steep,
+        run: |fb, _| line_steep(fb),
     },
     Case {
         name: "line_star64",
-        run: line_star64,
+        run: |fb, _| line_star64(fb),
     },
     Case {
         name: "line_short",
-        run: line_short,
+        run: |fb, _| line_short(fb),
     },
     Case {
         name: "line_clipped",
-        run: line_clipped,
+        run: |fb, _| line_clipped(fb),
     },
     Case {
         name: "vertex_quad",
-        run: |fb| scene::vertex_only(fb, &scene::QUAD),
+        run: |fb, _| scene::vertex_only(fb, &scene::QUAD),
     },
     Case {
         name: "vertex_cube",
-        run: |fb| scene::vertex_only(fb, &scene::CUBE),
+        run: |fb, _| scene::vertex_only(fb, &scene::CUBE),
     },
     Case {
         name: "vertex_sphere",
-        run: |fb| scene::vertex_only(fb, &scene::SPHERE),
+        run: |fb, _| scene::vertex_only(fb, &scene::SPHERE),
     },
     Case {
         name: "vertex_bunny",
-        run: |fb| scene::vertex_only(fb, &scene::BUNNY),
+        run: |fb, _| scene::vertex_only(fb, &scene::BUNNY),
     },
     Case {
         name: "fill_quad",
-        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::QUAD),
+        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::QUAD),
     },
     Case {
         name: "fill_cube",
-        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::CUBE),
+        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::CUBE),
     },
     Case {
         name: "fill_sphere",
-        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::SPHERE),
+        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::SPHERE),
     },
     Case {
         name: "fill_sphere_division",
-        run: |fb| scene::fill_only::<DivisionWalker>(fb, &scene::SPHERE),
+        run: |fb, _| scene::fill_only::<DivisionWalker>(fb, &scene::SPHERE),
     },
     Case {
         name: "fill_bunny",
-        run: |fb| scene::fill_only::<IncrementalWalker>(fb, &scene::BUNNY),
+        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::BUNNY),
     },
     Case {
         name: "fill_bunny_division",
-        run: |fb| scene::fill_only::<DivisionWalker>(fb, &scene::BUNNY),
+        run: |fb, _| scene::fill_only::<DivisionWalker>(fb, &scene::BUNNY),
     },
     Case {
         name: "frame_quad",
-        run: |fb| scene::frame(fb, &scene::QUAD, ShadeMode::GouraudExact),
+        run: |fb, depth| scene::frame(fb, depth, &scene::QUAD, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_cube",
-        run: |fb| scene::frame(fb, &scene::CUBE, ShadeMode::GouraudExact),
+        run: |fb, depth| scene::frame(fb, depth, &scene::CUBE, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_sphere",
-        run: |fb| scene::frame(fb, &scene::SPHERE, ShadeMode::GouraudExact),
+        run: |fb, depth| scene::frame(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_sphere_fast",
-        run: |fb| scene::frame(fb, &scene::SPHERE, ShadeMode::GouraudFast),
+        run: |fb, depth| scene::frame(fb, depth, &scene::SPHERE, ShadeMode::GouraudFast),
     },
     Case {
         name: "frame_bunny",
-        run: |fb| scene::frame(fb, &scene::BUNNY, ShadeMode::GouraudExact),
+        run: |fb, depth| scene::frame(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_bunny_fast",
-        run: |fb| scene::frame(fb, &scene::BUNNY, ShadeMode::GouraudFast),
+        run: |fb, depth| scene::frame(fb, depth, &scene::BUNNY, ShadeMode::GouraudFast),
     },
     Case {
         name: "frame_bunny_bands16",
-        run: |fb| scene::frame_in_bands(fb, &scene::BUNNY, 16),
+        run: |fb, _| scene::frame_in_bands(fb, &scene::BUNNY, 16),
     },
     Case {
         name: "lit_sphere_flat",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Flat, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Flat, false),
     },
     Case {
         name: "lit_sphere_flat_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Flat, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Flat, true),
     },
     Case {
         name: "lit_sphere_gouraud_fast",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudFast, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudFast, false),
     },
     Case {
         name: "lit_sphere_gouraud_fast_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudFast, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudFast, true),
     },
     Case {
         name: "lit_sphere_gouraud_exact",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudExact, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact, false),
     },
     Case {
         name: "lit_sphere_gouraud_exact_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::GouraudExact, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact, true),
     },
     Case {
         name: "lit_sphere_phong",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Phong, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Phong, false),
     },
     Case {
         name: "lit_sphere_phong_dither",
-        run: |fb| scene::lit(fb, &scene::SPHERE, ShadeMode::Phong, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Phong, true),
     },
     Case {
         name: "lit_bunny_flat",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Flat, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Flat, false),
     },
     Case {
         name: "lit_bunny_flat_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Flat, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Flat, true),
     },
     Case {
         name: "lit_bunny_gouraud_fast",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudFast, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudFast, false),
     },
     Case {
         name: "lit_bunny_gouraud_fast_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudFast, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudFast, true),
     },
     Case {
         name: "lit_bunny_gouraud_exact",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudExact, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact, false),
     },
     Case {
         name: "lit_bunny_gouraud_exact_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::GouraudExact, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact, true),
     },
     Case {
         name: "lit_bunny_phong",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Phong, false),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Phong, false),
     },
     Case {
         name: "lit_bunny_phong_dither",
-        run: |fb| scene::lit(fb, &scene::BUNNY, ShadeMode::Phong, true),
+        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Phong, true),
     },
 ];
 
@@ -561,13 +565,19 @@ pub mod scene {
         stats.map_or(0, |s| s.pixels_written)
     }
 
-    /// SCENES.md's frame: clear colour, clear depth (16-bit), transform, cull, clip, project,
-    /// rasterise with the depth test, Gouraud luminance. Returns the pixels written.
-    pub fn frame(fb: &mut Framebuffer<'_>, s: &StandardScene, shade: ShadeMode) -> u32 {
-        let mut depth = [u16::MAX; super::FB_LEN]; // clear depth
-        let Ok(mut zb) = DepthBuffer::new(&mut depth, super::WIDTH, super::HEIGHT) else {
+    /// SCENES.md's frame: clear colour, clear depth (16-bit, the harness's depth storage
+    /// wrapped and cleared as an application would each frame), transform, cull, clip,
+    /// project, rasterise with the depth test, Gouraud luminance. Returns the pixels written.
+    pub fn frame(
+        fb: &mut Framebuffer<'_>,
+        depth: &mut [u16],
+        s: &StandardScene,
+        shade: ShadeMode,
+    ) -> u32 {
+        let Ok(mut zb) = DepthBuffer::new(depth, super::WIDTH, super::HEIGHT) else {
             return 0;
         };
+        zb.clear(); // clear depth
         fb.clear(0); // clear colour
         let Some(r) = renderer() else { return 0 };
         let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
@@ -583,13 +593,19 @@ pub mod scene {
     /// lit object — directional light toward (1, 1, 1) (255), ambient 255, material
     /// (0.15, 0.55, 0.45, 20), 32-level ramp. Returns the pixels covered (the chart's
     /// per-pixel denominator).
-    pub fn lit(fb: &mut Framebuffer<'_>, s: &StandardScene, mode: ShadeMode, dither: bool) -> u32 {
+    pub fn lit(
+        fb: &mut Framebuffer<'_>,
+        depth: &mut [u16],
+        s: &StandardScene,
+        mode: ShadeMode,
+        dither: bool,
+    ) -> u32 {
         use zscan::scene::{Intensities, Object};
         use zscan::shade::lighting::{Light, Material};
-        let mut depth = [u16::MAX; super::FB_LEN];
-        let Ok(mut zb) = DepthBuffer::new(&mut depth, super::WIDTH, super::HEIGHT) else {
+        let Ok(mut zb) = DepthBuffer::new(depth, super::WIDTH, super::HEIGHT) else {
             return 0;
         };
+        zb.clear();
         fb.clear(255);
         let lens = Lens {
             fov: Angle::from_degrees(60),

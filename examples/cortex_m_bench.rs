@@ -108,8 +108,10 @@ fn main() -> ! {
     p.SYST.clear_current();
     p.SYST.enable_counter();
 
-    // The framebuffer lives on the stack (cortex-m-rt puts it at the top of the 4 MB RAM).
+    // The framebuffer and the depth storage live on the stack (cortex-m-rt puts it at the top
+    // of the 4 MB RAM), declared once like an application's buffers.
     let mut pixels = [0u8; cases::FB_LEN];
+    let mut depth = [u16::MAX; cases::FB_LEN];
     hprintln!(
         "zscan-bench begin cases={} systick_resolution={}",
         cases::CASES.len(),
@@ -120,15 +122,16 @@ fn main() -> ! {
             .expect("the buffer has the cases' size");
         // Warm-up call (keeps the host and target harnesses identical), then the measured one.
         fb.clear(0);
-        black_box((case.run)(black_box(&mut fb)));
+        black_box((case.run)(black_box(&mut fb), black_box(&mut depth)));
         fb.clear(0);
         // `black_box` makes the framebuffer escape and the call indirect, so the compiler can
         // neither move drawing across the markers nor inline the case into the loop.
         let run = black_box(case.run);
         let fb = black_box(&mut fb);
+        let depth = black_box(&mut depth[..]);
         let t0 = SYST::get_current();
         zscan_bench_begin(i as u32);
-        let px = run(fb);
+        let px = run(fb, depth);
         zscan_bench_end(i as u32);
         let t1 = SYST::get_current();
         let ticks = t0.wrapping_sub(t1) & RELOAD;

@@ -21,20 +21,28 @@
 //!   `z = 3`: 16 bits → `Δz ≈ 2.6·10^-4`, 32 bits → `Δz ≈ 4·10^-9` (below the I16F16
 //!   resolution of `z` itself, so 32-bit depth is limited by the coordinates, not the buffer).
 //!
-//! ## Arithmetic (one reciprocal per vertex, no 64-bit division)
+//! ## Arithmetic (one reciprocal per vertex, no 64-bit division, 32-bit registers)
 //! 1. `z` (raw I16F16, `≥ near > 0`) is normalised, `z_n = z·2^n ∈ [2^31, 2^32)`, and its
-//!    reciprocal `r ≈ 2^62/z_n ∈ (2^30, 2^31]` is found from one 32-bit division (16 bits)
-//!    and two Newton steps with 32×32→64 multiplies ([`reciprocal`]); `r` is within 2 units
-//!    below the exact quotient (relative error < 2^-29).
+//!    reciprocal `r ≈ 2^62/z_n ∈ [2^30, 2^31)` is found from one 32-bit division (16 bits)
+//!    and two Newton steps, each one unsigned and one signed 32×32→64 multiply
+//!    ([`reciprocal`]); `r` is within 2 units below the exact quotient (relative error
+//!    < 2^-29).
 //! 2. For each axis the focal length (Q16 pixels, `f < 2^31`) is stored normalised,
 //!    `f = f_m·2^-e` with `f_m ∈ [2^30, 2^31)`; per vertex `k = (f_m·r) >> 32 ∈ (2^28, 2^30]`
 //!    (one 32×32→64 multiply), and the offset is `x·k` (`|x·k| ≤ 2^61`, a second multiply)
-//!    shifted right by `46 + e − S − n` with rounding — usually by taking the product's high
-//!    word and a 32-bit rounding shift (exact, see `offset`). Tested against `f64` for
+//!    shifted right by `t = 46 + e − S − n` with rounding — for `33 ≤ t ≤ 62` (every vertex of
+//!    the standard scenes) by taking the product's high word and a 32-bit rounding shift
+//!    (exact, see `offset_fast`), the sum with the principal point and the range check in
+//!    32 bits too (`|i0| ≤ 2^27`, `|offset| ≤ 2^28`); other `t` take a 64-bit path giving
+//!    the same values (`offset_general`). Tested against `f64` for
 //!    `S ∈ {0, 4, 8, 16}`: error ≤ `0.5 + |offset|·2^-26` units of 2^-S pixel, i.e. below
 //!    0.51 unit for any on-screen or guard-band point at `S = 4`.
 //! 3. Depth: `K = K_m·2^e` with a 32-bit mantissa; `K/z = K_m·r·2^(e+n−62)` (`K_m·r < 2^63`),
-//!    and `D = A − K/z`, clamped to `[0, 2^32 − 1]`. Rounding: `A` and `K` are rounded to
+//!    and `D = A − K/z`, clamped to `[0, 2^32 − 1]`. When the shift `s = 62 − e − n` is in
+//!    `32..=62` (again every standard-scene vertex), `K/z < 2^31` comes from the product's
+//!    top 32 bits with a 32-bit rounding shift, and since `A ≥ 2^32 − 1` the clamp is one
+//!    saturating 32-bit subtraction ([`Projector::project_point`]); otherwise 64-bit shifts
+//!    give the same value. Rounding: `A` and `K` are rounded to
 //!    nearest at set-up, `K/z` to nearest per vertex from the (slightly low) reciprocal, so `D`
 //!    errs a few units high: measured against `f64` over dense sweeps of `z` for near/far =
 //!    0.5/10, 0.1/1000 and 1/2, at most 6 units of the 2^32 range (`D(near)` is 1 to 4, not 0;
@@ -42,11 +50,15 @@
 //!    comparable to the 32-bit `Δz` above: surfaces closer than a few `Δz_32` may order either
 //!    way.
 //!
+//! The 32-bit formulation gives bit for bit what the former 64-bit one gave (the tests keep
+//! that one as an oracle: exhaustively for the reciprocal, on dense sweeps over cameras and
+//! points for [`Projector::project_point`]).
+//!
 //! Cost, measured on a Cortex-M4 (QEMU `mps2-an386`, `-icount`, release build, SCENES.md's
-//! sphere, 482 vertices): **≈ 207 instructions per vertex** for
-//! [`Affine3::transform_point`](crate::geometry::matrix::Affine3::transform_point) (≈ 73) and
-//! [`Projector::project_point`] together, i.e. about 104 per triangle on the bunny
-//! (1839 vertices, 3674 triangles).
+//! bunny, 1839 vertices): **≈ 84 instructions per vertex** for [`Projector::project_point`]
+//! as a call (176 with the former 64-bit Newton steps, offsets and depth shift); it is
+//! `#[inline(always)]`, which saves about 9 more per vertex in the vertex stage (no call, no
+//! result through memory) for a few hundred bytes of code at its four call sites.
 //!
 //! Offsets that put a point beyond the raster's range `|x|, |y| ≤ 2^28 − 1`
 //! ([`MAX_COORD`]) are [`ProjectError::OutOfRange`]; the frustum's guard band keeps clipped
@@ -83,11 +95,25 @@ pub struct ScreenVertex<const S: u32, const A: usize> {
     pub attrs: [i32; A],
 }
 
-/// `r ≈ 2^62 / (z·2^n)` with `n = z.leading_zeros()`, returned as `(r, n)`; `r ∈ (2^30, 2^31]`
+/// `r ≈ 2^62 / (z·2^n)` with `n = z.leading_zeros()`, returned as `(r, n)`; `r ∈ [2^30, 2^31)`
 /// and `0 ≤ exact − r ≤ 2` (exact being the real quotient). `z = 0` gives `(2^31, 32)`.
 ///
-/// One 32-bit division (a 16-bit estimate) and two Newton–Raphson steps `r += r·(1 − z_n·r)`
-/// on 32×32→64 products.
+/// One 32-bit division (a 16-bit estimate) and two Newton–Raphson steps `r += r·(1 − z_n·r)`,
+/// all in 32-bit registers (each step is one 32×32→64 unsigned and one signed multiply):
+/// - the seed `r_0 = ⌊(2^32 − 1)/(⌊z_n/2^16⌋ + 1)⌋·2^14 < 2^31` is below `2^62/z_n` (the
+///   divisor is rounded up), and Newton's iteration for a reciprocal never overshoots
+///   (`r' = 1/m − m·(1/m − r)²` in exact arithmetic, and both floors below only lower it), so
+///   every iterate lies in `[0, 2^62/z_n] ⊂ [0, 2^31]`;
+/// - `e = ⌊(2^62 − z_n·r)/2^30⌋` (Q32 of `1 − m·r`) is `≥ 0` and `< 2^18` after the seed, and
+///   small after one step, so it is the low word of the 64-bit shift: bits 30..61 of
+///   `−z_n·r mod 2^64` (the `2^62` only touches bits 62 and 63);
+/// - `⌊r·e/2^32⌋` is the high word of a signed 32×32 product (`r < 2^31` before each step).
+///
+/// The iterate ends in `[2^30 − 1, 2^31)`; only `z_n = 2^32 − 1` gives `2^30 − 1`, which the
+/// final `max` raises to `2^30` (within 2 of the exact `2^30 + 2^-2`). This is exactly the
+/// former 64-bit formulation (kept as the tests' oracle; equal on every `z`, checked
+/// exhaustively by the ignored test `reciprocal_matches_64_bit_oracle_everywhere` and densely
+/// by the default tests).
 #[inline]
 pub fn reciprocal(z: u32) -> (u32, u32) {
     if z == 0 {
@@ -96,14 +122,14 @@ pub fn reciprocal(z: u32) -> (u32, u32) {
     let n = z.leading_zeros();
     let zn = z << n; // [2^31, 2^32)
     let d16 = (zn >> 16) + 1; // (2^15, 2^16], rounds the divisor up: r0 is an underestimate
-    let mut r = ((u32::MAX / d16) as u64) << 14; // Q30 of 1/m, m = zn/2^32; < 2^31
+    let mut r = (u32::MAX / d16) << 14; // Q30 of 1/m, m = zn/2^32; < 2^31
     for _ in 0..2 {
-        let prod = zn as u64 * r; // ≈ 2^62, below 2^63
-        let err = (1i64 << 62) - prod as i64; // Q62 of (1 − m·r), ≥ 0 up to rounding
-        let e = err >> 30; // Q32, |e| < 2^18 after the first estimate
-        r = (r as i64 + ((r as i64 * e) >> 32)) as u64;
+        let prod = zn as u64 * r as u64; // ≈ 2^62, below 2^63
+        let e = (prod.wrapping_neg() >> 30) as u32 as i32; // ⌊(2^62 − prod)/2^30⌋, |e| < 2^18
+        let d = ((r as i32 as i64 * e as i64) >> 32) as i32; // r < 2^31
+        r = r.wrapping_add(d as u32); // stays in [0, 2^31] (doc)
     }
-    (r.clamp(1 << 30, 1 << 31) as u32, n)
+    (r.max(1 << 30), n)
 }
 
 /// Everything the per-vertex projection needs, precomputed from a [`Camera`].
@@ -112,9 +138,6 @@ pub struct Projector<const S: u32> {
     /// Focal lengths normalised: `f = f_m·2^-e` (Q16 pixels), `f_m ∈ [2^30, 2^31)`.
     fx_m: u32,
     fy_m: u32,
-    /// Per-axis shift base `46 + e − S` (module doc, step 2).
-    fx_shift: u32,
-    fy_shift: u32,
     /// Principal point in sub-pixel units.
     i0: i32,
     j0: i32,
@@ -125,6 +148,12 @@ pub struct Projector<const S: u32> {
     depth_a: u64,
     depth_km: u32,
     depth_ke: u32,
+    /// Fast-path constants (see [`project_point`](Self::project_point)), wrapping `u32`:
+    /// `shift − 33` per axis, `30 − ke` for the depth, and `min(A − (2^32 − 1), 2^32 − 1)`.
+    fx_b: u32,
+    fy_b: u32,
+    depth_b: u32,
+    depth_ex: u32,
 }
 
 impl<const S: u32> Projector<S> {
@@ -165,8 +194,6 @@ impl<const S: u32> Projector<S> {
         Ok(Projector {
             fx_m: fx << ex,
             fy_m: fy << ey,
-            fx_shift: 46 + ex - S,
-            fy_shift: 46 + ey - S,
             i0: i0 as i32,
             j0: j0 as i32,
             near,
@@ -174,6 +201,11 @@ impl<const S: u32> Projector<S> {
             depth_a: a as u64,
             depth_km: km as u32,
             depth_ke: ke,
+            fx_b: (46 + ex - S).wrapping_sub(33),
+            fy_b: (46 + ey - S).wrapping_sub(33),
+            depth_b: 30u32.wrapping_sub(ke),
+            // A ≥ 2^32 − 1: far/(far − near) > 1.
+            depth_ex: (a - u32::MAX as u128).min(u32::MAX as u128) as u32,
         })
     }
 
@@ -203,21 +235,27 @@ impl<const S: u32> Projector<S> {
     /// `f·c/z` in sub-pixel units: `k = (f_m·r) >> 32 ∈ (2^28, 2^30]` (fits `i32`), `|c·k| ≤ 2^61`,
     /// shifted right by `t = shift − n` with rounding, where `shift = 46 + e − S`.
     ///
-    /// Fast path (`33 ≤ t ≤ 62`): the high word `h = ⌊c·k/2^32⌋` is rounded by a 32-bit shift,
-    /// `⌊(h + 2^(t−33))/2^(t−32)⌋`, which equals the exact rounding of `c·k/2^t` (adding the
-    /// discarded fraction of `h`, in `[0, 1)`, to an integer cannot cross a multiple of
-    /// `2^(t−32)`). Otherwise the 64-bit shift; `t < 0` (only for focal lengths near 2^15
-    /// pixels and `z` near 2^-16) doubles instead, which the range check then rejects or keeps.
+    /// For `33 ≤ t ≤ 62` ([`project_point`](Self::project_point)'s fast path, 32-bit) the high
+    /// word `h = ⌊c·k/2^32⌋` is enough: `⌊(⌊h/2^(t−33)⌋ + 1)/2⌋` equals the exact rounding
+    /// of `c·k/2^t` (`⌊x/2^(t−33)⌋ = ⌊⌊x/2^32⌋/2^(t−33)⌋` for the exact `x = c·k/2^32`, and
+    /// `⌊(q + 1)/2⌋` rounds `q/2` to nearest, ties up). Otherwise ([`Self::offset_general`])
+    /// the 64-bit shift; `t < 0` (only for focal lengths near 2^15 pixels and `z` near 2^-16)
+    /// doubles instead, which the range check then rejects or keeps.
     #[inline(always)]
-    fn offset(f_m: u32, shift: u32, c: i32, r: u32, n: u32) -> i64 {
+    fn offset_fast(f_m: u32, b: u32, c: i32, r: u32) -> i32 {
+        let k = ((f_m as u64 * r as u64) >> 32) as i32; // ≤ 2^30
+        let h = ((c as i64 * k as i64) >> 32) as i32; // |h| ≤ 2^29
+        ((h >> b) + 1) >> 1 // b = t − 33 ∈ 0..30: |result| ≤ 2^28
+    }
+
+    /// [`Self::offset_fast`]'s value for any `t` (64-bit): the rounding shift of `c·k` by
+    /// `t = shift − n`, `0` for `t > 62`, doubled for `t < 0`.
+    #[inline(always)]
+    fn offset_general(f_m: u32, shift: u32, c: i32, r: u32, n: u32) -> i64 {
         let k = ((f_m as u64 * r as u64) >> 32) as i32;
         let prod = c as i64 * k as i64;
         let t = shift as i32 - n as i32;
-        if (33..=62).contains(&t) {
-            let h = (prod >> 32) as i32; // |h| ≤ 2^29
-            let b = (t - 32) as u32; // 1..=30
-            ((h + (1 << (b - 1))) >> b) as i64
-        } else if t > 62 {
+        if t > 62 {
             0
         } else if t >= 0 {
             shr_round(prod, t as u32)
@@ -227,15 +265,57 @@ impl<const S: u32> Projector<S> {
     }
 
     /// Screen position and depth of an observer-frame point with `z ≥ near`.
-    #[inline]
+    ///
+    /// Fast path, all in 32-bit registers, taken when both axes' shifts `t` lie in `33..=62`
+    /// and the depth shift `s = 62 − ke − n` in `32..=62` (every vertex of the standard
+    /// scenes): offsets by `offset_fast` (`|i0| ≤ 2^27` plus `|offset| ≤ 2^28` fits
+    /// `i32`, so the range check is 32-bit too); `K/z = ⌊(⌊t/2^31⌋ >> (s − 32)) + 1)/2⌋`
+    /// (`t = K_m·r < 2^63 − 2^32`, so `⌊t/2^31⌋ + 1` fits `u32`; the result is below 2^31),
+    /// and, as `A ≥ 2^32 − 1 > K/z`, the clamped `A − K/z` is
+    /// `(2^32 − 1) − max(K/z − (A − (2^32 − 1)), 0)`, with `A − (2^32 − 1)` stored saturated to
+    /// 32 bits (if it saturates, `K/z < 2^31` leaves it far and the result is `2^32 − 1` either
+    /// way). Other inputs take `project_general`. Both give exactly what the former
+    /// 64-bit code gave (kept as the tests' oracle and compared on dense sweeps).
+    #[inline(always)]
     pub fn project_point(&self, p: Vec3) -> Result<(SubpixelPoint<S>, u32), ProjectError> {
         let [x, y, z] = p.bits();
         if z < self.near {
             return Err(ProjectError::BehindNearPlane);
         }
         let (r, n) = reciprocal(z as u32);
-        let sx = self.i0 as i64 + Self::offset(self.fx_m, self.fx_shift, x, r, n);
-        let sy = self.j0 as i64 - Self::offset(self.fy_m, self.fy_shift, y, r, n);
+        let bx = self.fx_b.wrapping_sub(n); // t − 33, huge when t < 33
+        let by = self.fy_b.wrapping_sub(n);
+        let bd = self.depth_b.wrapping_sub(n); // s − 32
+        if bx >= 30 || by >= 30 || bd > 30 {
+            return self.project_general(x, y, r, n);
+        }
+        let sx = self.i0 + Self::offset_fast(self.fx_m, bx, x, r);
+        let sy = self.j0 - Self::offset_fast(self.fy_m, by, y, r);
+        // |s| ≤ MAX_COORD as one unsigned compare per axis (|s| < 2^29: the sum cannot wrap).
+        let (lim, span) = (MAX_COORD, 2 * MAX_COORD as u32);
+        if (sx + lim) as u32 > span || (sy + lim) as u32 > span {
+            return Err(ProjectError::OutOfRange);
+        }
+        let t = self.depth_km as u64 * r as u64; // < 2^63 − 2^32
+        let kz = ((((t >> 31) as u32) >> bd) + 1) >> 1; // K/z < 2^31
+        let depth = !kz.saturating_sub(self.depth_ex);
+        Ok((SubpixelPoint::new(sx, sy), depth))
+    }
+
+    /// [`Self::project_point`] after the reciprocal, for any shifts (64-bit arithmetic).
+    #[cold]
+    #[inline(never)]
+    fn project_general(
+        &self,
+        x: i32,
+        y: i32,
+        r: u32,
+        n: u32,
+    ) -> Result<(SubpixelPoint<S>, u32), ProjectError> {
+        let sx =
+            self.i0 as i64 + Self::offset_general(self.fx_m, self.fx_b.wrapping_add(33), x, r, n);
+        let sy =
+            self.j0 as i64 - Self::offset_general(self.fy_m, self.fy_b.wrapping_add(33), y, r, n);
         let lim = MAX_COORD as i64;
         if sx.abs() > lim || sy.abs() > lim {
             return Err(ProjectError::OutOfRange);
@@ -295,6 +375,192 @@ mod tests {
             Viewport::new(320, 240),
         )
         .unwrap()
+    }
+
+    /// The former 64-bit reciprocal, verbatim: the oracle [`reciprocal`] must equal.
+    fn reciprocal_oracle(z: u32) -> (u32, u32) {
+        if z == 0 {
+            return (1 << 31, 32);
+        }
+        let n = z.leading_zeros();
+        let zn = z << n;
+        let d16 = (zn >> 16) + 1;
+        let mut r = ((u32::MAX / d16) as u64) << 14;
+        for _ in 0..2 {
+            let prod = zn as u64 * r;
+            let err = (1i64 << 62) - prod as i64;
+            let e = err >> 30;
+            r = (r as i64 + ((r as i64 * e) >> 32)) as u64;
+        }
+        (r.clamp(1 << 30, 1 << 31) as u32, n)
+    }
+
+    /// The former `project_point` (64-bit offsets and depth), verbatim apart from field names:
+    /// the oracle the 32-bit fast path must equal bit for bit.
+    fn project_oracle<const S: u32>(
+        p: &Projector<S>,
+        v: Vec3,
+    ) -> Result<(SubpixelPoint<S>, u32), ProjectError> {
+        fn offset(f_m: u32, shift: u32, c: i32, r: u32, n: u32) -> i64 {
+            let k = ((f_m as u64 * r as u64) >> 32) as i32;
+            let prod = c as i64 * k as i64;
+            let t = shift as i32 - n as i32;
+            if (33..=62).contains(&t) {
+                let h = (prod >> 32) as i32;
+                let b = (t - 32) as u32;
+                ((h + (1 << (b - 1))) >> b) as i64
+            } else if t > 62 {
+                0
+            } else if t >= 0 {
+                shr_round(prod, t as u32)
+            } else {
+                prod * 2
+            }
+        }
+        let [x, y, z] = v.bits();
+        if z < p.near {
+            return Err(ProjectError::BehindNearPlane);
+        }
+        let (r, n) = reciprocal_oracle(z as u32);
+        let (fx_shift, fy_shift) = (p.fx_b.wrapping_add(33), p.fy_b.wrapping_add(33));
+        let sx = p.i0 as i64 + offset(p.fx_m, fx_shift, x, r, n);
+        let sy = p.j0 as i64 - offset(p.fy_m, fy_shift, y, r, n);
+        let lim = MAX_COORD as i64;
+        if sx.abs() > lim || sy.abs() > lim {
+            return Err(ProjectError::OutOfRange);
+        }
+        let t = p.depth_km as u64 * r as u64;
+        let sh = p.depth_ke as i32 + n as i32 - 62;
+        let kz = if sh <= 0 {
+            shr_round(t as i64, (-sh) as u32) as u64
+        } else {
+            t.checked_shl(sh as u32)
+                .filter(|v| v >> (64 - sh) == 0)
+                .unwrap_or(u64::MAX)
+        };
+        let depth = p.depth_a.saturating_sub(kz).min(u32::MAX as u64) as u32;
+        Ok((SubpixelPoint::new(sx as i32, sy as i32), depth))
+    }
+
+    fn xorshift(s: &mut u32) -> u32 {
+        *s ^= *s << 13;
+        *s ^= *s >> 17;
+        *s ^= *s << 5;
+        *s
+    }
+
+    /// The reciprocal depends on `z` through `z_n = z·2^n` only: every `z_n` near both ends of
+    /// `[2^31, 2^32)` (where the seed's and the clamp's edge cases are), a regular sweep of
+    /// the rest, and random `z` of every magnitude.
+    #[test]
+    fn reciprocal_matches_64_bit_oracle() {
+        let check = |z: u32| assert_eq!(reciprocal(z), reciprocal_oracle(z), "z={z}");
+        for k in 0..1u32 << 18 {
+            check((1 << 31) + k);
+            check(u32::MAX - k);
+            check((1 << 31) + k * 8191); // spans [2^31, 2^32) in 2^18 steps
+        }
+        let mut s = 99;
+        for _ in 0..200_000 {
+            let x = xorshift(&mut s);
+            check(x >> (x % 32));
+        }
+        for z in 0..5000 {
+            check(z);
+        }
+    }
+
+    /// All 2^31 normalised inputs (about 20 s in release): `cargo test --release -p zscan
+    /// reciprocal_matches -- --ignored`.
+    #[test]
+    #[ignore]
+    fn reciprocal_matches_64_bit_oracle_everywhere() {
+        for zn in 1u32 << 31..=u32::MAX {
+            assert_eq!(reciprocal(zn), reciprocal_oracle(zn), "zn={zn}");
+        }
+    }
+
+    /// `project_point` (32-bit fast path and general path) against the former 64-bit code on
+    /// many cameras (fields of view, viewport sizes, pixel shapes, near/far) at every `S`
+    /// the raster takes, with `z` over every magnitude from `near` up and `x`, `y` from 0 to
+    /// the I16F16 extremes (in range, out of range, and the general path all reached).
+    #[test]
+    fn project_point_matches_64_bit_oracle() {
+        check_oracle::<0>(1);
+        check_oracle::<2>(2);
+        check_oracle::<4>(3);
+        check_oracle::<8>(4);
+        check_oracle::<12>(5);
+        check_oracle::<16>(6);
+    }
+
+    fn check_oracle<const S: u32>(seed: u32) {
+        let mut s = seed;
+        let (mut fast, mut general, mut out) = (0u32, 0u32, 0u32);
+        let mut cameras = 0;
+        while cameras < 60 {
+            let fov = 1 + xorshift(&mut s) % 179;
+            let (w, h) = (
+                1 + (xorshift(&mut s) % 4096) as u16,
+                1 + (xorshift(&mut s) % 4096) as u16,
+            );
+            let near_raw = 1 + (xorshift(&mut s) >> (xorshift(&mut s) % 32)) as i32 % (1 << 22);
+            let far_raw = near_raw.saturating_add(
+                1 + (xorshift(&mut s) >> (xorshift(&mut s) % 32)) as i32 % i32::MAX,
+            );
+            let lens = Lens {
+                fov: Angle::from_degrees(fov as i32),
+                axis: [FovAxis::Vertical, FovAxis::Horizontal, FovAxis::Diagonal]
+                    [cameras as usize % 3],
+                near: Coord::from_bits(near_raw),
+                far: Coord::from_bits(far_raw),
+            };
+            let mut vp = Viewport::new(w, h);
+            if cameras % 4 == 1 {
+                (vp.pixel_width, vp.pixel_height) = (3, 2);
+            }
+            let Ok(cam) = Camera::new(Vec3::ZERO, v(0.0, 0.0, 1.0), v(0.0, 1.0, 0.0), lens, vp)
+            else {
+                continue;
+            };
+            let Ok(p) = Projector::<S>::new(&cam) else {
+                continue;
+            };
+            cameras += 1;
+            for i in 0..4000 {
+                let z = match i % 4 {
+                    0 => near_raw.saturating_add(
+                        (xorshift(&mut s) >> (xorshift(&mut s) % 32)) as i32 & i32::MAX,
+                    ),
+                    1 => (xorshift(&mut s) >> (xorshift(&mut s) % 32)) as i32 & i32::MAX,
+                    2 => near_raw.saturating_add((xorshift(&mut s) % 64) as i32),
+                    _ => i32::MAX - (xorshift(&mut s) % 64) as i32,
+                };
+                let mut c = || match xorshift(&mut s) % 8 {
+                    0 => 0,
+                    1 => i32::MIN,
+                    2 => i32::MAX,
+                    _ => (xorshift(&mut s) as i32) >> (xorshift(&mut s) % 32),
+                };
+                let q = Vec3::from_bits(c(), c(), z);
+                let got = p.project_point(q);
+                assert_eq!(got, project_oracle(&p, q), "S={S} {cam:?} {q:?}");
+                if z >= p.near {
+                    let (_, n) = reciprocal(z as u32);
+                    let t = |b: u32| b.wrapping_sub(n) < 30;
+                    if t(p.fx_b) && t(p.fy_b) && p.depth_b.wrapping_sub(n) <= 30 {
+                        fast += 1;
+                    } else {
+                        general += 1;
+                    }
+                    out += (got == Err(ProjectError::OutOfRange)) as u32;
+                }
+            }
+        }
+        assert!(
+            fast > 10_000 && general > 1_000 && out > 1_000,
+            "{fast} {general} {out}"
+        );
     }
 
     #[test]
