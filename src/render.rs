@@ -18,8 +18,9 @@
 //!    observer frame (exact, `i128`), Sutherland–Hodgman against the planes it crosses
 //!    (course exercise 12), projection of the clipped vertices. Polygons are drawn as fans of
 //!    triangles — exact for convex polygons, whose fan triangles tile them with the fill rule.
-//! 3. **Raster** ([`draw_triangle`], or [`draw_triangle_phong`] for lit Phong objects): the
-//!    exact triangle fill with depth test and shading.
+//! 3. **Raster** ([`draw_triangle_on`] into a [`RasterTarget`] prepared once per object, or
+//!    [`draw_triangle_phong`] for lit Phong objects): the exact triangle fill with depth test
+//!    and shading.
 //!
 //! ## Bands
 //! Frame and depth buffer may be a band of rows ([`Framebuffer::band`]): the raster stage
@@ -51,10 +52,10 @@ use crate::project::{ProjectError, Projector};
 use crate::raster::edge_walker::ceil_shift;
 use crate::raster::SubpixelPoint;
 use crate::scene::{Intensities, Object, Scene};
-use crate::shade::dither::draw_triangle_dithered;
+use crate::shade::dither::Bayer4;
 use crate::shade::lighting::{light_polygon, Illumination, Light, LightingError};
 use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
-use crate::shade::span_writer::{draw_triangle, DrawError, ShadeMode};
+use crate::shade::span_writer::{draw_triangle_on, DrawError, RasterTarget, ShadeMode};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// Largest polygon (vertex count) the clipping path accepts; each of the 6 planes may add one.
@@ -502,6 +503,8 @@ impl<const S: u32> Renderer<S> {
                 },
             );
         }
+        // Luminance triangles: the buffers prepared once for the object.
+        let mut target = RasterTarget::new(frame, depth);
         match object.intensities {
             Intensities::Lit { material, .. } if object.shade == ShadeMode::Flat => {
                 // One level per polygon, computed for its first corner and reused.
@@ -518,7 +521,7 @@ impl<const S: u32> Renderer<S> {
                 return stage.run(
                     stats,
                     |pi, poly, _, _| [level(pi, poly) as i32],
-                    |c| draw_levels(frame, depth, object, c),
+                    |c| draw_levels(&mut target, object, c),
                 );
             }
             Intensities::Lit { .. } | Intensities::PerVertex(_) => {
@@ -527,7 +530,7 @@ impl<const S: u32> Renderer<S> {
                 return stage.run(
                     stats,
                     |_, _, _, p| [p.map_or(0, |p| p.level as i32)],
-                    |c| draw_levels(frame, depth, object, c),
+                    |c| draw_levels(&mut target, object, c),
                 );
             }
             _ => {}
@@ -535,7 +538,7 @@ impl<const S: u32> Renderer<S> {
         stage.run(
             stats,
             |pi, poly, k, _| [object.intensity(pi, poly[k]) as i32],
-            |c| draw_levels(frame, depth, object, c),
+            |c| draw_levels(&mut target, object, c),
         )
     }
 
@@ -575,17 +578,19 @@ struct Corner<const S: u32, const N: usize> {
 /// is a level (clamped to `0..=255`: clipped corners are interpolated).
 #[inline(always)]
 fn draw_levels<D: DepthValue, const S: u32>(
-    frame: &mut Framebuffer<'_>,
-    depth: &mut DepthBuffer<'_, D>,
+    target: &mut RasterTarget<'_, D>,
     object: &Object<'_>,
     c: [Corner<S, 1>; 3],
 ) -> Result<(u32, u32), DrawError> {
     let v = c.map(|c| c.screen);
     let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
+    let ramp = object.ramp;
     if object.dither {
-        draw_triangle_dithered(frame, depth, v, values, object.ramp, object.shade)
+        draw_triangle_on(target, v, values, object.shade, |x, y| {
+            Bayer4::at(ramp, x, y)
+        })
     } else {
-        draw_triangle(frame, depth, v, values, object.ramp, object.shade)
+        draw_triangle_on(target, v, values, object.shade, |_, _| ramp)
     }
 }
 

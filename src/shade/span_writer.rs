@@ -337,7 +337,44 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
     mode: ShadeMode,
     quantizer_at: impl Fn(i32, i32) -> Q,
 ) -> Result<(u32, u32), DrawError> {
-    let window = drawable_window(frame, depth);
+    draw_triangle_on(
+        &mut RasterTarget::new(frame, depth),
+        v,
+        values,
+        mode,
+        quantizer_at,
+    )
+}
+
+/// A frame and its depth buffer prepared once for many triangles ([`draw_triangle_on`]): the
+/// window both hold and their samples as whole slices, so that a triangle's set-up does not
+/// recompute them.
+#[derive(Debug)]
+pub struct RasterTarget<'t, D> {
+    window: Window,
+    targets: Targets<'t, D>,
+}
+
+impl<'t, D: DepthValue> RasterTarget<'t, D> {
+    /// Borrows `frame` and `depth` for drawing.
+    pub fn new(frame: &'t mut Framebuffer<'_>, depth: &'t mut DepthBuffer<'_, D>) -> Self {
+        RasterTarget {
+            window: drawable_window(frame, depth),
+            targets: Targets::new(frame, depth),
+        }
+    }
+}
+
+/// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
+/// target per object and band).
+pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, const S: u32>(
+    target: &mut RasterTarget<'_, D>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    mode: ShadeMode,
+    quantizer_at: impl Fn(i32, i32) -> Q,
+) -> Result<(u32, u32), DrawError> {
+    let window = target.window;
     if !bounds_meet(&v, &window) {
         return Ok((0, 0));
     }
@@ -359,7 +396,7 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
     let spans = TriangleSpans {
         v,
         window,
-        targets: Targets::new(frame, depth),
+        targets: &mut target.targets,
     };
     match mode {
         ShadeMode::Flat if constant(0) => spans.constant(values[0][0], flat_lum, quantizer_at),
@@ -522,6 +559,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
 /// [`fill_triangle`] inside [`drawable_window`], whose rows both buffers hold and whose
 /// columns are `0..width` of both. Each span slice is still a checked `get_mut` (a span outside
 /// the slices is skipped, never a panic).
+#[derive(Debug)]
 struct Targets<'t, D> {
     colours: &'t mut [u8],
     colour_stride: usize,
@@ -565,18 +603,18 @@ impl<'t, D: DepthValue> Targets<'t, D> {
 }
 
 /// One triangle's span drawing, set up (see [`draw_triangle_quantized`]).
-struct TriangleSpans<'t, D, const S: u32> {
+struct TriangleSpans<'a, 't, D, const S: u32> {
     v: [SubpixelPoint<S>; 3],
     window: Window,
-    targets: Targets<'t, D>,
+    targets: &'a mut Targets<'t, D>,
 }
 
-impl<D: DepthValue, const S: u32> TriangleSpans<'_, D, S> {
+impl<D: DepthValue, const S: u32> TriangleSpans<'_, '_, D, S> {
     /// Constant depth `z` and flat luminance `lum`: no plane. A triangle too large for a plane
     /// still reports [`DrawError::TooLarge`], as the other kinds do.
     #[inline(always)]
     fn constant<Q: Quantizer>(
-        mut self,
+        self,
         z: u32,
         lum: u32,
         quantizer_at: impl Fn(i32, i32) -> Q,
@@ -590,7 +628,7 @@ impl<D: DepthValue, const S: u32> TriangleSpans<'_, D, S> {
             };
         }
         let (mut covered, mut written) = (0u32, 0u32);
-        let targets = &mut self.targets;
+        let targets = &mut *self.targets;
         fill_triangle(self.v, &self.window, |s| {
             covered += s.x1.wrapping_sub(s.x0) as u32;
             let Some((c, zs)) = targets.span(&s) else {
@@ -642,13 +680,13 @@ impl<D: DepthValue, const S: u32> TriangleSpans<'_, D, S> {
     /// from `starts` (made [`ExactRun`]s by `F`), written by `kind`.
     #[inline(always)]
     fn run<F: FromExact, St: SpanStarts<N>, K: SpanKind<N>, const N: usize>(
-        mut self,
+        self,
         mut starts: St,
         kind: K,
     ) -> Result<(u32, u32), DrawError> {
         let (mut covered, mut written) = (0u32, 0u32);
         let mut per_triangle: Option<[F; N]> = None;
-        let targets = &mut self.targets;
+        let targets = &mut *self.targets;
         fill_triangle(self.v, &self.window, |s| {
             covered += s.x1.wrapping_sub(s.x0) as u32;
             let Some((c, z)) = targets.span(&s) else {
