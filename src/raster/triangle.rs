@@ -137,11 +137,10 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
         if y >= y_end {
             return Ok(());
         }
-        let bottom_w = W::start::<S>(&bottom, EdgeSide::Left, y);
         if middle_left {
-            left_w = bottom_w;
+            left_w = W::start::<S>(&bottom, EdgeSide::Left, y);
         } else {
-            right_w = bottom_w;
+            right_w = W::start::<S>(&bottom, EdgeSide::Left, y);
         }
         rows_end = y_end;
     }
