@@ -44,7 +44,10 @@
 //! state fits 32 bits (`0 ≤ k < DY < 2^29`, biased `k + 2^32 − DY < 2^32`), and so do the ends (`|x| ≤ 2^28`).
 //! On 32-bit targets a *narrow* edge (`|DX|, DY < 2^13`, [`Edge::is_narrow`]) divides in `i32`
 //! instead: the whole pixels of `X0` are taken out of the numerator, which leaves terms below
-//! `2^29` ([`Edge::divide_narrow`]); same quotient and remainder (tested).
+//! `2^29` ([`Edge::divide_narrow`]); same quotient and remainder (tested). The
+//! [`IncrementalWalker`] starts a narrow edge (`DY ≥ 1` as well) inline with the same terms made
+//! non-negative by a multiple of the divisor (sum `< 2^31`), so both of its divisions are
+//! unsigned with no sign fix-up; wide edges take an out-of-line start (tested equal).
 
 use super::euclid::{div_floor_i32, div_floor_i64};
 use core::num::NonZeroU32;
@@ -462,6 +465,65 @@ mod tests {
             y1: 5,
         };
         assert!(!wide.is_narrow());
+    }
+
+    /// The 32-bit target's unsigned narrow start equals the general one (which the host takes).
+    #[test]
+    fn narrow_start_equals_general() {
+        let mut seed = 0x0F1E_2D3C_4B5A_6978u64;
+        let mut rnd = |m: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i32 - m
+        };
+        fn check<const S: u32>(e: &Edge) {
+            for side in [EdgeSide::Left, EdgeSide::Right] {
+                let (y0, y1) = (e.first_row::<S>(), e.end_row::<S>());
+                for y in [y0, y0 + 1, (y0 + y1) / 2, y1 - 2, y1 - 1] {
+                    if y < y0 || y >= y1 {
+                        continue;
+                    }
+                    let (x, k) = e.divide::<S>(y, side);
+                    let want = IncrementalWalker::from_end(x, k, e.x1 - e.x0, e.y1 - e.y0);
+                    let got = IncrementalWalker::start_narrow::<S>(e, side, y).expect("narrow");
+                    let fields = |w: IncrementalWalker| (w.x, w.k, w.q, w.r, w.dy);
+                    assert_eq!(fields(got), fields(want), "{e:?} {side:?} row {y}");
+                }
+            }
+        }
+        let lim = (1 << 13) - 1;
+        for i in 0..20_000 {
+            let (x0, y0) = (rnd(MAX_COORD), rnd(MAX_COORD - lim));
+            let dx = [rnd(lim), rnd(40), lim, -lim][i % 4];
+            let dy = 1 + [rnd(lim - 1).abs(), rnd(40).abs(), lim - 1, 0][i % 4];
+            let Some(x1) = x0.checked_add(dx).filter(|x| x.abs() <= MAX_COORD) else {
+                continue;
+            };
+            let e = Edge {
+                x0,
+                y0,
+                x1,
+                y1: y0 + dy,
+            };
+            check::<0>(&e);
+            check::<4>(&e);
+            check::<16>(&e);
+        }
+        let wide = Edge {
+            x0: 0,
+            y0: 0,
+            x1: 1 << 13,
+            y1: 5,
+        };
+        assert!(IncrementalWalker::start_narrow::<4>(&wide, EdgeSide::Left, 0).is_none());
+        let flat = Edge {
+            x0: 0,
+            y0: 3,
+            x1: 5,
+            y1: 3,
+        };
+        assert!(IncrementalWalker::start_narrow::<4>(&flat, EdgeSide::Left, 0).is_none());
     }
 
     #[test]
