@@ -34,18 +34,23 @@
 //!   (`0 ≤ r < DY`), each row is `x ← x + q; k ← k + r; if k ≥ DY { k ← k − DY; x ← x + 1 }`.
 //!   The remainder of the text's `N` is `F·k + c` with a constant `c < F` (every step adds a
 //!   multiple of `F`), so comparing `k` with `DY` decides the carry exactly: no drift, ever.
+//!   (`k` is kept biased by `2^32 − DY` in a `u32`, so the comparison is the carry of the add.)
 //!
 //! Both implement [`EdgeWalker`] and are tested to agree on every row of random edges.
 //!
 //! ## Numeric contract
 //! Vertex coordinates satisfy `|X|, |Y| ≤ MAX_COORD = 2^28 − 1` and `S ≤ 16`. Then
 //! `|DX|, DY < 2^29`, `|num| < 2^59` and `den < 2^45`: the set-up fits `i64`. The incremental
-//! state fits `i32` (`0 ≤ k < DY < 2^29`, `k + r < 2^30`), and so do the ends (`|x| ≤ 2^28`).
+//! state fits 32 bits (`0 ≤ k < DY < 2^29`, biased `k + 2^32 − DY < 2^32`), and so do the ends (`|x| ≤ 2^28`).
 //! On 32-bit targets a *narrow* edge (`|DX|, DY < 2^13`, [`Edge::is_narrow`]) divides in `i32`
 //! instead: the whole pixels of `X0` are taken out of the numerator, which leaves terms below
-//! `2^29` ([`Edge::divide_narrow`]); same quotient and remainder (tested).
+//! `2^29` ([`Edge::divide_narrow`]); same quotient and remainder (tested). The
+//! [`IncrementalWalker`] starts a narrow edge (`DY ≥ 1` as well) inline with the same terms made
+//! non-negative by a multiple of the divisor (sum `< 2^31`), so both of its divisions are
+//! unsigned with no sign fix-up; wide edges take an out-of-line start (tested equal).
 
 use super::euclid::{div_floor_i32, div_floor_i64};
+use core::num::NonZeroU32;
 
 /// The largest coordinate magnitude (in sub-pixel units) the raster stage accepts.
 pub const MAX_COORD: i32 = (1 << 28) - 1;
@@ -223,29 +228,99 @@ impl DivisionWalker {
 }
 
 /// The incremental form of `Parcours`: one division per edge, then per row one add, one
-/// compare and a conditional carry. Produces the same ends as [`DivisionWalker`].
+/// add with carry and a conditional subtract. Produces the same ends as [`DivisionWalker`].
+///
+/// The error term `k` (`0 ≤ k < DY`) is stored biased as `K = k + 2^32 − DY` in a `u32`, so
+/// `k + r ≥ DY` is exactly the carry out of `K + r` (`DY < 2^29` keeps `K` in range): the
+/// carry adds the extra pixel (`adds` / `adc` on a Cortex-M) and `K − DY` (wrapping) restores
+/// the bias.
 #[derive(Debug, Clone, Copy)]
 pub struct IncrementalWalker {
     /// The span end on the current row.
     x: i32,
-    /// The error term: TIPE's remainder `N` is `F·k + c`, `0 ≤ k < dy`, `c` constant.
-    k: i32,
+    /// The biased error term `k + 2^32 − DY`: TIPE's remainder `N` is `F·k + c`, `0 ≤ k < DY`,
+    /// `c` constant.
+    k: u32,
     /// Whole pixels added per row: `⌊DX / DY⌋`.
     q: i32,
     /// Error added per row: `DX − q·DY`, in `0..DY`.
-    r: i32,
-    /// The carry threshold `DY`: when `k` reaches it, the end moves one more pixel.
-    dy: i32,
+    r: u32,
+    /// `DY`: when `k` reaches it, the end moves one more pixel.
+    dy: u32,
+}
+
+impl IncrementalWalker {
+    /// The walker from an end, its `k` and the edge's `DX, DY` (any edge, one 32-bit division).
+    #[inline(always)]
+    fn from_end(x: i32, k: i32, dx: i32, dy: i32) -> Self {
+        let (q, r) = div_floor_i32(dx, dy);
+        IncrementalWalker {
+            x,
+            k: (k as u32).wrapping_sub(dy as u32),
+            q,
+            r: r as u32,
+            dy: dy as u32,
+        }
+    }
+
+    /// [`EdgeWalker::start`] for any edge (the 32-bit target's rare wide edges, out of line).
+    #[inline(never)]
+    fn start_wide<const S: u32>(edge: &Edge, side: EdgeSide, y: i32) -> Self {
+        let (x, k) = edge.divide::<S>(y, side);
+        Self::from_end(x, k, edge.x1 - edge.x0, edge.y1 - edge.y0)
+    }
+
+    /// [`EdgeWalker::start`] for an edge with `|DX| < 2^13` and `1 ≤ DY < 2^13` (else `None`),
+    /// in two unsigned 32-bit divisions with no sign fix-up. As [`Edge::divide_narrow`], but
+    /// both dividends are first made non-negative by adding a multiple of the divisor:
+    /// `DY·2^16 = F·DY·2^(16−S)` to the end's numerator (whose negative term
+    /// `(y·F − Y0)·DX > −DY·2^13`; the sum stays below `2^29 + 2^26 + 2^29 + 2^29 < 2^31`), and
+    /// `DY·2^13` to `DX` (`> −2^13`); the quotients come out `2^(16−S)` and `2^13` too large,
+    /// the remainders unchanged.
+    #[inline(always)]
+    fn start_narrow<const S: u32>(edge: &Edge, side: EdgeSide, y: i32) -> Option<Self> {
+        const LIM: i32 = 1 << 13;
+        let dx = edge.x1.wrapping_sub(edge.x0);
+        let dy = edge.y1.wrapping_sub(edge.y0);
+        if dx.wrapping_add(LIM - 1) as u32 > (2 * LIM - 2) as u32
+            || dy.wrapping_sub(1) as u32 >= (LIM - 1) as u32
+        {
+            return None;
+        }
+        let dy_nz = NonZeroU32::new(dy as u32)?;
+        let den = NonZeroU32::new((dy as u32) << S)?;
+        let rows_below = (y << S) - edge.y0;
+        let bias = match side {
+            EdgeSide::Left => den.get() as i32 - 1,
+            EdgeSide::Right => -1,
+        };
+        let num = (edge.x0 & ((1 << S) - 1)) * dy + rows_below * dx + bias + (dy << 16);
+        let num = num as u32;
+        let (qx, rem) = (num / den, num % den);
+        let x = qx as i32 + (edge.x0 >> S) - (1 << (16 - S));
+        let step = (dx + (dy << 13)) as u32;
+        let (q, r) = (step / dy_nz, step % dy_nz);
+        Some(IncrementalWalker {
+            x,
+            k: (rem >> S).wrapping_sub(dy as u32),
+            q: q as i32 - LIM,
+            r,
+            dy: dy as u32,
+        })
+    }
 }
 
 impl EdgeWalker for IncrementalWalker {
-    #[inline]
+    #[inline(always)]
     fn start<const S: u32>(edge: &Edge, side: EdgeSide, y: i32) -> Self {
+        if cfg!(not(target_pointer_width = "64")) {
+            if let Some(w) = Self::start_narrow::<S>(edge, side, y) {
+                return w;
+            }
+            return Self::start_wide::<S>(edge, side, y);
+        }
         let (x, k) = edge.divide::<S>(y, side); // 0 ≤ k < DY
-        let dx = edge.x1 - edge.x0;
-        let dy = edge.y1 - edge.y0;
-        let (q, r) = div_floor_i32(dx, dy);
-        IncrementalWalker { x, k, q, r, dy }
+        Self::from_end(x, k, edge.x1 - edge.x0, edge.y1 - edge.y0)
     }
 
     #[inline(always)]
@@ -255,12 +330,9 @@ impl EdgeWalker for IncrementalWalker {
 
     #[inline(always)]
     fn step(&mut self) {
-        self.x += self.q;
-        self.k += self.r;
-        if self.k >= self.dy {
-            self.k -= self.dy;
-            self.x += 1;
-        }
+        let (k, carry) = self.k.overflowing_add(self.r);
+        self.x += self.q + carry as i32;
+        self.k = if carry { k.wrapping_sub(self.dy) } else { k };
     }
 }
 
@@ -393,6 +465,65 @@ mod tests {
             y1: 5,
         };
         assert!(!wide.is_narrow());
+    }
+
+    /// The 32-bit target's unsigned narrow start equals the general one (which the host takes).
+    #[test]
+    fn narrow_start_equals_general() {
+        let mut seed = 0x0F1E_2D3C_4B5A_6978u64;
+        let mut rnd = |m: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i32 - m
+        };
+        fn check<const S: u32>(e: &Edge) {
+            for side in [EdgeSide::Left, EdgeSide::Right] {
+                let (y0, y1) = (e.first_row::<S>(), e.end_row::<S>());
+                for y in [y0, y0 + 1, (y0 + y1) / 2, y1 - 2, y1 - 1] {
+                    if y < y0 || y >= y1 {
+                        continue;
+                    }
+                    let (x, k) = e.divide::<S>(y, side);
+                    let want = IncrementalWalker::from_end(x, k, e.x1 - e.x0, e.y1 - e.y0);
+                    let got = IncrementalWalker::start_narrow::<S>(e, side, y).expect("narrow");
+                    let fields = |w: IncrementalWalker| (w.x, w.k, w.q, w.r, w.dy);
+                    assert_eq!(fields(got), fields(want), "{e:?} {side:?} row {y}");
+                }
+            }
+        }
+        let lim = (1 << 13) - 1;
+        for i in 0..20_000 {
+            let (x0, y0) = (rnd(MAX_COORD), rnd(MAX_COORD - lim));
+            let dx = [rnd(lim), rnd(40), lim, -lim][i % 4];
+            let dy = 1 + [rnd(lim - 1).abs(), rnd(40).abs(), lim - 1, 0][i % 4];
+            let Some(x1) = x0.checked_add(dx).filter(|x| x.abs() <= MAX_COORD) else {
+                continue;
+            };
+            let e = Edge {
+                x0,
+                y0,
+                x1,
+                y1: y0 + dy,
+            };
+            check::<0>(&e);
+            check::<4>(&e);
+            check::<16>(&e);
+        }
+        let wide = Edge {
+            x0: 0,
+            y0: 0,
+            x1: 1 << 13,
+            y1: 5,
+        };
+        assert!(IncrementalWalker::start_narrow::<4>(&wide, EdgeSide::Left, 0).is_none());
+        let flat = Edge {
+            x0: 0,
+            y0: 3,
+            x1: 5,
+            y1: 3,
+        };
+        assert!(IncrementalWalker::start_narrow::<4>(&flat, EdgeSide::Left, 0).is_none());
     }
 
     #[test]

@@ -103,12 +103,13 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
     if y_first >= y_end || window.x0 >= window.x1 {
         return Ok(());
     }
-    let mut long_w = W::start::<S>(&long, EdgeSide::Left, y_first);
+    let long_w = W::start::<S>(&long, EdgeSide::Left, y_first);
     let middle_left = area < 0;
     // One row loop for both halves (the span code is inlined once): the short walker starts
     // on the top edge, or on the bottom edge when the first visible row is past the middle
-    // vertex, and switches to the bottom edge at row `y_mid`.
-    let (mut short_w, mut rows_end) = if y_first < y_mid {
+    // vertex, and is replaced by the bottom edge's walker at row `y_mid`. The walkers are
+    // placed once per triangle as the left and the right one, so a row selects nothing.
+    let (short_w, mut rows_end) = if y_first < y_mid {
         (
             W::start::<S>(&top, EdgeSide::Left, y_first),
             y_mid.min(y_end),
@@ -116,25 +117,31 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
     } else {
         (W::start::<S>(&bottom, EdgeSide::Left, y_first), y_end)
     };
+    let (mut left_w, mut right_w) = if middle_left {
+        (short_w, long_w)
+    } else {
+        (long_w, short_w)
+    };
     let mut y = y_first;
     loop {
         while y < rows_end {
-            // Select the ends by value (no pointer to a walker escapes: both stay in registers).
-            let (xs, xl) = (short_w.x(), long_w.x());
-            let (left, right) = if middle_left { (xs, xl) } else { (xl, xs) };
-            let x0 = left.max(window.x0);
-            let x1 = right.min(window.x1);
+            let x0 = left_w.x().max(window.x0);
+            let x1 = right_w.x().min(window.x1);
             if x0 < x1 {
                 emit(Span { y, x0, x1 });
             }
-            long_w.step();
-            short_w.step();
+            left_w.step();
+            right_w.step();
             y += 1;
         }
         if y >= y_end {
             return Ok(());
         }
-        short_w = W::start::<S>(&bottom, EdgeSide::Left, y);
+        if middle_left {
+            left_w = W::start::<S>(&bottom, EdgeSide::Left, y);
+        } else {
+            right_w = W::start::<S>(&bottom, EdgeSide::Left, y);
+        }
         rows_end = y_end;
     }
 }
