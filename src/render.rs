@@ -56,7 +56,7 @@ use crate::raster::edge_walker::ceil_shift;
 use crate::raster::SubpixelPoint;
 use crate::scene::{Intensities, Object, Scene};
 use crate::shade::dither::draw_triangle_dithered;
-use crate::shade::lighting::{light_polygon, Illumination, Light, LightingError, Material};
+use crate::shade::lighting::{light_polygon, Illumination, Light, LightingError};
 use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
 use crate::shade::span_writer::{draw_triangle, DrawError, ShadeMode};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
@@ -330,27 +330,59 @@ impl<const S: u32> Renderer<S> {
         // Once per object: when no vertex of the mesh (all within ±max_coord_bits) can leave
         // the i32 range, nor make the frustum's side products leave 32 bits, the loop without
         // saturation and with the 32-bit outcode runs; both give the same values there.
-        let bound = m.point_bounds(object.mesh.max_coord_bits());
-        if self.frustum.narrow_fits(bound) {
-            self.prepare_vertices::<true>(&m, vertices, scratch, lit, given);
-        } else {
-            self.prepare_vertices::<false>(&m, vertices, scratch, lit, given);
+        let narrow = self
+            .frustum
+            .narrow_fits(m.point_bounds(object.mesh.max_coord_bits()));
+        // One loop per level source, so that the given-levels loop carries nothing of lighting.
+        match lit {
+            Some((material, normals)) => {
+                let level = |i: usize, view: Vec3| {
+                    let n = normals
+                        .get(i)
+                        .map_or([0; 3], |n| m.transform_vector(*n).bits());
+                    let n = [n[0] as i64, n[1] as i64, n[2] as i64];
+                    self.illumination.intensity(&material, view, n)
+                };
+                self.prepare_vertices(narrow, &m, vertices, scratch, &level);
+            }
+            None => {
+                let level = |i: usize, _: Vec3| given.get(i).copied().unwrap_or(0);
+                self.prepare_vertices(narrow, &m, vertices, scratch, &level);
+            }
         }
         Ok(())
+    }
+
+    /// [`prepare_loop`](Self::prepare_loop) without saturation and with the 32-bit outcode
+    /// when `narrow` (the object's bound passed [`Frustum::narrow_fits`]), else the general one.
+    #[inline(always)]
+    fn prepare_vertices(
+        &self,
+        narrow: bool,
+        m: &Affine3,
+        vertices: &[Vec3],
+        scratch: &mut [PreparedVertex<S>],
+        level: &impl Fn(usize, Vec3) -> u8,
+    ) {
+        if narrow {
+            self.prepare_loop::<true>(m, vertices, scratch, level);
+        } else {
+            self.prepare_loop::<false>(m, vertices, scratch, level);
+        }
     }
 
     /// The per-vertex loop of [`prepare`](Self::prepare): `NARROW` when the object's bound
     /// passed [`Frustum::narrow_fits`] ([`Affine3::transform_point_wrapping`] and
     /// [`Frustum::outcode_narrow`], equal to the saturating transform and the 64-bit outcode
     /// within that bound), else the general transform and outcode.
+    /// `level(i, view)` gives vertex `i`'s level.
     #[inline(always)]
-    fn prepare_vertices<const NARROW: bool>(
+    fn prepare_loop<const NARROW: bool>(
         &self,
         m: &Affine3,
         vertices: &[Vec3],
         scratch: &mut [PreparedVertex<S>],
-        lit: Option<(Material, &[Vec3])>,
-        given: &[u8],
+        level: &impl Fn(usize, Vec3) -> u8,
     ) {
         for (i, (out, v)) in scratch.iter_mut().zip(vertices).enumerate() {
             let (view, mut outcode);
@@ -368,22 +400,12 @@ impl<const S: u32> Renderer<S> {
                     Err(_) => outcode = UNPROJECTED,
                 }
             }
-            let level = match lit {
-                Some((material, normals)) => {
-                    let n = normals
-                        .get(i)
-                        .map_or([0; 3], |n| m.transform_vector(*n).bits());
-                    let n = [n[0] as i64, n[1] as i64, n[2] as i64];
-                    self.illumination.intensity(&material, view, n)
-                }
-                None => given.get(i).copied().unwrap_or(0),
-            };
             *out = PreparedVertex {
                 view,
                 screen,
                 depth,
                 outcode,
-                level,
+                level: level(i, view),
             };
         }
     }
@@ -1389,10 +1411,11 @@ mod tests {
             let mut a = [PreparedVertex::<4>::default(); 64];
             let mut b = [PreparedVertex::<4>::default(); 64];
             r.prepare(&obj, &mut a).unwrap();
-            r.prepare_vertices::<false>(&m, &vs, &mut b, None, &levels);
+            let level = |i: usize, _: Vec3| levels.get(i).copied().unwrap_or(0);
+            r.prepare_loop::<false>(&m, &vs, &mut b, &level);
             assert_eq!(a, b, "n={n} narrow={narrow}");
             if narrow {
-                r.prepare_vertices::<true>(&m, &vs, &mut a, None, &levels);
+                r.prepare_loop::<true>(&m, &vs, &mut a, &level);
                 assert_eq!(a, b, "n={n}");
                 for v in &a {
                     codes[(v.outcode != 0) as usize] += 1;
