@@ -270,6 +270,52 @@ impl Frustum {
             | (((cyz - y < 0) as u8) << 5)
     }
 
+    /// True when [`Frustum::outcode_narrow`] equals [`Frustum::outcode`] for every point whose
+    /// raw coordinates satisfy `|x| ≤ bound[0]`, `|y| ≤ bound[1]`, `|z| ≤ bound[2]`: all three
+    /// below `2^30`, `c·bound[2] < 2^46` for both side coefficients (so `|⌊c·z / 2^16⌋| ≤ 2^30`)
+    /// and near and far `|d| ≤ 2^30`; then every sum below stays within `±2^31`. Once per
+    /// object.
+    pub fn narrow_fits(&self, bound: [u64; 3]) -> bool {
+        let p = &self.planes;
+        let side = |c: i32| (c.unsigned_abs() as u64).saturating_mul(bound[2]) < 1 << 46;
+        bound.iter().all(|&b| b < 1 << 30)
+            && side(p[2].c)
+            && side(p[4].c)
+            && p[NEAR].d.unsigned_abs() <= 1 << 30
+            && p[FAR].d.unsigned_abs() <= 1 << 30
+    }
+
+    /// [`Frustum::outcode`] in 32-bit arithmetic, for points within a bound that
+    /// [`Frustum::narrow_fits`] accepted (outside it the code is unspecified, never a panic).
+    ///
+    /// Each plane distance is a multiple of `2^16` plus at most the product `c·z`, so its sign
+    /// is decided on whole units: with `q = ⌊c·z / 2^16⌋` (remainder `r ∈ [0, 2^16)`),
+    /// `x·2^16 + c·z = (x + q)·2^16 + r < 0 ⟺ x + q < 0` and
+    /// `c·z − x·2^16 < 0 ⟺ q − x < 0`; the near plane `(z + d)·2^16 < 0 ⟺ z + d < 0` and
+    /// the far plane `(d − z)·2^16 < 0 ⟺ d − z < 0`. Within the bound the six sums do not
+    /// overflow `i32`, so a plane's bit is its sum's sign bit, and a point is inside (code 0)
+    /// when the OR of the six sums is not negative. Only `q` needs a 64-bit product.
+    #[inline]
+    pub fn outcode_narrow(&self, p: Vec3) -> u8 {
+        let [x, y, z] = p.bits();
+        let p = &self.planes;
+        let qx = ((p[2].c as i64 * z as i64) >> 16) as i32;
+        let qy = ((p[4].c as i64 * z as i64) >> 16) as i32;
+        let s = [
+            z.wrapping_add(p[NEAR].d),
+            p[FAR].d.wrapping_sub(z),
+            x.wrapping_add(qx),
+            qx.wrapping_sub(x),
+            y.wrapping_add(qy),
+            qy.wrapping_sub(y),
+        ];
+        if s[0] | s[1] | s[2] | s[3] | s[4] | s[5] >= 0 {
+            return 0;
+        }
+        let bit = |i: usize| ((s[i] as u32 >> 31) << i) as u8;
+        bit(0) | bit(1) | bit(2) | bit(3) | bit(4) | bit(5)
+    }
+
     /// [`Frustum::outcode`] from the six generic plane distances (the reference it is tested
     /// against).
     pub fn outcode_generic(&self, p: Vec3) -> u8 {
@@ -368,6 +414,64 @@ mod tests {
                 let p = Vec3::from_bits(rnd() >> shift, rnd() >> shift, rnd() >> shift);
                 assert_eq!(f.outcode(p), f.outcode_generic(p), "{p:?}");
             }
+        }
+    }
+
+    #[test]
+    fn narrow_outcode_equals_outcode_within_its_bound() {
+        let mut seed = 0x0123_4567_89AB_CDEFu64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for guard in [1, 4, 100] {
+            let f = Frustum::new::<4>(&camera(), guard).unwrap();
+            // The largest z bound the side planes allow, and a few smaller boxes.
+            let c = f.planes[2].c.max(f.planes[4].c) as u64;
+            let zmax = ((1u64 << 46) - 1) / c;
+            for b in [
+                [(1 << 30) - 1, (1 << 30) - 1, zmax.min((1 << 30) - 1)],
+                [1 << 16, 1 << 16, 1 << 20],
+                [1 << 22, 1 << 18, 1 << 21],
+                [100, 100, 100],
+            ] {
+                assert!(f.narrow_fits(b), "{b:?}");
+                let r = |k: u64, b: u64| (k % (2 * b + 1)) as i64 - b as i64;
+                let check = |x: i64, y: i64, z: i64| {
+                    let p = Vec3::from_bits(x as i32, y as i32, z as i32);
+                    assert_eq!(f.outcode_narrow(p), f.outcode(p), "{p:?} in {b:?}");
+                };
+                for _ in 0..20000 {
+                    let (x, y, z) = (r(rnd(), b[0]), r(rnd(), b[1]), r(rnd(), b[2]));
+                    check(x, y, z);
+                    // On and next to the side planes: x = ±⌊c·z/2^16⌋ + {−1, 0, 1}.
+                    let q = (f.planes[2].c as i64 * z) >> 16;
+                    for d in -1..=1 {
+                        for x in [q + d, -q + d] {
+                            if x.unsigned_abs() <= b[0] {
+                                check(x, y, z);
+                            }
+                        }
+                    }
+                }
+                // The corners and the near and far planes.
+                for sx in [-1, 0, 1] {
+                    for sy in [-1, 0, 1] {
+                        for sz in [-1, 0, 1] {
+                            check(sx * b[0] as i64, sy * b[1] as i64, sz * b[2] as i64);
+                        }
+                    }
+                }
+                for d in [-f.planes[NEAR].d, f.planes[FAR].d] {
+                    for e in -1..=1 {
+                        check(0, 0, (d + e) as i64);
+                    }
+                }
+            }
+            assert!(!f.narrow_fits([1 << 30, 0, 0]));
+            assert!(!f.narrow_fits([0, 0, (1 << 46) / c + 1]));
         }
     }
 

@@ -17,6 +17,9 @@
 //! - [`transform_point`](Affine3::transform_point): three products `|m·p| ≤ 2^30·2^31 = 2^61`
 //!   plus the translation `t·2^24 ≤ 2^55` stay below `2^63` in `i64`; the Q40 sum is rounded to
 //!   Q16 and **saturated** to the `i32` range (points that leave ±32 768 units clamp there).
+//!   [`point_bounds`](Affine3::point_bounds) bounds the result for all points within a box,
+//!   once per object; where that bound fits `i32`,
+//!   [`transform_point_wrapping`](Affine3::transform_point_wrapping) (no saturation) is equal.
 //! - [`mul`](Affine3::mul): entries are sums of three `Q24·Q24` products (`≤ 3·2^60`); results
 //!   outside the ranges above are [`MatrixError::OutOfRange`], never wrapped.
 
@@ -243,6 +246,41 @@ impl Affine3 {
         Vec3::from_bits(row(0), row(1), row(2))
     }
 
+    /// [`transform_point`](Affine3::transform_point) without the saturation: the low word of
+    /// the rounded Q16 sum. Equal to `transform_point(p)` whenever that result does not
+    /// saturate, which [`point_bounds`](Affine3::point_bounds) proves for a whole set of points
+    /// at once; otherwise the coordinate wraps (never panics). The vertex stage uses it for
+    /// objects whose bound fits, saving the per-coordinate range check.
+    #[inline]
+    pub fn transform_point_wrapping(&self, p: Vec3) -> Vec3 {
+        let p = p.bits();
+        let row = |i: usize| {
+            let r = &self.m[i];
+            let acc = self.t_wide[i]
+                + r[0] as i64 * p[0] as i64
+                + r[1] as i64 * p[1] as i64
+                + r[2] as i64 * p[2] as i64;
+            (acc >> LINEAR_FRAC) as i32
+        };
+        Vec3::from_bits(row(0), row(1), row(2))
+    }
+
+    /// For points whose raw coordinates all satisfy `|c| ≤ max_coord`, a bound per row on the
+    /// magnitude of the raw (I16F16) result of
+    /// [`transform_point`](Affine3::transform_point) before saturation:
+    /// `|t_i| + ⌈Σ_j |m_ij|·max_coord / 2^24⌉ + 1` (the `+ 1` covers the rounding shift).
+    /// When a row's bound is at most `i32::MAX` that coordinate never saturates, so
+    /// [`transform_point_wrapping`](Affine3::transform_point_wrapping) gives the same value,
+    /// and it is never `i32::MIN`. `Σ_j |m_ij| ≤ 3·2^30` and `max_coord < 2^32`, so the
+    /// product stays below `3·2^62` in `u64`.
+    pub fn point_bounds(&self, max_coord: u32) -> [u64; 3] {
+        core::array::from_fn(|i| {
+            let sum: u64 = self.m[i].iter().map(|&e| e.unsigned_abs() as u64).sum();
+            let lin = (sum * max_coord as u64).div_ceil(1 << LINEAR_FRAC); // < 2^40
+            self.t[i].unsigned_abs() as u64 + lin + 1
+        })
+    }
+
     /// `M·v` (no translation), rounded to nearest, saturating.
     pub fn transform_vector(&self, v: Vec3) -> Vec3 {
         Affine3::raw(self.m, [0; 3]).transform_point(v)
@@ -348,6 +386,69 @@ mod tests {
         let s = Affine3::scale(Coord::from_num(2)).unwrap();
         assert_eq!(s.inverse_rigid(), Err(MatrixError::NotRigid));
         assert_eq!(s.transform_point(p), v(0.6, -10.0, 4.0));
+    }
+
+    #[test]
+    fn wrapping_transform_equals_saturating_within_the_bound() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mc = crate::geometry::mesh::MAX_MESH_COORD_BITS as u32;
+        let r = |k: u64, b: u32| (k % (2 * b as u64 + 1)) as i64 - b as i64;
+        for n in 0..400 {
+            // Random matrices from tiny to extreme (±2^30 entries, full-range translation).
+            let es = [6, 14, 22, 30][n % 4];
+            let ts = [10, 20, 31][n % 3];
+            let rows = core::array::from_fn(|_| {
+                core::array::from_fn(|_| r(rnd(), (1u32 << es).min(MAX_LINEAR_BITS as u32)) as i32)
+            });
+            let t = Vec3::from_bits(
+                r(rnd(), (1u32 << ts) - 1) as i32,
+                r(rnd(), (1u32 << ts) - 1) as i32,
+                r(rnd(), (1u32 << ts) - 1) as i32,
+            );
+            let m = Affine3::from_bits(rows, t).unwrap();
+            for max in [mc, 1 << 16, 1000] {
+                let b = m.point_bounds(max);
+                let check = |p: [i64; 3]| {
+                    let p = Vec3::from_bits(p[0] as i32, p[1] as i32, p[2] as i32);
+                    let (s, w) = (
+                        m.transform_point(p).bits(),
+                        m.transform_point_wrapping(p).bits(),
+                    );
+                    for i in 0..3 {
+                        // The exact (unsaturated) result is within the bound…
+                        let r = &m.m[i];
+                        let pb = p.bits();
+                        let exact = (m.t_wide[i]
+                            + (0..3).map(|j| r[j] as i64 * pb[j] as i64).sum::<i64>())
+                            >> LINEAR_FRAC;
+                        assert!(exact.unsigned_abs() <= b[i], "{exact} > {}", b[i]);
+                        // …and where the bound fits, the wrapping transform is the saturating one.
+                        if b[i] <= i32::MAX as u64 {
+                            assert_eq!(s[i], w[i]);
+                            assert_ne!(w[i], i32::MIN);
+                        }
+                    }
+                };
+                for _ in 0..20 {
+                    check([r(rnd(), max), r(rnd(), max), r(rnd(), max)]);
+                }
+                // The corners, where |M·p| is largest.
+                for k in 0..27 {
+                    let c = |d: i64| (d - 1) * max as i64;
+                    check([c(k % 3), c(k / 3 % 3), c(k / 9)]);
+                }
+            }
+        }
+        // A bound beyond i32 where the saturating transform does clamp.
+        let s = Affine3::scale(Coord::from_num(64)).unwrap();
+        assert!(s.point_bounds(mc)[0] > i32::MAX as u64);
+        assert!(s.point_bounds(1 << 16)[0] <= i32::MAX as u64);
     }
 
     #[test]

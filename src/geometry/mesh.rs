@@ -71,6 +71,8 @@ pub struct Mesh<'a> {
     indices: &'a [u16],
     sizes: PolygonSizes<'a>,
     polygon_count: usize,
+    /// Largest raw coordinate magnitude over all vertices (`≤ MAX_MESH_COORD_BITS`).
+    max_coord: u32,
 }
 
 /// Iterator over a mesh's polygons as index slices.
@@ -130,11 +132,20 @@ impl<'a> Mesh<'a> {
         // `const fn` (while loops, no iterators) so that a mesh in flash can be validated at
         // compile time: `const MESH: Mesh = match Mesh::new(..) { Ok(m) => m, .. }`.
         let mut i = 0;
+        let mut max_coord = 0u32;
         while i < vertices.len() {
             let b = vertices[i].bits();
             let lim = MAX_MESH_COORD_BITS as u32;
-            if b[0].unsigned_abs() > lim || b[1].unsigned_abs() > lim || b[2].unsigned_abs() > lim {
-                return Err(MeshError::CoordinateOutOfRange);
+            let mut k = 0;
+            while k < 3 {
+                let a = b[k].unsigned_abs();
+                if a > lim {
+                    return Err(MeshError::CoordinateOutOfRange);
+                }
+                if a > max_coord {
+                    max_coord = a;
+                }
+                k += 1;
             }
             i += 1;
         }
@@ -175,6 +186,7 @@ impl<'a> Mesh<'a> {
             indices,
             sizes,
             polygon_count,
+            max_coord,
         })
     }
 
@@ -185,12 +197,20 @@ impl<'a> Mesh<'a> {
             indices: &[],
             sizes: PolygonSizes::Uniform(3),
             polygon_count: 0,
+            max_coord: 0,
         }
     }
 
     /// A validated triangle mesh (`indices` in threes).
     pub fn triangles(vertices: &'a [Vec3], indices: &'a [u16]) -> Result<Mesh<'a>, MeshError> {
         Mesh::new(vertices, indices, PolygonSizes::Uniform(3))
+    }
+
+    /// The largest raw coordinate magnitude `|c|` over all vertices (0 for an empty mesh;
+    /// at most [`MAX_MESH_COORD_BITS`]), found by [`Mesh::new`]: the vertex stage bounds an
+    /// object's observer-frame coordinates with it once per frame.
+    pub const fn max_coord_bits(&self) -> u32 {
+        self.max_coord
     }
 
     /// The vertex table.
@@ -355,6 +375,16 @@ mod tests {
             v(1.0, 1.0, 0.0),
         ];
         assert!(Mesh::triangles(&vs, &[0, 1, 2]).is_ok());
+        assert_eq!(
+            Mesh::triangles(&vs, &[0, 1, 2]).unwrap().max_coord_bits(),
+            1 << 16
+        );
+        let neg = [v(0.5, -3.25, 2.0)];
+        assert_eq!(
+            Mesh::triangles(&neg, &[]).unwrap().max_coord_bits(),
+            13 << 14
+        );
+        assert_eq!(Mesh::empty().max_coord_bits(), 0);
         assert_eq!(
             Mesh::triangles(&vs, &[0, 1, 4]),
             Err(MeshError::IndexOutOfRange)
