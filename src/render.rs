@@ -630,6 +630,19 @@ struct Corner<const S: u32, const N: usize> {
     attrs: [i32; N],
 }
 
+impl<const S: u32, const N: usize> Corner<S, N> {
+    /// The corner of a prepared (projected) vertex with attributes `attrs`.
+    #[inline(always)]
+    fn prepared(p: &PreparedVertex<S>, attrs: [i32; N]) -> Self {
+        Corner {
+            screen: p.screen,
+            depth: p.depth,
+            view: p.view,
+            attrs,
+        }
+    }
+}
+
 /// A luminance triangle (flat or Gouraud, plain or dithered) from corners whose one attribute
 /// is a level (clamped to `0..=255`: clipped corners are interpolated).
 #[inline(always)]
@@ -746,19 +759,12 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
-        if let [i0, i1, i2] = *poly {
-            let p = self.prepared;
-            if let (Some(a), Some(b), Some(c)) =
-                (p.get(i0 as usize), p.get(i1 as usize), p.get(i2 as usize))
-            {
-                if a.outcode | b.outcode | c.outcode == 0 {
-                    let v = [a, b, c];
-                    return self
-                        .projected_triangle::<UNBANDED_CULLED, N>(pi, poly, v, stats, attrs, draw);
-                }
+        match self.prepared_triangle(poly) {
+            Some(v) if v[0].outcode | v[1].outcode | v[2].outcode == 0 => {
+                self.projected_triangle::<UNBANDED_CULLED, N>(pi, poly, v, stats, attrs, draw)
             }
+            _ => self.polygon(pi, poly, stats, attrs, draw),
         }
-        self.polygon(pi, poly, stats, attrs, draw)
     }
 
     /// One polygon by [`decide`](Self::decide) and [`follow`](Self::follow), not counted in
@@ -856,15 +862,9 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
-        let p = self.prepared;
-        match *poly {
-            [i0, i1, i2] => match (p.get(i0 as usize), p.get(i1 as usize), p.get(i2 as usize)) {
-                (Some(a), Some(b), Some(c)) => {
-                    self.draw_projected(pi, poly, [a, b, c], stats, attrs, draw)
-                }
-                _ => self.projected(pi, poly, stats, attrs, draw),
-            },
-            _ => self.projected(pi, poly, stats, attrs, draw),
+        match self.prepared_triangle(poly) {
+            Some(v) => self.draw_projected(pi, poly, v, stats, attrs, draw),
+            None => self.projected(pi, poly, stats, attrs, draw),
         }
     }
 
@@ -881,12 +881,8 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
-        if !UNBANDED_CULLED && self.banded {
-            let (y0, y1, y2) = (v[0].screen.y, v[1].screen.y, v[2].screen.y);
-            let (lo, hi) = (y0.min(y1).min(y2), y0.max(y1).max(y2));
-            if !PolygonRows::rows(ceil_shift(lo, S), ceil_shift(hi, S)).meets(self.rows) {
-                return Ok(());
-            }
+        if !UNBANDED_CULLED && self.banded && !triangle_rows(v).meets(self.rows) {
+            return Ok(());
         }
         let cull = UNBANDED_CULLED || self.object.cull_back_faces;
         if cull && !front_triangle(v[0].screen, v[1].screen, v[2].screen) {
@@ -907,12 +903,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl FnMut([Corner<S, N>; 3]) -> Result<(u32, u32), DrawError>,
     ) -> Result<(), RenderError> {
-        let corner = |k: usize| Corner {
-            screen: v[k].screen,
-            depth: v[k].depth,
-            view: v[k].view,
-            attrs: attrs(pi, tri, k, Some(v[k])),
-        };
+        let corner = |k: usize| Corner::prepared(v[k], attrs(pi, tri, k, Some(v[k])));
         draw_counted([corner(0), corner(1), corner(2)], draw, stats)
     }
 
@@ -1032,23 +1023,16 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         poly: &[u16],
         stats: &mut RenderStats,
     ) -> Result<PolygonRows, RenderError> {
-        if let [i0, i1, i2] = *poly {
-            let p = self.prepared;
-            if let (Some(a), Some(b), Some(c)) =
-                (p.get(i0 as usize), p.get(i1 as usize), p.get(i2 as usize))
-            {
-                if a.outcode | b.outcode | c.outcode == 0 {
-                    let (a, b, c) = (a.screen, b.screen, c.screen);
-                    if CULL && !front_triangle(a, b, c) {
-                        stats.culled += 1;
-                        return Ok(PolygonRows::NEVER);
-                    }
-                    let (lo, hi) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
-                    return Ok(PolygonRows::rows(ceil_shift(lo, S), ceil_shift(hi, S)));
+        match self.prepared_triangle(poly) {
+            Some(v) if v[0].outcode | v[1].outcode | v[2].outcode == 0 => {
+                if CULL && !front_triangle(v[0].screen, v[1].screen, v[2].screen) {
+                    stats.culled += 1;
+                    return Ok(PolygonRows::NEVER);
                 }
+                Ok(triangle_rows(v))
             }
+            _ => self.classify(poly, stats),
         }
-        self.classify(poly, stats)
     }
 
     /// The union of the polygon's vertex outcodes, or [`REJECTED`] (counted) when all are
@@ -1074,6 +1058,20 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         Ok(any)
     }
 
+    /// The prepared vertices of `poly` when it is a triangle whose indices are all in range.
+    #[inline(always)]
+    fn prepared_triangle(&self, poly: &[u16]) -> Option<[&PreparedVertex<S>; 3]> {
+        let p = self.prepared;
+        match *poly {
+            [i0, i1, i2] => Some([
+                p.get(i0 as usize)?,
+                p.get(i1 as usize)?,
+                p.get(i2 as usize)?,
+            ]),
+            _ => None,
+        }
+    }
+
     /// The rows of a polygon whose vertices all projected: `⌈y_min⌉ .. ⌈y_max⌉`.
     #[inline(always)]
     fn projected_rows(&self, poly: &[u16]) -> PolygonRows {
@@ -1097,12 +1095,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     ) -> Result<(), RenderError> {
         let corner = |k: usize| {
             let p = &self.prepared[poly[k] as usize];
-            Corner {
-                screen: p.screen,
-                depth: p.depth,
-                view: p.view,
-                attrs: attrs(pi, poly, k, Some(p)),
-            }
+            Corner::prepared(p, attrs(pi, poly, k, Some(p)))
         };
         fan(poly.len(), corner, draw, stats)
     }
@@ -1201,6 +1194,15 @@ fn screen_area<const S: u32>(n: usize, p: impl Fn(usize) -> SubpixelPoint<S>) ->
         sum = sum.wrapping_add(bx as i64 * cy as i64 - by as i64 * cx as i64);
     }
     sum
+}
+
+/// The rows of a triangle whose vertices all projected: `⌈y_min⌉ .. ⌈y_max⌉`, as
+/// [`PolygonStage::projected_rows`] gives for any polygon.
+#[inline(always)]
+fn triangle_rows<const S: u32>(v: [&PreparedVertex<S>; 3]) -> PolygonRows {
+    let (y0, y1, y2) = (v[0].screen.y, v[1].screen.y, v[2].screen.y);
+    let (lo, hi) = (y0.min(y1).min(y2), y0.max(y1).max(y2));
+    PolygonRows::rows(ceil_shift(lo, S), ceil_shift(hi, S))
 }
 
 /// True when a projected triangle is a front face, [`screen_area`]`(3, …) < 0`, computed as

@@ -233,17 +233,23 @@ impl Affine3 {
     /// `M·p + t`, rounded to nearest, saturating to the I16F16 range (see the module doc).
     #[inline]
     pub fn transform_point(&self, p: Vec3) -> Vec3 {
+        let [x, y, z] = self.rounded_rows(p).map(saturate_i32);
+        Vec3::from_bits(x, y, z)
+    }
+
+    /// `M·p + t` per row, rounded to nearest raw I16F16 units, before any range check.
+    #[inline(always)]
+    fn rounded_rows(&self, p: Vec3) -> [i64; 3] {
         let p = p.bits();
-        let row = |i: usize| {
+        core::array::from_fn(|i| {
             let r = &self.m[i];
             // Q40 sum with the rounding bias already in t_wide: a plain shift rounds to nearest.
             let acc = self.t_wide[i]
                 + r[0] as i64 * p[0] as i64
                 + r[1] as i64 * p[1] as i64
                 + r[2] as i64 * p[2] as i64;
-            saturate_i32(acc >> LINEAR_FRAC)
-        };
-        Vec3::from_bits(row(0), row(1), row(2))
+            acc >> LINEAR_FRAC
+        })
     }
 
     /// [`transform_point`](Affine3::transform_point) without the saturation: the low word of
@@ -253,16 +259,8 @@ impl Affine3 {
     /// objects whose bound fits, saving the per-coordinate range check.
     #[inline]
     pub fn transform_point_wrapping(&self, p: Vec3) -> Vec3 {
-        let p = p.bits();
-        let row = |i: usize| {
-            let r = &self.m[i];
-            let acc = self.t_wide[i]
-                + r[0] as i64 * p[0] as i64
-                + r[1] as i64 * p[1] as i64
-                + r[2] as i64 * p[2] as i64;
-            (acc >> LINEAR_FRAC) as i32
-        };
-        Vec3::from_bits(row(0), row(1), row(2))
+        let [x, y, z] = self.rounded_rows(p).map(|v| v as i32);
+        Vec3::from_bits(x, y, z)
     }
 
     /// For points whose raw coordinates all satisfy `|c| ≤ max_coord`, a bound per row on the

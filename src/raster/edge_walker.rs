@@ -414,45 +414,57 @@ mod tests {
         }
     }
 
-    /// The 32-bit division of narrow edges equals the i64 one (which the host takes).
-    #[test]
-    fn narrow_division_equals_wide() {
-        let mut seed = 0x1357_9BDF_2468_ACE0u64;
-        let mut rnd = |m: i32| {
+    /// 20,000 edges of at most `2^13 − 1` units across and down (the narrow limits, reached
+    /// in a quarter of them), from the xorshift seed `seed`.
+    fn narrow_edges(seed: u64) -> impl Iterator<Item = Edge> {
+        let mut seed = seed;
+        let mut rnd = move |m: i32| {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed % (2 * m as u64 + 1)) as i32 - m
         };
-        fn check<const S: u32>(e: &Edge) {
-            for side in [EdgeSide::Left, EdgeSide::Right] {
-                let (y0, y1) = (e.first_row::<S>(), e.end_row::<S>());
-                for y in [y0, y0 + 1, (y0 + y1) / 2, y1 - 2, y1 - 1] {
-                    if y < y0 || y >= y1 {
-                        continue;
-                    }
-                    let (n, den) = e.biased_numerator::<S>(y, side);
-                    let (x, rem) = div_floor_i64(n, den);
-                    let want = (x as i32, (rem >> S) as i32);
-                    assert_eq!(e.divide_narrow::<S>(y, side), want, "{e:?}");
-                    assert_eq!(e.divide::<S>(y, side), want, "{e:?}");
-                }
-            }
-        }
         let lim = (1 << 13) - 1;
-        for i in 0..20_000 {
+        (0..20_000).filter_map(move |i| {
             let (x0, y0) = (rnd(MAX_COORD), rnd(MAX_COORD - lim));
             let dx = [rnd(lim), rnd(40), lim, -lim][i % 4];
             let dy = 1 + [rnd(lim - 1).abs(), rnd(40).abs(), lim - 1, 0][i % 4];
-            let Some(x1) = x0.checked_add(dx).filter(|x| x.abs() <= MAX_COORD) else {
-                continue;
-            };
-            let e = Edge {
+            let x1 = x0.checked_add(dx).filter(|x| x.abs() <= MAX_COORD)?;
+            Some(Edge {
                 x0,
                 y0,
                 x1,
                 y1: y0 + dy,
-            };
+            })
+        })
+    }
+
+    /// Both sides of `e` at its first two, middle and last two rows (at `S` sub-pixel bits).
+    fn sampled_rows<const S: u32>(e: &Edge) -> impl Iterator<Item = (EdgeSide, i32)> {
+        let (y0, y1) = (e.first_row::<S>(), e.end_row::<S>());
+        [EdgeSide::Left, EdgeSide::Right]
+            .into_iter()
+            .flat_map(move |side| {
+                [y0, y0 + 1, (y0 + y1) / 2, y1 - 2, y1 - 1]
+                    .into_iter()
+                    .filter(move |y| (y0..y1).contains(y))
+                    .map(move |y| (side, y))
+            })
+    }
+
+    /// The 32-bit division of narrow edges equals the i64 one (which the host takes).
+    #[test]
+    fn narrow_division_equals_wide() {
+        fn check<const S: u32>(e: &Edge) {
+            for (side, y) in sampled_rows::<S>(e) {
+                let (n, den) = e.biased_numerator::<S>(y, side);
+                let (x, rem) = div_floor_i64(n, den);
+                let want = (x as i32, (rem >> S) as i32);
+                assert_eq!(e.divide_narrow::<S>(y, side), want, "{e:?}");
+                assert_eq!(e.divide::<S>(y, side), want, "{e:?}");
+            }
+        }
+        for e in narrow_edges(0x1357_9BDF_2468_ACE0) {
             assert!(e.is_narrow());
             check::<0>(&e);
             check::<4>(&e);
@@ -470,42 +482,16 @@ mod tests {
     /// The 32-bit target's unsigned narrow start equals the general one (which the host takes).
     #[test]
     fn narrow_start_equals_general() {
-        let mut seed = 0x0F1E_2D3C_4B5A_6978u64;
-        let mut rnd = |m: i32| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64 + 1)) as i32 - m
-        };
         fn check<const S: u32>(e: &Edge) {
-            for side in [EdgeSide::Left, EdgeSide::Right] {
-                let (y0, y1) = (e.first_row::<S>(), e.end_row::<S>());
-                for y in [y0, y0 + 1, (y0 + y1) / 2, y1 - 2, y1 - 1] {
-                    if y < y0 || y >= y1 {
-                        continue;
-                    }
-                    let (x, k) = e.divide::<S>(y, side);
-                    let want = IncrementalWalker::from_end(x, k, e.x1 - e.x0, e.y1 - e.y0);
-                    let got = IncrementalWalker::start_narrow::<S>(e, side, y).expect("narrow");
-                    let fields = |w: IncrementalWalker| (w.x, w.k, w.q, w.r, w.dy);
-                    assert_eq!(fields(got), fields(want), "{e:?} {side:?} row {y}");
-                }
+            for (side, y) in sampled_rows::<S>(e) {
+                let (x, k) = e.divide::<S>(y, side);
+                let want = IncrementalWalker::from_end(x, k, e.x1 - e.x0, e.y1 - e.y0);
+                let got = IncrementalWalker::start_narrow::<S>(e, side, y).expect("narrow");
+                let fields = |w: IncrementalWalker| (w.x, w.k, w.q, w.r, w.dy);
+                assert_eq!(fields(got), fields(want), "{e:?} {side:?} row {y}");
             }
         }
-        let lim = (1 << 13) - 1;
-        for i in 0..20_000 {
-            let (x0, y0) = (rnd(MAX_COORD), rnd(MAX_COORD - lim));
-            let dx = [rnd(lim), rnd(40), lim, -lim][i % 4];
-            let dy = 1 + [rnd(lim - 1).abs(), rnd(40).abs(), lim - 1, 0][i % 4];
-            let Some(x1) = x0.checked_add(dx).filter(|x| x.abs() <= MAX_COORD) else {
-                continue;
-            };
-            let e = Edge {
-                x0,
-                y0,
-                x1,
-                y1: y0 + dy,
-            };
+        for e in narrow_edges(0x0F1E_2D3C_4B5A_6978) {
             check::<0>(&e);
             check::<4>(&e);
             check::<16>(&e);
