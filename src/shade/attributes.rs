@@ -44,7 +44,8 @@
 //!   below `2^31` (`i32`) or `2^32` (`u32`); quotients that only move values are kept mod
 //!   `2^32`, like the values themselves.
 
-use crate::raster::euclid::{div_floor_i32, div_floor_i64, Divisor};
+use crate::raster::euclid::{div_floor_i64, Divisor};
+use core::num::NonZeroU32;
 use crate::raster::SubpixelPoint;
 
 /// Why an attribute plane could not be set up.
@@ -478,33 +479,50 @@ pub const fn small_bits(s: u32) -> u32 {
 /// [`AttributePlane::dda`], without 64-bit products or divisions on 32-bit targets.
 ///
 /// ## Numeric contract
-/// With `K = `[`small_bits`]`(S)`, the triangle's bounding box is narrower and lower than
-/// `2^K` sub-pixel units (checked by [`SmallPlane::new`]). Then every vertex difference is
-/// below `2^K` in magnitude and `D ≤ W·H < 2^(2K)`, and with `A1 − A0 = D·Q1 + R1`,
-/// `A2 − A0 = D·Q2 + R2` (`0 ≤ R < D`, one 32-bit division of `|A − A0| < 2^32` each):
+/// With `K = `[`small_bits`]`(S)`, the triangle's bounding box is `W` units wide and `H` high
+/// with `W, H ≤ m = 2^K − 1` (checked by [`SmallPlane::new`]). Then every vertex difference is
+/// at most `m` in magnitude and `D ≤ W·H` (a triangle fills at most half its box), and with
+/// `A1 − A0 = D·Q1 + R1`, `A2 − A0 = D·Q2 + R2` (`0 ≤ R < D`, one 32-bit division of
+/// `|A − A0| < 2^32` each):
 ///
 /// - `gx = D·(Q1·dy2 − Q2·dy1) + (R1·dy2 − R2·dy1)` (signs as the module doc), whose second
 ///   part is below `2·2^(2K)·2^K = 2^(3K+1) ≤ 2^31`: one `i32` floored division splits it, giving
 ///   `gx = D·g1 + g0` with `0 ≤ g0 < D` and `g1` kept mod `2^32` (it only ever moves values,
 ///   which wrap mod `2^32`); the same for `gy = D·h1 + h0`.
+/// - Span starts are measured from the box's top-left corner `C`, so that the offsets
+///   `px = x·F − Cx`, `py = y·F − Cy` of a covered pixel lie in `0..=W` and `0..=H` and every
+///   term below is non-negative: no signed division, no floor fix-up. The corner's own value
+///   is split once, `M(C) = D·(g1·cx + h1·cy) + E` with `cx, cy ∈ (−2^K, 0]` the corner's offset
+///   from `P0` and `|E| < 2^(3K+1)`; one floored division `E = D·c1 + c0` (`0 ≤ c0 < D`) and
+///   `B = A0 + g1·cx + h1·cy + c1` (mod `2^32`) give `2M(p) + D = 2D·(B − A0 + g1·px + h1·py)
+///   + e'` with
+///
+///   ```text
+///   e' = (2·c0 + D) + 2·g0·px + 2·h0·py  ≤  2·(D − 1)·(1 + W + H) + D  <  m²·(4m + 3)  <  2^32
+///   ```
+///
+///   so the start is one unsigned division `e' = 2D·q + rem`: value `B + g1·px + h1·py + q`,
+///   remainder `rem` (bound tight at `K = 10`: `1023²·4095 < 2^32`).
 /// - a step right adds `2F·gx` to `2M + D`: quotient `F·g1 + ⌊F·g0 / D⌋`, remainder
 ///   `2·(F·g0 mod D)`, with `F·g0 < 2^(S+2K) ≤ 2^32`.
-/// - at a covered pixel `p`, `|p − P0| < 2^K` on both axes, so `M(p) = D·(g1·px + h1·py) + E`
-///   with `|E| = |g0·px + h0·py| < 2^(3K+1) ≤ 2^31`; one floored division `E = D·e1 + e0` and
-///   `2e0 + D < 3D` give the rounded quotient and remainder.
-/// - the 16.16 [`Dda`] needs `⌊e0·2^16 / D⌋` and `⌊g0·2^(16+S) / D⌋`, long divisions of a
-///   fraction `n / D < 1` eight bits at a time (`n·2^8 < 2^(2K+8) ≤ 2^28`).
+/// - the 16.16 [`Dda`] needs `⌊e·2^16 / D⌋` with `e = (e' − D) / 2` and `⌊g0·2^(16+S) / D⌋`,
+///   long divisions of a fraction `n / D < 1` eight bits at a time (`n·2^8 < 2^(2K+8) ≤ 2^28`).
 ///
 /// On 64-bit targets the split of `gx` and `gy` is one `i64` division each (the hardware's),
 /// which gives the same `g1 mod 2^32, g0`.
 #[derive(Debug, Clone)]
 pub struct SmallPlane<const N: usize, const S: u32> {
-    origin: SubpixelPoint<S>,
+    /// `C`, the bounding box's top-left corner.
+    corner: SubpixelPoint<S>,
+    /// Per attribute, `B` (mod 2^32): the whole part of the value at the corner.
     base: [u32; N],
-    /// `D` (twice the area, positive, `< 2^(2K)`).
-    d: u32,
-    /// Per attribute `(g1 mod 2^32, g0, h1 mod 2^32, h0)`: `gx = D·g1 + g0`, `gy = D·h1 + h0`.
-    split: [(u32, u32, u32, u32); N],
+    /// `D` (twice the area, positive, `≤ W·H < 2^(2K)`).
+    d: NonZeroU32,
+    /// `2D`.
+    two_d: NonZeroU32,
+    /// Per attribute `(g1 mod 2^32, 2·g0, h1 mod 2^32, 2·h0, 2·c0 + D)`: `gx = D·g1 + g0`,
+    /// `gy = D·h1 + h0`, the corner's numerator `c0`.
+    split: [(u32, u32, u32, u32, u32); N],
     /// Per attribute, `(q, r)` of one pixel step right.
     step_x: [(u32, u32); N],
 }
@@ -520,27 +538,39 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
         let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
         let cross = dx1 * dy2 - dy1 * dx2; // |products| < 2^(2K)
-        if cross == 0 {
-            return None;
-        }
         let negative = cross < 0;
-        let d = cross.unsigned_abs();
-        let mut split = [(0, 0, 0, 0); N];
+        let d = NonZeroU32::new(cross.unsigned_abs())?;
+        // The corner's offset from P0: (cx, cy) in (−2^K, 0].
+        let (cx, cy) = (dx1.min(dx2).min(0), dy1.min(dy2).min(0));
+        let corner = SubpixelPoint::new(v[0].x.wrapping_add(cx), v[0].y.wrapping_add(cy));
+        let mut base = [0; N];
+        let mut split = [(0, 0, 0, 0, 0); N];
         let mut step_x = [(0, 0); N];
         for i in 0..N {
             let a1 = values[1][i] as i64 - values[0][i] as i64;
             let a2 = values[2][i] as i64 - values[0][i] as i64;
             let (g1, g0) = split_gradient(a1, a2, dy2, dy1, negative, d);
             let (h1, h0) = split_gradient(a2, a1, dx1, dx2, negative, d);
+            // |E| = |g0·cx + h0·cy| < D·2^(K+1).
+            let e = (g0 as i32)
+                .wrapping_mul(cx)
+                .wrapping_add((h0 as i32).wrapping_mul(cy));
+            let (c1, c0) = div_floor_small(e, d);
+            base[i] = values[0][i]
+                .wrapping_add(g1.wrapping_mul(cx as u32))
+                .wrapping_add(h1.wrapping_mul(cy as u32))
+                .wrapping_add(c1 as u32);
             // F·g0 < 2^(S+2K) ≤ 2^32.
             let fg0 = g0 << S;
             step_x[i] = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
-            split[i] = (g1, g0, h1, h0);
+            split[i] = (g1, 2 * g0, h1, 2 * h0, 2 * c0 + d.get());
         }
         Some(SmallPlane {
-            origin: v[0],
-            base: values[0],
+            corner,
+            base,
             d,
+            // D < 2^(2K) ≤ 2^20: 2D does not overflow.
+            two_d: d.saturating_add(d.get()),
             split,
             step_x,
         })
@@ -563,28 +593,28 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
             && small(dy2.wrapping_sub(dy1))
     }
 
-    /// `(x·F − X0, y·F − Y0)` for pixel `(x, y)`.
+    /// `(px, py) = (x·F − Cx, y·F − Cy)` for pixel `(x, y)`: in `0..=W`, `0..=H` when covered.
     #[inline(always)]
-    fn offset(&self, x: i32, y: i32) -> (i32, i32) {
+    fn offset(&self, x: i32, y: i32) -> (u32, u32) {
         (
-            (x << S).wrapping_sub(self.origin.x),
-            (y << S).wrapping_sub(self.origin.y),
+            (x << S).wrapping_sub(self.corner.x) as u32,
+            (y << S).wrapping_sub(self.corner.y) as u32,
         )
     }
 
-    /// `(g1·px + h1·py mod 2^32, e1, e0)`: `M = D·(whole + e1) + e0`, `0 ≤ e0 < D`.
+    /// `(B + g1·px + h1·py mod 2^32, e')` at offset `(px, py)`: `2M + D = 2D·(whole − A0) + e'`.
     #[inline(always)]
-    fn m(&self, i: usize, px: i32, py: i32) -> (u32, i32, u32) {
-        let (g1, g0, h1, h0) = self.split[i];
-        let whole = g1
-            .wrapping_mul(px as u32)
-            .wrapping_add(h1.wrapping_mul(py as u32));
-        // |E| < 2^(3K+1) ≤ 2^31 (see the numeric contract).
-        let e = (g0 as i32)
-            .wrapping_mul(px)
-            .wrapping_add((h0 as i32).wrapping_mul(py));
-        let (e1, e0) = div_floor_i32(e, self.d as i32);
-        (whole, e1, e0 as u32)
+    fn numerator(&self, i: usize, px: u32, py: u32) -> (u32, u32) {
+        let (g1, g0x2, h1, h0x2, c0) = self.split[i];
+        let whole = self.base[i]
+            .wrapping_add(g1.wrapping_mul(px))
+            .wrapping_add(h1.wrapping_mul(py));
+        // e' < 2^32 at a covered pixel (see the numeric contract).
+        (
+            whole,
+            c0.wrapping_add(g0x2.wrapping_mul(px))
+                .wrapping_add(h0x2.wrapping_mul(py)),
+        )
     }
 
     /// Attribute `i < N` at the covered pixel `(x, y)`, ready to step right exactly: equal to
@@ -596,21 +626,14 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
     }
 
     #[inline(always)]
-    fn exact_from(&self, i: usize, px: i32, py: i32) -> Exact {
-        let (whole, e1, e0) = self.m(i, px, py);
-        // 2M + D = 2D·(whole + e1) + (2·e0 + D), and D ≤ 2·e0 + D < 3D.
-        let two_d = 2 * self.d;
-        let t = 2 * e0 + self.d;
-        let carry = (t >= two_d) as u32;
+    fn exact_from(&self, i: usize, px: u32, py: u32) -> Exact {
+        let (whole, e) = self.numerator(i, px, py);
         Exact {
-            value: self.base[i]
-                .wrapping_add(whole)
-                .wrapping_add(e1 as u32)
-                .wrapping_add(carry),
-            rem: t - carry * two_d,
+            value: whole.wrapping_add(e / self.two_d),
+            rem: e % self.two_d,
             q: self.step_x[i].0,
             r: self.step_x[i].1,
-            two_d,
+            two_d: self.two_d.get(),
         }
     }
 
@@ -619,15 +642,16 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
     #[inline]
     pub fn dda(&self, i: usize, x: i32, y: i32) -> Dda {
         let (px, py) = self.offset(x, y);
-        let (whole, e1, e0) = self.m(i, px, py);
-        // ⌊M·2^16 / D⌋ = 2^16·(whole + e1) + ⌊e0·2^16 / D⌋ (mod 2^32).
-        let start = (self.base[i].wrapping_add(whole).wrapping_add(e1 as u32) << 16)
-            .wrapping_add(frac_bits(e0, self.d, 16));
-        let (g1, g0, _, _) = self.split[i];
+        let (whole, e2) = self.numerator(i, px, py);
+        // M = D·(whole − A0) + e with e = (e' − D) / 2 ≥ 0, so
+        // ⌊M·2^16 / D⌋ + A0·2^16 = 2^16·(whole + ⌊e / D⌋) + ⌊(e mod D)·2^16 / D⌋ (mod 2^32).
+        let (d, e) = (self.d, e2.wrapping_sub(self.d.get()) / 2);
+        let start = (whole.wrapping_add(e / d) << 16).wrapping_add(frac_bits(e % d, d, 16));
+        let (g1, g0x2, _, _, _) = self.split[i];
         // ⌊gx·2^(16+S) / D⌋ = 2^(16+S)·g1 + ⌊g0·2^(16+S) / D⌋ (mod 2^32).
         let inc = g1
             .wrapping_shl(16 + S)
-            .wrapping_add(frac_bits(g0, self.d, 16 + S));
+            .wrapping_add(frac_bits(g0x2 / 2, d, 16 + S));
         Dda {
             acc: start.wrapping_add(1 << 15),
             inc,
@@ -636,7 +660,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
 
     /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
     pub fn run_limit(&self) -> u32 {
-        u32::MAX / (2 * self.d)
+        u32::MAX / self.two_d
     }
 }
 
@@ -667,12 +691,19 @@ impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
 /// `(g1 mod 2^32, g0)` with `±(a1·c1 − a2·c2) = D·g1 + g0`, `0 ≤ g0 < D` (minus when
 /// `negative`), for `|a| < 2^32`, `|c| < 2^K`, `D < 2^(2K)` (see [`SmallPlane`]).
 #[inline(always)]
-fn split_gradient(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: u32) -> (u32, u32) {
+fn split_gradient(
+    a1: i64,
+    a2: i64,
+    c1: i32,
+    c2: i32,
+    negative: bool,
+    d: NonZeroU32,
+) -> (u32, u32) {
     if cfg!(target_pointer_width = "64") {
         // One hardware division of the exact i64 gradient (|g| < 2^(33+K)).
         let g = a1 * c1 as i64 - a2 * c2 as i64;
         let g = if negative { -g } else { g };
-        let (g1, g0) = div_floor_i64(g, d as i64);
+        let (g1, g0) = div_floor_i64(g, d.get() as i64);
         return (g1 as u32, g0 as u32);
     }
     split_gradient_narrow(a1, a2, c1, c2, negative, d)
@@ -680,10 +711,17 @@ fn split_gradient(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: u32) ->
 
 /// [`split_gradient`] in 32-bit operations (the 32-bit targets' form; same results).
 #[inline(always)]
-fn split_gradient_narrow(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: u32) -> (u32, u32) {
+fn split_gradient_narrow(
+    a1: i64,
+    a2: i64,
+    c1: i32,
+    c2: i32,
+    negative: bool,
+    d: NonZeroU32,
+) -> (u32, u32) {
     let (q1, r1) = div_floor_by_u32(a1, d);
     let (q2, r2) = div_floor_by_u32(a2, d);
-    // |r1·c1 − r2·c2| < 2·D·2^K ≤ 2^31.
+    // |r1·c1 − r2·c2| < 2·D·2^K.
     let gq = q1
         .wrapping_mul(c1 as u32)
         .wrapping_sub(q2.wrapping_mul(c2 as u32));
@@ -695,14 +733,14 @@ fn split_gradient_narrow(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: 
     } else {
         (gq, gr)
     };
-    let (u, g0) = div_floor_i32(gr, d as i32);
-    (gq.wrapping_add(u as u32), g0 as u32)
+    let (u, g0) = div_floor_small(gr, d);
+    (gq.wrapping_add(u), g0)
 }
 
 /// `(⌊a / d⌋ mod 2^32, a mod d)` for `|a| < 2^32` and `0 < d < 2^31`: one 32-bit division of
 /// `|a|`.
 #[inline(always)]
-fn div_floor_by_u32(a: i64, d: u32) -> (u32, u32) {
+fn div_floor_by_u32(a: i64, d: NonZeroU32) -> (u32, u32) {
     let m = a.unsigned_abs() as u32;
     let (q, r) = (m / d, m % d);
     if a >= 0 {
@@ -710,14 +748,23 @@ fn div_floor_by_u32(a: i64, d: u32) -> (u32, u32) {
     } else if r == 0 {
         (q.wrapping_neg(), 0)
     } else {
-        ((!q), d - r) // −q − 1
+        ((!q), d.get() - r) // −q − 1
     }
+}
+
+/// `(⌊a / d⌋ mod 2^32, a mod d)` for `d ≤ 2^20` and `|a| < 2^11·d` (the small planes' terms:
+/// `|a| < 2^(K+1)·D`, `D < 2^(2K)`, `K ≤ 10`): one unsigned division of `a + 2^11·d`, which
+/// lies in `0..2^12·d ≤ 2^32`, so no sign fix-up.
+#[inline(always)]
+fn div_floor_small(a: i32, d: NonZeroU32) -> (u32, u32) {
+    let biased = (a as u32).wrapping_add(d.get() << 11);
+    ((biased / d).wrapping_sub(1 << 11), biased % d)
 }
 
 /// `⌊n·2^bits / d⌋ mod 2^32` for `0 ≤ n < d < 2^24`: long division eight bits at a time
 /// (`n·2^8 < 2^32`).
 #[inline(always)]
-fn frac_bits(mut n: u32, d: u32, mut bits: u32) -> u32 {
+fn frac_bits(mut n: u32, d: NonZeroU32, mut bits: u32) -> u32 {
     let mut q = 0u32;
     while bits > 0 {
         let c = bits.min(8);
@@ -943,6 +990,7 @@ mod tests {
                 g.div_euclid(d as i128) as u32,
                 g.rem_euclid(d as i128) as u32,
             );
+            let d = NonZeroU32::new(d).unwrap();
             assert_eq!(split_gradient(a1, a2, c1, c2, negative, d), want);
             assert_eq!(split_gradient_narrow(a1, a2, c1, c2, negative, d), want);
         }
