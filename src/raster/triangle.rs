@@ -29,15 +29,29 @@ pub fn cross<const S: u32>(a: SubpixelPoint<S>, b: SubpixelPoint<S>, c: Subpixel
         - (b.y as i64 - a.y as i64) * (c.x as i64 - a.x as i64)
 }
 
+/// [`cross`] for vertices in the raster range (`|x|, |y| ≤ MAX_COORD`): the differences fit
+/// `i32` (`< 2^29`), so each product is one 32×32→64-bit multiply (`smull` on a Cortex-M3/M4)
+/// instead of a product of 64-bit operands. Same value.
+#[inline(always)]
+fn cross_in_range<const S: u32>(
+    a: SubpixelPoint<S>,
+    b: SubpixelPoint<S>,
+    c: SubpixelPoint<S>,
+) -> i64 {
+    let (dx1, dy1) = (b.x.wrapping_sub(a.x), b.y.wrapping_sub(a.y));
+    let (dx2, dy2) = (c.x.wrapping_sub(a.x), c.y.wrapping_sub(a.y));
+    dx1 as i64 * dy2 as i64 - dy1 as i64 * dx2 as i64
+}
+
 /// Checks the documented coordinate range.
 #[inline]
 pub(crate) fn check_range<const S: u32>(v: &[SubpixelPoint<S>]) -> Result<(), FillError> {
     if S > MAX_SUBPIXEL_BITS {
         return Err(FillError::CoordinateOutOfRange { vertex: usize::MAX });
     }
-    match v.iter().position(|p| {
-        p.x.unsigned_abs() > MAX_COORD as u32 || p.y.unsigned_abs() > MAX_COORD as u32
-    }) {
+    // |t| > MAX_COORD exactly when t + MAX_COORD (wrapping) leaves 0..=2·MAX_COORD.
+    let out = |t: i32| t.wrapping_add(MAX_COORD) as u32 > 2 * MAX_COORD as u32;
+    match v.iter().position(|p| out(p.x) | out(p.y)) {
         Some(i) => Err(FillError::CoordinateOutOfRange { vertex: i }),
         None => Ok(()),
     }
@@ -75,7 +89,7 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
             core::mem::swap(&mut a, &mut b);
         }
     }
-    let area = cross(a, b, c);
+    let area = cross_in_range(a, b, c); // in range: checked above
     if area == 0 {
         return Ok(());
     }
