@@ -49,7 +49,7 @@
 //! non-negative by a multiple of the divisor (sum `< 2^31`), so both of its divisions are
 //! unsigned with no sign fix-up; wide edges take an out-of-line start (tested equal).
 
-use super::euclid::{div_floor_i32, div_floor_i64};
+use super::euclid::{div_floor_i32, div_floor_i64, HARDWARE_DIVIDE};
 use core::num::NonZeroU32;
 
 /// The largest coordinate magnitude (in sub-pixel units) the raster stage accepts.
@@ -314,7 +314,14 @@ impl EdgeWalker for IncrementalWalker {
     #[inline(always)]
     fn start<const S: u32>(edge: &Edge, side: EdgeSide, y: i32) -> Self {
         if cfg!(not(target_pointer_width = "64")) {
-            if let Some(w) = Self::start_narrow::<S>(edge, side, y) {
+            if !HARDWARE_DIVIDE {
+                // Software divisions: the signed narrow form, whose quotients are short (the
+                // biased one adds 13 to 16 bits to each, one loop turn per bit).
+                if edge.is_narrow() && edge.y1 > edge.y0 {
+                    let (x, k) = edge.divide_narrow::<S>(y, side);
+                    return Self::from_end(x, k, edge.x1 - edge.x0, edge.y1 - edge.y0);
+                }
+            } else if let Some(w) = Self::start_narrow::<S>(edge, side, y) {
                 return w;
             }
             return Self::start_wide::<S>(edge, side, y);

@@ -29,6 +29,18 @@ pub fn div_floor_i64(a: i64, b: i64) -> (i64, i64) {
     }
 }
 
+/// True where a 32-bit division is one instruction: x86, x86-64, AArch64, and 32-bit Arm from
+/// ARMv7-M on, recognised on stable Rust by their 32-bit atomics as in
+/// [`target`](crate::target) (ARMv6-M, `thumbv6m`, has neither: Cortex-M0/M0+ divide in a
+/// library routine whose loop runs once per quotient bit). Divisions biased to be unsigned (no
+/// sign fix-up, a quotient several bits longer) pay only where this holds.
+pub const HARDWARE_DIVIDE: bool = cfg!(any(
+    target_arch = "x86",
+    target_arch = "x86_64",
+    target_arch = "aarch64",
+    all(target_arch = "arm", target_has_atomic = "32")
+));
+
 /// `(q, r)` with `a = b·q + r` and `0 ≤ r < b`, for `b > 0`.
 #[inline(always)]
 pub fn div_floor_i32(a: i32, b: i32) -> (i32, i32) {

@@ -44,7 +44,7 @@
 //!   below `2^31` (`i32`) or `2^32` (`u32`); quotients that only move values are kept mod
 //!   `2^32`, like the values themselves.
 
-use crate::raster::euclid::{div_floor_i64, Divisor};
+use crate::raster::euclid::{div_floor_i32, div_floor_i64, Divisor, HARDWARE_DIVIDE};
 use core::num::NonZeroU32;
 use crate::raster::SubpixelPoint;
 
@@ -757,6 +757,11 @@ fn div_floor_by_u32(a: i64, d: NonZeroU32) -> (u32, u32) {
 /// lies in `0..2^12·d ≤ 2^32`, so no sign fix-up.
 #[inline(always)]
 fn div_floor_small(a: i32, d: NonZeroU32) -> (u32, u32) {
+    if !HARDWARE_DIVIDE {
+        // A software division's loop runs once per quotient bit: the bias would add eleven.
+        let (q, r) = div_floor_i32(a, d.get() as i32);
+        return (q as u32, r as u32);
+    }
     let biased = (a as u32).wrapping_add(d.get() << 11);
     ((biased / d).wrapping_sub(1 << 11), biased % d)
 }
