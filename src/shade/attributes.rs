@@ -45,8 +45,8 @@
 //!   `2^32`, like the values themselves.
 
 use crate::raster::euclid::{div_floor_i32, div_floor_i64, Divisor, HARDWARE_DIVIDE};
-use core::num::NonZeroU32;
 use crate::raster::SubpixelPoint;
+use core::num::NonZeroU32;
 
 /// Why an attribute plane could not be set up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -691,14 +691,7 @@ impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
 /// `(g1 mod 2^32, g0)` with `±(a1·c1 − a2·c2) = D·g1 + g0`, `0 ≤ g0 < D` (minus when
 /// `negative`), for `|a| < 2^32`, `|c| < 2^K`, `D < 2^(2K)` (see [`SmallPlane`]).
 #[inline(always)]
-fn split_gradient(
-    a1: i64,
-    a2: i64,
-    c1: i32,
-    c2: i32,
-    negative: bool,
-    d: NonZeroU32,
-) -> (u32, u32) {
+fn split_gradient(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: NonZeroU32) -> (u32, u32) {
     if cfg!(target_pointer_width = "64") {
         // One hardware division of the exact i64 gradient (|g| < 2^(33+K)).
         let g = a1 * c1 as i64 - a2 * c2 as i64;

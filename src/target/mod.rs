@@ -83,15 +83,10 @@ pub(crate) const FILL_CHUNK_BYTES: usize = 32;
 // into byte or halfword stores, measured 62 k instructions slower per 320×240 frame than
 // `memset`) they keep `slice::fill`. `u32` runs are aligned and pay everywhere.
 
-/// Targets whose word stores may be unaligned at no extra instruction: x86, x86-64, AArch64,
-/// and 32-bit Arm from ARMv6/ARMv7-M on, recognised on stable Rust by their 32-bit atomics
-/// (ARMv6-M, `thumbv6m`, has neither). Elsewhere the clears use `slice::fill`.
-const UNALIGNED_WORD_STORES: bool = cfg!(any(
-    target_arch = "x86",
-    target_arch = "x86_64",
-    target_arch = "aarch64",
-    all(target_arch = "arm", target_has_atomic = "32")
-));
+/// Targets whose word stores may be unaligned at no extra instruction: the
+/// [`RICH_CORE`](crate::RICH_CORE) class (ARMv6-M has no unaligned stores). Elsewhere the clears
+/// use `slice::fill`.
+const UNALIGNED_WORD_STORES: bool = crate::RICH_CORE;
 
 /// Sets every byte of `dst` to `v`, 32 bytes per iteration, then the tail byte by byte.
 #[inline]
