@@ -559,7 +559,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
             base[i] = values[0][i]
                 .wrapping_add(g1.wrapping_mul(cx as u32))
                 .wrapping_add(h1.wrapping_mul(cy as u32))
-                .wrapping_add(c1 as u32);
+                .wrapping_add(c1);
             // F·g0 < 2^(S+2K) ≤ 2^32.
             let fg0 = g0 << S;
             step_x[i] = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
