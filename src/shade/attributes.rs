@@ -747,7 +747,9 @@ fn div_floor_by_u32(a: i64, d: NonZeroU32) -> (u32, u32) {
 
 /// `(⌊a / d⌋ mod 2^32, a mod d)` for `d ≤ 2^20` and `|a| < 2^11·d` (the small planes' terms:
 /// `|a| < 2^(K+1)·D`, `D < 2^(2K)`, `K ≤ 10`): one unsigned division of `a + 2^11·d`, which
-/// lies in `0..2^12·d ≤ 2^32`, so no sign fix-up.
+/// lies in `0..2^12·d ≤ 2^32`, so no sign fix-up. Without a hardware divider
+/// ([`HARDWARE_DIVIDE`]) the floored signed division instead: the bias would lengthen the
+/// quotient by eleven bits, eleven more turns of the library routine's loop.
 #[inline(always)]
 fn div_floor_small(a: i32, d: NonZeroU32) -> (u32, u32) {
     if !HARDWARE_DIVIDE {
