@@ -525,6 +525,9 @@ pub struct SmallPlane<const N: usize, const S: u32> {
     split: [(u32, u32, u32, u32, u32); N],
     /// Per attribute, `(q, r)` of one pixel step right.
     step_x: [(u32, u32); N],
+    /// Per attribute, the 16.16 [`Dda`] step `⌊gx·2^(16+S) / D⌋` (mod `2^32`): computed once
+    /// per triangle (and by the compiler only where a span loop reads it).
+    dda_inc: [u32; N],
 }
 
 impl<const N: usize, const S: u32> SmallPlane<N, S> {
@@ -546,6 +549,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         let mut base = [0; N];
         let mut split = [(0, 0, 0, 0, 0); N];
         let mut step_x = [(0, 0); N];
+        let mut dda_inc = [0; N];
         for i in 0..N {
             let a1 = values[1][i] as i64 - values[0][i] as i64;
             let a2 = values[2][i] as i64 - values[0][i] as i64;
@@ -564,6 +568,10 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
             let fg0 = g0 << S;
             step_x[i] = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
             split[i] = (g1, 2 * g0, h1, 2 * h0, 2 * c0 + d.get());
+            // ⌊gx·2^(16+S) / D⌋ = 2^(16+S)·g1 + ⌊g0·2^(16+S) / D⌋ (mod 2^32).
+            dda_inc[i] = g1
+                .wrapping_shl(16 + S)
+                .wrapping_add(frac_bits(g0, d, 16 + S));
         }
         Some(SmallPlane {
             corner,
@@ -573,6 +581,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
             two_d: d.saturating_add(d.get()),
             split,
             step_x,
+            dda_inc,
         })
     }
 
@@ -647,14 +656,9 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         // ⌊M·2^16 / D⌋ + A0·2^16 = 2^16·(whole + ⌊e / D⌋) + ⌊(e mod D)·2^16 / D⌋ (mod 2^32).
         let (d, e) = (self.d, e2.wrapping_sub(self.d.get()) / 2);
         let start = (whole.wrapping_add(e / d) << 16).wrapping_add(frac_bits(e % d, d, 16));
-        let (g1, g0x2, _, _, _) = self.split[i];
-        // ⌊gx·2^(16+S) / D⌋ = 2^(16+S)·g1 + ⌊g0·2^(16+S) / D⌋ (mod 2^32).
-        let inc = g1
-            .wrapping_shl(16 + S)
-            .wrapping_add(frac_bits(g0x2 / 2, d, 16 + S));
         Dda {
             acc: start.wrapping_add(1 << 15),
-            inc,
+            inc: self.dda_inc[i],
         }
     }
 
