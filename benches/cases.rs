@@ -313,7 +313,8 @@ fn line_clipped(fb: &mut Framebuffer<'_>) -> u32 {
 /// fill cost = `fill_*` − `vertex_*`), and the whole frame (clear colour, clear depth,
 /// transform, cull, clip, project, rasterise, shade: SCENES.md's frame).
 ///
-/// Per-frame set-up inside the measured region: building the camera and [`Renderer`]
+/// Per-frame set-up inside the measured region: building the camera and
+/// [`Renderer`](zscan::render::Renderer)
 /// (projector, frustum) and initialising the vertex scratch; `vertex_*` measures it too.
 pub mod scene {
     use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};

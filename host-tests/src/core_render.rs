@@ -1,4 +1,4 @@
-//! Rendering a host [`Scene`](crate::scenes::Scene) with the zscan core.
+//! Rendering a host [`Scene`] with the zscan core.
 //!
 //! Floats exist only here, in set-up: vertex positions are rounded once to I16F16, the camera
 //! is built from the rounded eye/target/up and an angle in 2^32 units per turn, and the

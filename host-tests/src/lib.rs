@@ -2,7 +2,7 @@
 //!
 //! - [`image`]: writing framebuffers through a LUT to PNG, PGM and PPM.
 //! - [`obj`]: reading Wavefront OBJ meshes (positions and polygons).
-//! - [`reference`]: independent reference implementations (exact rational fill, Bresenham by
+//! - [`mod@reference`]: independent reference implementations (exact rational fill, Bresenham by
 //!   definition, ...), kept apart from the production code they check.
 //! - [`cli`]: the subcommands of the `zscan` tool.
 #![deny(missing_docs)]

@@ -16,7 +16,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use zscan::target::Framebuffer;
 
-/// The benchmark cases, the same source file the Cortex-M example includes.
+// The benchmark cases, the same source file the Cortex-M example includes (its own inner
+// docs describe it; an outer doc here would make rustdoc resolve their links from this module).
 #[path = "../../../benches/cases.rs"]
 pub mod cases;
 
