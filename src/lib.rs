@@ -41,17 +41,3 @@ pub mod render;
 pub mod scene;
 pub mod shade;
 pub mod target;
-
-/// Targets of the Cortex-M3/M4 class or richer: x86, x86-64, AArch64, and 32-bit Arm with
-/// 32-bit atomics (ARMv6K, ARMv7 and later), recognised that way on stable Rust. ARMv6-M
-/// (`thumbv6m`: Cortex-M0/M0+) has none; it divides in a library routine that loops once per
-/// quotient bit and cannot store words at unaligned addresses. The constants that depend on it
-/// ([`raster::euclid::HARDWARE_DIVIDE`], the clears' word stores in [`target`]) choose a faster
-/// form of the same computation, never a different result, so a core misjudged by this test
-/// (an ARMv6K or ARMv7-A core without a divider) is slower, not wrong.
-pub(crate) const RICH_CORE: bool = cfg!(any(
-    target_arch = "x86",
-    target_arch = "x86_64",
-    target_arch = "aarch64",
-    all(target_arch = "arm", target_has_atomic = "32")
-));

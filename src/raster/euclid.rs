@@ -30,11 +30,18 @@ pub fn div_floor_i64(a: i64, b: i64) -> (i64, i64) {
 }
 
 /// True where a 32-bit division is one instruction: x86, x86-64, AArch64, and 32-bit Arm with
-/// 32-bit atomics (Cortex-M3/M4 and richer cores; recognised that way on stable Rust).
-/// Elsewhere (Cortex-M0/M0+) a division is a library routine whose loop runs once per quotient
-/// bit, so divisions biased to be unsigned (no sign fix-up, but a quotient 11 to 16 bits longer)
-/// take their signed forms there.
-pub const HARDWARE_DIVIDE: bool = crate::RICH_CORE;
+/// 32-bit atomics (Cortex-M3/M4 and richer cores; ARMv6-M, `thumbv6m`, has none), recognised
+/// that way on stable Rust. Elsewhere (Cortex-M0/M0+) a division is a library routine whose
+/// loop runs once per quotient bit, so divisions biased to be unsigned (no sign fix-up, but a
+/// quotient 11 to 16 bits longer) take their signed forms there. The choice changes speed,
+/// never results: a core misjudged by this test (an ARMv6K or ARMv7-A core without a divider)
+/// is slower, not wrong.
+pub const HARDWARE_DIVIDE: bool = cfg!(any(
+    target_arch = "x86",
+    target_arch = "x86_64",
+    target_arch = "aarch64",
+    all(target_arch = "arm", target_has_atomic = "32")
+));
 
 /// `(q, r)` with `a = b·q + r` and `0 ≤ r < b`, for `b > 0`.
 #[inline(always)]
