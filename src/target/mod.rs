@@ -67,7 +67,7 @@ impl core::fmt::Display for TargetError {
 impl core::error::Error for TargetError {}
 
 /// Bytes the buffer clears ([`fill_u8`], [`fill_u16`], [`fill_u32`]) write per loop iteration.
-pub(crate) const FILL_CHUNK_BYTES: usize = 64;
+pub(crate) const FILL_CHUNK_BYTES: usize = 128;
 
 // The buffer clears. `slice::fill` with a value whose bytes are all equal (any `u8`, the depth
 // buffers' all-ones `FAR`) becomes a call to the C library's `memset`, which on a Cortex-M4
