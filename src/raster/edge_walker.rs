@@ -424,6 +424,14 @@ mod tests {
         }
     }
 
+    /// The smallest wide edge: `DX = 2^13` (one past the narrow limit), `DY = 5`.
+    const WIDE: Edge = Edge {
+        x0: 0,
+        y0: 0,
+        x1: 1 << 13,
+        y1: 5,
+    };
+
     /// 20,000 edges of at most `2^13 − 1` units across and down (the narrow limits, reached
     /// in a quarter of them), from the xorshift seed `seed`.
     fn narrow_edges(seed: u64) -> impl Iterator<Item = Edge> {
@@ -480,13 +488,7 @@ mod tests {
             check::<4>(&e);
             check::<16>(&e);
         }
-        let wide = Edge {
-            x0: 0,
-            y0: 0,
-            x1: 1 << 13,
-            y1: 5,
-        };
-        assert!(!wide.is_narrow());
+        assert!(!WIDE.is_narrow());
     }
 
     /// The 32-bit target's unsigned narrow start equals the general one (which the host takes).
@@ -506,13 +508,7 @@ mod tests {
             check::<4>(&e);
             check::<16>(&e);
         }
-        let wide = Edge {
-            x0: 0,
-            y0: 0,
-            x1: 1 << 13,
-            y1: 5,
-        };
-        assert!(IncrementalWalker::start_narrow::<4>(&wide, EdgeSide::Left, 0).is_none());
+        assert!(IncrementalWalker::start_narrow::<4>(&WIDE, EdgeSide::Left, 0).is_none());
         let flat = Edge {
             x0: 0,
             y0: 3,
