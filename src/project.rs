@@ -171,10 +171,14 @@ impl<const S: u32> Projector<S> {
         let lens = camera.lens();
         let (near, far) = (lens.near.to_bits(), lens.far.to_bits());
         // Camera guarantees 0 < near < far; A ≤ (2^32 − 1)·2^31, K = A·near < 2^94.
-        let span = (far - near) as u128;
-        let full = u32::MAX as u128;
-        let a = (full * far as u128 + span / 2) / span;
-        let k = (full * far as u128 * near as u128 + span / 2) / span;
+        // A = ⌊(n + span/2) / span⌋ and K = ⌊(n·near + span/2) / span⌋ with n = (2^32 − 1)·far
+        // < 2^63, from one u64 division n = span·q + t: A = q + (t ≥ span − ⌊span/2⌋) and
+        // K = q·near + ⌊(t·near + span/2) / span⌋, where t·near < 2^62.
+        let span = (far - near) as u64;
+        let n = u32::MAX as u64 * far as u64;
+        let (q, t) = (n / span, n % span);
+        let a = (q + (t >= span - span / 2) as u64) as u128;
+        let k = q as u128 * near as u128 + ((t * near as u64 + span / 2) / span) as u128;
         let bits = 128 - k.leading_zeros();
         let ke = bits.saturating_sub(32);
         let km = (k + ((1u128 << ke) >> 1)) >> ke; // rounded 32-bit mantissa (≤ 2^32)
@@ -375,6 +379,80 @@ mod tests {
             Viewport::new(320, 240),
         )
         .unwrap()
+    }
+
+    /// The depth constants equal the former u128 formulas `A = ⌊(n + span/2)/span⌋` and
+    /// `K = ⌊(n·near + span/2)/span⌋` (`n = (2^32 − 1)·far`), normalised as before, from the
+    /// nearest and farthest planes the range allows to random ones, or fail where they failed.
+    #[test]
+    fn depth_constants_match_the_u128_formulas() {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut rnd = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let edges = [1i32, 2, 3, 0x8000, 0x1_0000, 0x7FFF_FFFE, i32::MAX];
+        let mut checked = [0usize; 2];
+        for i in 0..20_000 {
+            let (near, far) = if i < edges.len() * edges.len() {
+                (edges[i % edges.len()], edges[i / edges.len()])
+            } else {
+                let a = 1 + rnd(i32::MAX as u64) as i32;
+                let b = if i % 2 == 0 {
+                    a.saturating_add(1 + rnd(1 << (i % 31)) as i32)
+                } else {
+                    1 + rnd(i32::MAX as u64) as i32
+                };
+                (a.min(b), a.max(b))
+            };
+            if near >= far {
+                continue;
+            }
+            let mut cam = camera();
+            let lens = Lens {
+                near: Coord::from_bits(near),
+                far: Coord::from_bits(far),
+                ..*cam.lens()
+            };
+            cam = Camera::new(
+                Vec3::ZERO,
+                v(0.0, 0.0, 1.0),
+                v(0.0, 1.0, 0.0),
+                lens,
+                *cam.viewport(),
+            )
+            .unwrap();
+            let span = (far - near) as u128;
+            let full = u32::MAX as u128;
+            let a = (full * far as u128 + span / 2) / span;
+            let k = (full * far as u128 * near as u128 + span / 2) / span;
+            let bits = 128 - k.leading_zeros();
+            let ke = bits.saturating_sub(32);
+            let km = (k + ((1u128 << ke) >> 1)) >> ke;
+            let (km, ke) = if km > u32::MAX as u128 {
+                (km >> 1, ke + 1)
+            } else {
+                (km, ke)
+            };
+            match Projector::<4>::new(&cam) {
+                Ok(p) => {
+                    assert_eq!(
+                        p.depth_constants(),
+                        (a as u64, km as u32, ke),
+                        "{near} {far}"
+                    );
+                    checked[0] += 1;
+                }
+                Err(e) => {
+                    assert_eq!(e, ProjectError::OutOfRange);
+                    assert!(a >= 1 << 61, "{near} {far}");
+                    checked[1] += 1;
+                }
+            }
+        }
+        assert!(checked[0] > 5000 && checked[1] > 0, "{checked:?}");
     }
 
     /// The former 64-bit reciprocal, verbatim: the oracle [`reciprocal`] must equal.

@@ -205,11 +205,24 @@ impl Camera {
         if s <= 0 {
             return Err(CameraError::FocalTooLong);
         }
-        // d = r·cos/sin in Q16 physical units (u128: r < 2^37, cos ≤ 2^30).
-        let d = (r as u128 * c as u128 + s as u128 / 2) / s as u128;
-        let fx = (d + viewport.pixel_width as u128 / 2) / viewport.pixel_width as u128;
-        let fy = (d + viewport.pixel_height as u128 / 2) / viewport.pixel_height as u128;
-        if fx > i32::MAX as u128 || fy > i32::MAX as u128 {
+        // d = ⌊(r·cos + sin/2) / sin⌋ in Q16 physical units (r < 2^37, 0 ≤ cos ≤ 2^30,
+        // 0 < sin ≤ 2^30), in u64 divisions: with r = sin·q + t, d = q·cos + ⌊(t·cos + sin/2) /
+        // sin⌋, where t·cos < 2^60. Only d ≥ 2^64 overflows, and then f ≥ 2^48 pixels.
+        let (s, c) = (s as u64, c.max(0) as u64);
+        let d = (r / s)
+            .checked_mul(c)
+            .and_then(|whole| whole.checked_add(((r % s) * c + s / 2) / s))
+            .ok_or(CameraError::FocalTooLong)?;
+        // ⌊(d + p/2) / p⌋ without the sum: one more when d mod p ≥ p − ⌊p/2⌋.
+        let round_div = |p: u16| {
+            let p = p as u64;
+            d / p + (d % p >= p - p / 2) as u64
+        };
+        let (fx, fy) = (
+            round_div(viewport.pixel_width),
+            round_div(viewport.pixel_height),
+        );
+        if fx > i32::MAX as u64 || fy > i32::MAX as u64 {
             return Err(CameraError::FocalTooLong);
         }
         if fx == 0 || fy == 0 {
@@ -429,6 +442,103 @@ mod tests {
             near: Coord::from_num(0.5),
             far: Coord::from_num(10),
         }
+    }
+
+    /// The focal lengths equal the former u128 formula, `⌊(r·cos + sin/2)/sin⌋` then rounded
+    /// per pixel size, on every field of view from the narrowest to the widest, each axis,
+    /// extreme viewports and pixel sizes (and give `FocalTooLong` exactly where it did).
+    #[test]
+    fn focal_lengths_match_the_u128_formula() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut rnd = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let fovs = [
+            1u32,
+            2,
+            7,
+            1 << 10,
+            1 << 20,
+            0x2AAA_AAAB,
+            0x7FFF_FFFE,
+            0x7FFF_FFFF,
+        ];
+        let sizes = [
+            (1u16, 1u16, 1u16, 1u16),
+            (65535, 16, 16, 1),
+            (320, 240, 3, 5),
+        ];
+        let mut checked = [0usize; 2];
+        for i in 0..6000 {
+            let fov = if i < fovs.len() * 24 {
+                fovs[i % fovs.len()]
+            } else {
+                1 + rnd(0x7FFF_FFFF) as u32
+            };
+            let (w, h, pw, ph) = if i % 4 < 3 {
+                sizes[i % 3]
+            } else {
+                let side = |r: &mut dyn FnMut(u64) -> u64| 1 + r(4096) as u16;
+                (
+                    side(&mut rnd),
+                    side(&mut rnd),
+                    side(&mut rnd),
+                    side(&mut rnd),
+                )
+            };
+            let axis = [FovAxis::Vertical, FovAxis::Horizontal, FovAxis::Diagonal][i % 3];
+            let mut viewport = Viewport::new(w, h);
+            (viewport.pixel_width, viewport.pixel_height) = (pw, ph);
+            let lens = Lens {
+                fov: Angle(fov),
+                axis,
+                ..lens()
+            };
+            let got = Camera::new(
+                Vec3::ZERO,
+                v(0.0, 0.0, 1.0),
+                v(0.0, 1.0, 0.0),
+                lens,
+                viewport,
+            );
+            let Ok(r) = half_extent_q16(axis, &viewport) else {
+                assert_eq!(got.err(), Some(CameraError::BadViewport));
+                continue;
+            };
+            let (s, c) = sin_cos_bits(lens.fov.half());
+            if s <= 0 {
+                assert_eq!(got.err(), Some(CameraError::FocalTooLong));
+                checked[1] += 1;
+                continue;
+            }
+            let d = (r as u128 * c as u128 + s as u128 / 2) / s as u128;
+            let fx = (d + pw as u128 / 2) / pw as u128;
+            let fy = (d + ph as u128 / 2) / ph as u128;
+            match got {
+                Ok(cam) => {
+                    assert_eq!(
+                        (
+                            cam.focal_x().to_bits() as u128,
+                            cam.focal_y().to_bits() as u128
+                        ),
+                        (fx, fy),
+                        "fov {fov} {axis:?} {viewport:?}"
+                    );
+                    checked[0] += 1;
+                }
+                Err(CameraError::FovOutOfRange) => assert!(fx == 0 || fy == 0, "fov {fov}"),
+                Err(e) => {
+                    assert_eq!(e, CameraError::FocalTooLong, "fov {fov}");
+                    assert!(fx > i32::MAX as u128 || fy > i32::MAX as u128, "fov {fov}");
+                    checked[1] += 1;
+                }
+            }
+        }
+        // Both outcomes occur: the narrowest fields of view are too long.
+        assert!(checked[0] > 1000 && checked[1] > 10, "{checked:?}");
     }
 
     #[test]
