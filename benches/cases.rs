@@ -141,6 +141,18 @@ pub const CASES: &[Case] = &[
         run: |fb, depth| scene::frame(fb, depth, &scene::BUNNY, ShadeMode::GouraudFast),
     },
     Case {
+        name: "frame_cube_counted",
+        run: |fb, depth| scene::frame_counted(fb, depth, &scene::CUBE, ShadeMode::GouraudExact),
+    },
+    Case {
+        name: "frame_sphere_counted",
+        run: |fb, depth| scene::frame_counted(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact),
+    },
+    Case {
+        name: "frame_bunny_counted",
+        run: |fb, depth| scene::frame_counted(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact),
+    },
+    Case {
         name: "frame_bunny_bands16",
         run: |fb, _| scene::frame_in_bands(fb, &scene::BUNNY, 16),
     },
@@ -328,7 +340,7 @@ pub mod scene {
     use zscan::geometry::vector::Vec3;
     use zscan::raster::edge_walker::EdgeWalker;
     use zscan::raster::triangle::{cross, fill_triangle_with};
-    use zscan::render::{PreparedVertex, RenderStats, Renderer};
+    use zscan::render::{PreparedVertex, RenderStats, Renderer, StatsSink, StatsWithoutWritten};
     use zscan::scene::{Intensities, Object};
     use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
     use zscan::target::{DepthBuffer, Framebuffer};
@@ -584,25 +596,50 @@ pub mod scene {
 
     /// SCENES.md's frame: clear colour, clear depth (16-bit, the harness's depth storage
     /// wrapped and cleared as an application would each frame), transform, cull, clip,
-    /// project, rasterise with the depth test, Gouraud luminance. Returns the pixels written.
+    /// project, rasterise with the depth test, Gouraud luminance. Statistics without the
+    /// written-pixel count ([`StatsWithoutWritten`]); returns the pixels covered.
     pub fn frame(
         fb: &mut Framebuffer<'_>,
         depth: &mut [u16],
         s: &StandardScene,
         shade: ShadeMode,
     ) -> u32 {
-        let Ok(mut zb) = DepthBuffer::new(depth, super::WIDTH, super::HEIGHT) else {
-            return 0;
-        };
-        zb.clear(); // clear depth
-        fb.clear(0); // clear colour
-        let Some(r) = renderer() else { return 0 };
-        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let mut stats = StatsWithoutWritten::default();
+        match frame_with(fb, depth, s, shade, &mut stats) {
+            Ok(()) => stats.0.pixels_covered,
+            Err(_) => 0,
+        }
+    }
+
+    /// [`frame`] with every statistic counted, written pixels too ([`RenderStats`]: one add
+    /// per written pixel in the span loops); returns the pixels written.
+    pub fn frame_counted(
+        fb: &mut Framebuffer<'_>,
+        depth: &mut [u16],
+        s: &StandardScene,
+        shade: ShadeMode,
+    ) -> u32 {
         let mut stats = RenderStats::default();
-        match r.draw_object(&object(s, shade), &mut scratch, fb, &mut zb, &mut stats) {
+        match frame_with(fb, depth, s, shade, &mut stats) {
             Ok(()) => stats.pixels_written,
             Err(_) => 0,
         }
+    }
+
+    fn frame_with(
+        fb: &mut Framebuffer<'_>,
+        depth: &mut [u16],
+        s: &StandardScene,
+        shade: ShadeMode,
+        stats: &mut impl StatsSink,
+    ) -> Result<(), ()> {
+        let mut zb = DepthBuffer::new(depth, super::WIDTH, super::HEIGHT).map_err(|_| ())?;
+        zb.clear(); // clear depth
+        fb.clear(0); // clear colour
+        let r = renderer().ok_or(())?;
+        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        r.draw_object(&object(s, shade), &mut scratch, fb, &mut zb, stats)
+            .map_err(|_| ())
     }
 
     /// `zscan chart`'s lit frames: clear (index 255, depth far), vertex normals of the mesh

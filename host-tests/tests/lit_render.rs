@@ -8,6 +8,8 @@
 //!   covers exactly the pixels the unlit renderer covers, and none of them is left empty.
 //! - Phong keeps a highlight that Gouraud misses, through the renderer.
 //! - Bands give the same pixels as one pass for every lit mode.
+//! - Statistics without the written-pixel count draw the same pixels with the same counts,
+//!   `pixels_written` 0, in every mode (front faces only, and with hidden back faces drawn).
 //! - Bad input: short normal tables, too many lights, a zero light direction → errors.
 use zscan::clip::frustum::NEAR;
 use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
@@ -19,6 +21,7 @@ use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{
     render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
+    StatsSink, StatsWithoutWritten,
 };
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::shade::lighting::{
@@ -131,16 +134,21 @@ impl Sphere {
 
 /// One frame of `object` (background 255), its pixels and stats.
 fn frame(r: &Renderer<4>, object: &Object<'_>) -> (Vec<u8>, RenderStats) {
+    let mut stats = RenderStats::default();
+    (frame_into(r, object, &mut stats), stats)
+}
+
+/// One frame of `object` (background 255) counted into `stats`; its pixels.
+fn frame_into(r: &Renderer<4>, object: &Object<'_>, stats: &mut impl StatsSink) -> Vec<u8> {
     let n = W as usize * H as usize;
     let (mut px, mut zs) = (vec![255u8; n], vec![0u16; n]);
     let mut fb = Framebuffer::new(&mut px, W, H).unwrap();
     let mut zb = DepthBuffer::new(&mut zs, W, H).unwrap();
     zb.clear();
     let mut scratch = vec![PreparedVertex::<4>::default(); NV];
-    let mut stats = RenderStats::default();
-    r.draw_object(object, &mut scratch, &mut fb, &mut zb, &mut stats)
+    r.draw_object(object, &mut scratch, &mut fb, &mut zb, stats)
         .unwrap();
-    (px, stats)
+    px
 }
 
 fn renderer(cam: &Camera) -> Renderer<4> {
@@ -186,6 +194,43 @@ fn renderer_lighting_equals_the_lighting_stage() {
         seen.dedup();
         assert!(seen.len() > 15, "{shade:?}: {} levels", seen.len());
     }
+}
+
+#[test]
+fn stats_without_written_draw_the_same_pixels() {
+    let sphere = Sphere::new(Coord::from_num(2));
+    let mut hidden_seen = false;
+    for cam in [camera(v(0.0, 0.0, 6.0)), crossing_camera()] {
+        let r = renderer(&cam);
+        for shade in MODES {
+            for dither in [false, true] {
+                for cull in [true, false] {
+                    let mut lit = sphere.lit(shade, dither);
+                    lit.cull_back_faces = cull;
+                    let given = sphere.object(Intensities::Uniform(200), shade, dither);
+                    for o in [lit, given] {
+                        let mut o = o;
+                        o.cull_back_faces = cull;
+                        let (counted, s) = frame(&r, &o);
+                        let mut without = StatsWithoutWritten::default();
+                        let px = frame_into(&r, &o, &mut without);
+                        let what = format!("{shade:?} dither {dither} cull {cull}");
+                        assert_eq!(px, counted, "{what}");
+                        assert!(s.pixels_written > 0, "{what}");
+                        // Without culling the back half is covered and hidden: written < covered.
+                        assert_eq!(s.pixels_written < s.pixels_covered, !cull, "{what} {s:?}");
+                        hidden_seen |= s.pixels_written < s.pixels_covered;
+                        let expected = RenderStats {
+                            pixels_written: 0,
+                            ..s
+                        };
+                        assert_eq!(without.0, expected, "{what}");
+                    }
+                }
+            }
+        }
+    }
+    assert!(hidden_seen);
 }
 
 fn crossing_camera() -> Camera {

@@ -224,6 +224,32 @@ pub enum DrawError {
     TooLarge,
 }
 
+/// Whether the span loops count the pixels they write: [`CountWritten`] (one add per written
+/// pixel and a register in the loop) or [`SkipWritten`] (no counter: the written count is 0).
+/// Measured on the Cortex-M4, the count costs the standard cube 6 %, the sphere 3 % and the
+/// bunny 1.3 % of their frames. A compile-time switch, so that the loop without it has no
+/// trace of it.
+pub trait WrittenCount: Copy + Default {
+    /// True when written pixels are counted.
+    const COUNTS: bool;
+}
+
+/// Span loops count the pixels that pass the depth test ([`WrittenCount`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CountWritten;
+
+impl WrittenCount for CountWritten {
+    const COUNTS: bool = true;
+}
+
+/// Span loops do not count written pixels and report 0 ([`WrittenCount`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SkipWritten;
+
+impl WrittenCount for SkipWritten {
+    const COUNTS: bool = false;
+}
+
 /// Writes one span with a depth test: every pixel of `colours`/`depths` (two row slices of
 /// equal length, the span's pixels), with depth `z` and colour `shading` at the first pixel.
 /// Returns the number of pixels written (that passed the test).
@@ -231,12 +257,24 @@ pub enum DrawError {
 pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
     colours: &mut [u8],
     depths: &mut [D],
+    z: Z,
+    shading: Sh,
+) -> u32 {
+    depth_span_with(colours, depths, z, shading, CountWritten)
+}
+
+/// [`depth_span`], counting written pixels or not as `C` says (returns 0 when it does not).
+#[inline(always)]
+pub fn depth_span_with<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
+    colours: &mut [u8],
+    depths: &mut [D],
     mut z: Z,
     mut shading: Sh,
+    _: C,
 ) -> u32 {
     let mut written = 0u32;
     if Z::IS_CONSTANT && Sh::IS_CONSTANT {
-        return constant_span(colours, depths, D::from_depth32(z.value()), shading.index());
+        return constant_span::<D, C>(colours, depths, D::from_depth32(z.value()), shading.index());
     }
     // A shading constant along the span (flat) is mapped to its index once.
     let constant_index = shading.index();
@@ -249,7 +287,7 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
             } else {
                 shading.index()
             };
-            written += 1;
+            written += C::COUNTS as u32;
         }
         z.step();
         shading.step();
@@ -263,13 +301,18 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
 /// standard quad, whose two triangles are flat at constant depth, +1 instruction per pixel on
 /// the Cortex-M4).
 #[inline(never)]
-fn constant_span<D: DepthValue>(colours: &mut [u8], depths: &mut [D], d: D, index: u8) -> u32 {
+fn constant_span<D: DepthValue, C: WrittenCount>(
+    colours: &mut [u8],
+    depths: &mut [D],
+    d: D,
+    index: u8,
+) -> u32 {
     let mut written = 0u32;
     let select = |c: &mut u8, stored: &mut D| {
         let nearer = d < *stored;
         *stored = if nearer { d } else { *stored };
         *c = if nearer { index } else { *c };
-        nearer as u32
+        (nearer & C::COUNTS) as u32
     };
     // Blocks of 16 pixels: when the whole block is farther (the common case on a fresh
     // buffer), two block fills; otherwise the per-pixel select. On 64-bit hosts the
@@ -287,7 +330,7 @@ fn constant_span<D: DepthValue>(colours: &mut [u8], depths: &mut [D], d: D, inde
         if all_farther {
             zb.fill(d);
             cb.fill(index);
-            written += 16;
+            written += 16 * C::COUNTS as u32;
         } else {
             for (c, stored) in cb.iter_mut().zip(zb.iter_mut()) {
                 written += select(c, stored);
@@ -349,26 +392,40 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
 /// A frame and its depth buffer prepared once for many triangles ([`draw_triangle_on`]): the
 /// window both hold and their samples as whole slices, so that a triangle's set-up does not
 /// recompute them.
+/// `C` says whether triangles drawn into it count their written pixels ([`WrittenCount`]).
 #[derive(Debug)]
-pub struct RasterTarget<'t, D> {
+pub struct RasterTarget<'t, D, C = CountWritten> {
     window: Window,
     targets: Targets<'t, D>,
+    count: C,
 }
 
 impl<'t, D: DepthValue> RasterTarget<'t, D> {
-    /// Borrows `frame` and `depth` for drawing.
+    /// Borrows `frame` and `depth` for drawing; written pixels are counted.
     pub fn new(frame: &'t mut Framebuffer<'_>, depth: &'t mut DepthBuffer<'_, D>) -> Self {
+        RasterTarget::with_count(frame, depth, CountWritten)
+    }
+}
+
+impl<'t, D: DepthValue, C: WrittenCount> RasterTarget<'t, D, C> {
+    /// Borrows `frame` and `depth` for drawing, counting written pixels as `count` says.
+    pub fn with_count(
+        frame: &'t mut Framebuffer<'_>,
+        depth: &'t mut DepthBuffer<'_, D>,
+        count: C,
+    ) -> Self {
         RasterTarget {
             window: drawable_window(frame, depth),
             targets: Targets::new(frame, depth),
+            count,
         }
     }
 }
 
 /// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
 /// target per object and band).
-pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, const S: u32>(
-    target: &mut RasterTarget<'_, D>,
+pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
+    target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
     values: [[u32; 2]; 3],
     mode: ShadeMode,
@@ -397,6 +454,7 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, const S: u32>(
         v,
         window,
         targets: &mut target.targets,
+        count: target.count,
     };
     match mode {
         ShadeMode::Flat if constant(0) => spans.constant(values[0][0], flat_lum, quantizer_at),
@@ -470,15 +528,15 @@ impl FromExact for ExactRunFrom {
 /// chosen once per triangle, so the span loop holds one kind only.
 trait SpanKind<const N: usize> {
     /// Writes the span (`colours`, `depths`: its pixels) starting at pixel `(x, y)`; `attrs[0]`
-    /// is the depth. Returns the pixels written.
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<N>>(
+    /// is the depth. Returns the pixels written (0 when `count` does not count them).
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<N>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
         depths: &mut [D],
         attrs: [I; N],
         starts: &St,
-        x: i32,
-        y: i32,
+        at: (i32, i32),
+        count: C,
     ) -> u32;
 }
 
@@ -490,20 +548,20 @@ struct FlatKind<QF> {
 
 impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<1> for FlatKind<QF> {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<1>>(
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<1>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
         depths: &mut [D],
         [z]: [I; 1],
         _: &St,
-        x: i32,
-        y: i32,
+        (x, y): (i32, i32),
+        count: C,
     ) -> u32 {
         let shading = Gouraud {
             luminance: self.luminance,
             quantizer: (self.quantizer_at)(x, y),
         };
-        depth_span(colours, depths, z, shading)
+        depth_span_with(colours, depths, z, shading, count)
     }
 }
 
@@ -512,20 +570,20 @@ struct ExactKind<QF>(QF);
 
 impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for ExactKind<QF> {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>>(
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
         depths: &mut [D],
         [z, luminance]: [I; 2],
         _: &St,
-        x: i32,
-        y: i32,
+        (x, y): (i32, i32),
+        count: C,
     ) -> u32 {
         let shading = InRange {
             luminance,
             quantizer: (self.0)(x, y),
         };
-        depth_span(colours, depths, z, shading)
+        depth_span_with(colours, depths, z, shading, count)
     }
 }
 
@@ -535,14 +593,14 @@ struct FastKind<QF>(QF);
 
 impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>>(
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
         depths: &mut [D],
         [z, _]: [I; 2],
         starts: &St,
-        x: i32,
-        y: i32,
+        (x, y): (i32, i32),
+        count: C,
     ) -> u32 {
         // The 16.16 value starts within 2^-16 + 1/2 above the exact one and its truncated
         // increment only lowers it: it stays in 0..=255 with the vertex values.
@@ -550,7 +608,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
             luminance: starts.dda_at(1, x, y),
             quantizer: (self.0)(x, y),
         };
-        depth_span(colours, depths, z, shading)
+        depth_span_with(colours, depths, z, shading, count)
     }
 }
 
@@ -603,13 +661,14 @@ impl<'t, D: DepthValue> Targets<'t, D> {
 }
 
 /// One triangle's span drawing, set up (see [`draw_triangle_quantized`]).
-struct TriangleSpans<'a, 't, D, const S: u32> {
+struct TriangleSpans<'a, 't, D, C, const S: u32> {
     v: [SubpixelPoint<S>; 3],
     window: Window,
     targets: &'a mut Targets<'t, D>,
+    count: C,
 }
 
-impl<D: DepthValue, const S: u32> TriangleSpans<'_, '_, D, S> {
+impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S> {
     /// Constant depth `z` and flat luminance `lum`: no plane. A triangle too large for a plane
     /// still reports [`DrawError::TooLarge`], as the other kinds do.
     #[inline(always)]
@@ -638,7 +697,7 @@ impl<D: DepthValue, const S: u32> TriangleSpans<'_, '_, D, S> {
                 luminance: Constant(lum),
                 quantizer: quantizer_at(s.x0, s.y),
             };
-            written += depth_span(c, zs, Constant(z), shading);
+            written += depth_span_with(c, zs, Constant(z), shading, self.count);
         })
         .map_err(DrawError::Fill)?;
         Ok((covered, written))
@@ -695,7 +754,7 @@ impl<D: DepthValue, const S: u32> TriangleSpans<'_, '_, D, S> {
             let e = starts.exact_at(s.x0, s.y);
             let f = per_triangle.get_or_insert_with(|| e.each_ref().map(F::prepare));
             let attrs = core::array::from_fn(|i| f[i].start(&e[i]));
-            written += kind.write(c, z, attrs, &starts, s.x0, s.y);
+            written += kind.write(c, z, attrs, &starts, (s.x0, s.y), self.count);
         })
         .map_err(DrawError::Fill)?;
         Ok((covered, written))
@@ -739,6 +798,59 @@ mod tests {
 
     fn p(x: i32, y: i32) -> SubpixelPoint<4> {
         SubpixelPoint::from_pixel(x, y)
+    }
+
+    /// A [`SkipWritten`] target draws exactly what a counting one draws, covers the same
+    /// pixels and reports 0 written, for every span kind (constant depth and colour with its
+    /// 16-pixel blocks, flat over a depth plane, exact and fast Gouraud), the second triangle
+    /// partly hidden behind the first.
+    #[test]
+    fn skip_written_draws_the_same_pixels() {
+        let front = [p(0, 0), p(40, 0), p(0, 40)];
+        let back = [p(4, 4), p(40, 10), p(10, 40)];
+        for mode in [
+            ShadeMode::Flat,
+            ShadeMode::GouraudExact,
+            ShadeMode::GouraudFast,
+        ] {
+            for slope in [0u32, 1 << 24] {
+                let draw = |count: bool| {
+                    let mut px = [0u8; 40 * 40];
+                    let mut zs = [0u16; 40 * 40];
+                    let mut fb = Framebuffer::new(&mut px, 40, 40).unwrap();
+                    let mut zb = DepthBuffer::new(&mut zs, 40, 40).unwrap();
+                    zb.clear();
+                    let mut totals = (0, 0);
+                    for (t, z) in [(front, 1u32 << 28), (back, 3 << 28)] {
+                        let values = [[z, 10], [z + slope, 250], [z + 2 * slope, 90]];
+                        let (c, w) = if count {
+                            let mut target = RasterTarget::new(&mut fb, &mut zb);
+                            draw_triangle_on(&mut target, t, values, mode, |_, _| {
+                                LuminanceRamp::GREY
+                            })
+                        } else {
+                            let mut target =
+                                RasterTarget::with_count(&mut fb, &mut zb, SkipWritten);
+                            draw_triangle_on(&mut target, t, values, mode, |_, _| {
+                                LuminanceRamp::GREY
+                            })
+                        }
+                        .unwrap();
+                        totals = (totals.0 + c, totals.1 + w);
+                    }
+                    (px, zs, totals)
+                };
+                let (px, zs, (covered, written)) = draw(true);
+                let (px2, zs2, (covered2, written2)) = draw(false);
+                assert!(px == px2 && zs == zs2, "{mode:?} slope {slope}");
+                assert_eq!((covered2, written2), (covered, 0), "{mode:?} slope {slope}");
+                // The back triangle is partly hidden: fewer pixels written than covered.
+                assert!(
+                    written > 800 && written < covered,
+                    "{mode:?} slope {slope}: {written} of {covered}"
+                );
+            }
+        }
     }
 
     /// Two overlapping triangles at constant depths: the nearer wins whatever the order, and
