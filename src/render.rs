@@ -145,10 +145,9 @@ pub struct RenderStats {
 /// Where the renderer adds its counts, and whether its span loops count written pixels:
 /// [`RenderStats`] counts everything; [`StatsWithoutWritten`] everything but the written
 /// pixels, whose per-pixel add the span loops then leave out
-/// ([`WrittenCount`](crate::shade::span_writer::WrittenCount)).
+/// ([`WrittenCount`]).
 pub trait StatsSink {
-    /// [`CountWritten`](crate::shade::span_writer::CountWritten) or
-    /// [`SkipWritten`](crate::shade::span_writer::SkipWritten).
+    /// [`CountWritten`] or [`SkipWritten`].
     type Count: WrittenCount;
     /// The counts added to.
     fn counts(&mut self) -> &mut RenderStats;
