@@ -151,6 +151,23 @@ fn frame_into(r: &Renderer<4>, object: &Object<'_>, stats: &mut impl StatsSink) 
     px
 }
 
+/// [`frame_into`] through the band path: `polygon_rows`, then `rasterize_rows` over the whole
+/// frame as one band.
+fn frame_rows(r: &Renderer<4>, object: &Object<'_>, stats: &mut impl StatsSink) -> Vec<u8> {
+    let n = W as usize * H as usize;
+    let (mut px, mut zs) = (vec![255u8; n], vec![0u16; n]);
+    let mut fb = Framebuffer::new(&mut px, W, H).unwrap();
+    let mut zb = DepthBuffer::new(&mut zs, W, H).unwrap();
+    zb.clear();
+    let mut scratch = vec![PreparedVertex::<4>::default(); NV];
+    let mut table = vec![PolygonRows::default(); object.mesh.polygon_count()];
+    r.prepare(object, &mut scratch).unwrap();
+    r.polygon_rows(object, &scratch, &mut table, stats).unwrap();
+    r.rasterize_rows(object, &scratch, &table, &mut fb, &mut zb, stats)
+        .unwrap();
+    px
+}
+
 fn renderer(cam: &Camera) -> Renderer<4> {
     Renderer::new(cam)
         .unwrap()
@@ -225,6 +242,13 @@ fn stats_without_written_draw_the_same_pixels() {
                             ..s
                         };
                         assert_eq!(without.0, expected, "{what}");
+                        // The band path (polygon table, then the rows of a full-frame band).
+                        let mut rows_stats = StatsWithoutWritten::default();
+                        assert_eq!(frame_rows(&r, &o, &mut rows_stats), counted, "{what}");
+                        assert_eq!(rows_stats.0, expected, "{what}");
+                        let mut rows_counted = RenderStats::default();
+                        assert_eq!(frame_rows(&r, &o, &mut rows_counted), counted, "{what}");
+                        assert_eq!(rows_counted, s, "{what}");
                     }
                 }
             }

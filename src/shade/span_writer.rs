@@ -227,7 +227,7 @@ pub enum DrawError {
 /// Whether the span loops count the pixels they write: [`CountWritten`] (one add per written
 /// pixel and a register in the loop) or [`SkipWritten`] (no counter: the written count is 0).
 /// Measured on the Cortex-M4, the count costs the standard cube 6 %, the sphere 3 % and the
-/// bunny 1.3 % of their frames. A compile-time switch, so that the loop without it has no
+/// bunny 1.6 % of their frames. A compile-time switch, so that the loop without it has no
 /// trace of it.
 pub trait WrittenCount: Copy + Default {
     /// True when written pixels are counted.
