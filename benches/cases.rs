@@ -12,9 +12,10 @@
 //!    written twice counts twice; keep the count a constant or cheap to compute, since it is
 //!    inside the measured region).
 //! 2. Add one line `Case { name: "my_case", run: |fb, _| my_case(fb) },` to [`CASES`]. The
-//!    second argument is the harness's full-frame 16-bit depth storage ([`FB_LEN`] samples,
-//!    declared once like an application's depth buffer, contents unspecified: a case that
-//!    uses it clears it, as [`scene::frame`] does with `DepthBuffer::clear`).
+//!    second argument is the harness's [`Storage`]: full-frame 16-bit depth samples and
+//!    vertex scratch, declared once like an application's buffers, contents unspecified (a
+//!    case that uses the depth clears it, as [`scene::frame`] does with `DepthBuffer::clear`;
+//!    the vertex stage overwrites the scratch it uses).
 //!
 //! Names are single words (`[a-z0-9_]`), unique. [`CASES`]`[0]` is the empty calibration case;
 //! keep it first. The host test `host-tests/tests/bench_cases.rs` checks names and pixel counts.
@@ -22,6 +23,7 @@
 //! The harness clears the framebuffer to index 0 before each call, calls the case once to warm
 //! up, clears again, then measures one call between the region markers.
 use zscan::raster::edge_walker::{DivisionWalker, IncrementalWalker};
+use zscan::render::PreparedVertex;
 use zscan::shade::span_writer::ShadeMode;
 use zscan::target::Framebuffer;
 
@@ -32,14 +34,40 @@ pub const HEIGHT: u16 = 240;
 /// Bytes of the framebuffer.
 pub const FB_LEN: usize = WIDTH as usize * HEIGHT as usize;
 
+/// The harness's memory besides the framebuffer, declared once like an application's buffers
+/// (an application keeps its depth buffer and vertex scratch from frame to frame); contents
+/// unspecified when a case starts.
+pub struct Storage {
+    /// Full-frame 16-bit depth samples ([`FB_LEN`]).
+    pub depth: [u16; FB_LEN],
+    /// Vertex scratch for the largest standard mesh (28 bytes per vertex).
+    pub vertices: [PreparedVertex<4>; scene::MAX_VERTICES],
+}
+
+impl Storage {
+    /// Depth at far, zeroed vertices.
+    pub fn new() -> Storage {
+        Storage {
+            depth: [u16::MAX; FB_LEN],
+            vertices: [PreparedVertex::default(); scene::MAX_VERTICES],
+        }
+    }
+}
+
+impl Default for Storage {
+    fn default() -> Storage {
+        Storage::new()
+    }
+}
+
 /// One benchmark case: a name and a drawing function returning the pixels it wrote.
 #[derive(Clone, Copy)]
 pub struct Case {
     /// Unique single-word name.
     pub name: &'static str,
-    /// Draws into a cleared `WIDTH × HEIGHT` framebuffer, with the harness's depth storage
-    /// (`FB_LEN` samples, contents unspecified); returns the pixels written.
-    pub run: fn(&mut Framebuffer<'_>, &mut [u16]) -> u32,
+    /// Draws into a cleared `WIDTH × HEIGHT` framebuffer, with the harness's [`Storage`]
+    /// (contents unspecified); returns the pixels written.
+    pub run: fn(&mut Framebuffer<'_>, &mut Storage) -> u32,
 }
 
 /// All cases, in the order they run. `CASES[0]` is the empty calibration case.
@@ -78,147 +106,147 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "vertex_quad",
-        run: |fb, _| scene::vertex_only(fb, &scene::QUAD),
+        run: |fb, st| scene::vertex_only(fb, st, &scene::QUAD),
     },
     Case {
         name: "vertex_cube",
-        run: |fb, _| scene::vertex_only(fb, &scene::CUBE),
+        run: |fb, st| scene::vertex_only(fb, st, &scene::CUBE),
     },
     Case {
         name: "vertex_sphere",
-        run: |fb, _| scene::vertex_only(fb, &scene::SPHERE),
+        run: |fb, st| scene::vertex_only(fb, st, &scene::SPHERE),
     },
     Case {
         name: "vertex_bunny",
-        run: |fb, _| scene::vertex_only(fb, &scene::BUNNY),
+        run: |fb, st| scene::vertex_only(fb, st, &scene::BUNNY),
     },
     Case {
         name: "fill_quad",
-        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::QUAD),
+        run: |fb, st| scene::fill_only::<IncrementalWalker>(fb, st, &scene::QUAD),
     },
     Case {
         name: "fill_cube",
-        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::CUBE),
+        run: |fb, st| scene::fill_only::<IncrementalWalker>(fb, st, &scene::CUBE),
     },
     Case {
         name: "fill_sphere",
-        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::SPHERE),
+        run: |fb, st| scene::fill_only::<IncrementalWalker>(fb, st, &scene::SPHERE),
     },
     Case {
         name: "fill_sphere_division",
-        run: |fb, _| scene::fill_only::<DivisionWalker>(fb, &scene::SPHERE),
+        run: |fb, st| scene::fill_only::<DivisionWalker>(fb, st, &scene::SPHERE),
     },
     Case {
         name: "fill_bunny",
-        run: |fb, _| scene::fill_only::<IncrementalWalker>(fb, &scene::BUNNY),
+        run: |fb, st| scene::fill_only::<IncrementalWalker>(fb, st, &scene::BUNNY),
     },
     Case {
         name: "fill_bunny_division",
-        run: |fb, _| scene::fill_only::<DivisionWalker>(fb, &scene::BUNNY),
+        run: |fb, st| scene::fill_only::<DivisionWalker>(fb, st, &scene::BUNNY),
     },
     Case {
         name: "frame_quad",
-        run: |fb, depth| scene::frame(fb, depth, &scene::QUAD, ShadeMode::GouraudExact),
+        run: |fb, st| scene::frame(fb, st, &scene::QUAD, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_cube",
-        run: |fb, depth| scene::frame(fb, depth, &scene::CUBE, ShadeMode::GouraudExact),
+        run: |fb, st| scene::frame(fb, st, &scene::CUBE, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_sphere",
-        run: |fb, depth| scene::frame(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact),
+        run: |fb, st| scene::frame(fb, st, &scene::SPHERE, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_sphere_fast",
-        run: |fb, depth| scene::frame(fb, depth, &scene::SPHERE, ShadeMode::GouraudFast),
+        run: |fb, st| scene::frame(fb, st, &scene::SPHERE, ShadeMode::GouraudFast),
     },
     Case {
         name: "frame_bunny",
-        run: |fb, depth| scene::frame(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact),
+        run: |fb, st| scene::frame(fb, st, &scene::BUNNY, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_bunny_fast",
-        run: |fb, depth| scene::frame(fb, depth, &scene::BUNNY, ShadeMode::GouraudFast),
+        run: |fb, st| scene::frame(fb, st, &scene::BUNNY, ShadeMode::GouraudFast),
     },
     Case {
         name: "frame_cube_counted",
-        run: |fb, depth| scene::frame_counted(fb, depth, &scene::CUBE, ShadeMode::GouraudExact),
+        run: |fb, st| scene::frame_counted(fb, st, &scene::CUBE, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_sphere_counted",
-        run: |fb, depth| scene::frame_counted(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact),
+        run: |fb, st| scene::frame_counted(fb, st, &scene::SPHERE, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_bunny_counted",
-        run: |fb, depth| scene::frame_counted(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact),
+        run: |fb, st| scene::frame_counted(fb, st, &scene::BUNNY, ShadeMode::GouraudExact),
     },
     Case {
         name: "frame_bunny_bands16",
-        run: |fb, _| scene::frame_in_bands(fb, &scene::BUNNY, 16),
+        run: |fb, st| scene::frame_in_bands(fb, st, &scene::BUNNY, 16),
     },
     Case {
         name: "lit_sphere_flat",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Flat, false),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::Flat, false),
     },
     Case {
         name: "lit_sphere_flat_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Flat, true),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::Flat, true),
     },
     Case {
         name: "lit_sphere_gouraud_fast",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudFast, false),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::GouraudFast, false),
     },
     Case {
         name: "lit_sphere_gouraud_fast_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudFast, true),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::GouraudFast, true),
     },
     Case {
         name: "lit_sphere_gouraud_exact",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact, false),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::GouraudExact, false),
     },
     Case {
         name: "lit_sphere_gouraud_exact_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::GouraudExact, true),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::GouraudExact, true),
     },
     Case {
         name: "lit_sphere_phong",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Phong, false),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::Phong, false),
     },
     Case {
         name: "lit_sphere_phong_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::SPHERE, ShadeMode::Phong, true),
+        run: |fb, st| scene::lit(fb, st, &scene::SPHERE, ShadeMode::Phong, true),
     },
     Case {
         name: "lit_bunny_flat",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Flat, false),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::Flat, false),
     },
     Case {
         name: "lit_bunny_flat_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Flat, true),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::Flat, true),
     },
     Case {
         name: "lit_bunny_gouraud_fast",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudFast, false),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::GouraudFast, false),
     },
     Case {
         name: "lit_bunny_gouraud_fast_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudFast, true),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::GouraudFast, true),
     },
     Case {
         name: "lit_bunny_gouraud_exact",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact, false),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::GouraudExact, false),
     },
     Case {
         name: "lit_bunny_gouraud_exact_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::GouraudExact, true),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::GouraudExact, true),
     },
     Case {
         name: "lit_bunny_phong",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Phong, false),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::Phong, false),
     },
     Case {
         name: "lit_bunny_phong_dither",
-        run: |fb, depth| scene::lit(fb, depth, &scene::BUNNY, ShadeMode::Phong, true),
+        run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::Phong, true),
     },
 ];
 
@@ -330,9 +358,10 @@ fn line_clipped(fb: &mut Framebuffer<'_>) -> u32 {
 /// transform, cull, clip, project, rasterise, shade: SCENES.md's frame).
 ///
 /// Per-frame set-up inside the measured region: building the camera and
-/// [`Renderer`](zscan::render::Renderer)
-/// (projector, frustum) and initialising the vertex scratch; `vertex_*` measures it too.
+/// [`Renderer`](zscan::render::Renderer) (projector, frustum); `vertex_*` measures it too.
+/// The depth samples and the vertex scratch are the harness's [`Storage`](super::Storage).
 pub mod scene {
+    use super::Storage;
     use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
     use zscan::geometry::fixed::Coord;
     use zscan::geometry::mesh::{Mesh, PolygonSizes};
@@ -340,7 +369,7 @@ pub mod scene {
     use zscan::geometry::vector::Vec3;
     use zscan::raster::edge_walker::EdgeWalker;
     use zscan::raster::triangle::{cross, fill_triangle_with};
-    use zscan::render::{PreparedVertex, RenderStats, Renderer, StatsSink, StatsWithoutWritten};
+    use zscan::render::{RenderStats, Renderer, StatsSink, StatsWithoutWritten};
     use zscan::scene::{Intensities, Object};
     use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
     use zscan::target::{DepthBuffer, Framebuffer};
@@ -359,7 +388,7 @@ pub mod scene {
     }
 
     /// Largest vertex table of the scenes (the bunny's).
-    const MAX_VERTICES: usize = 1839;
+    pub const MAX_VERTICES: usize = 1839;
     /// Largest polygon table of the scenes (the bunny's).
     const MAX_POLYGONS: usize = 3674;
 
@@ -473,22 +502,21 @@ pub mod scene {
     };
 
     /// SCENES.md's camera with lattice-point pixels (principal point (159.5, 119.5)).
-    fn renderer() -> Option<Renderer<4>> {
+    fn camera() -> Option<Camera> {
         let lens = Lens {
             fov: Angle::from_degrees(60),
             axis: FovAxis::Vertical,
             near: Coord::from_bits(1 << 15),
             far: Coord::from_bits(10 << 16),
         };
-        let camera = Camera::look_at(
+        Camera::look_at(
             Vec3::from_bits(0, 0, 3 << 16),
             Vec3::ZERO,
             Vec3::from_bits(0, 1 << 16, 0),
             lens,
             Viewport::new(super::WIDTH, super::HEIGHT),
         )
-        .ok()?;
-        Renderer::new(&camera).ok()
+        .ok()
     }
 
     fn object(s: &StandardScene, shade: ShadeMode) -> Object<'static> {
@@ -500,35 +528,45 @@ pub mod scene {
     }
 
     /// The vertex stage alone (plus set-up); returns 0 pixels.
-    /// The set-up each scene case does inside its region before its work, alone: the camera,
-    /// the renderer (projector, frustum) and the vertex scratch's initialisation. SCENES.md's
-    /// frame leaves it out ("each benchmark renders the frame repeatedly in one process, so
-    /// set-up is amortised"); these cases count it, and this case says how much it is.
+    /// The set-up each scene case does inside its region before its work, alone: the camera
+    /// and the renderer (projector, frustum). SCENES.md's frame leaves it out ("each benchmark
+    /// renders the frame repeatedly in one process, so set-up is amortised"); these cases
+    /// count it (an application whose camera moves pays it every frame), and this case says
+    /// how much it is.
     pub fn setup_only() -> u32 {
-        let Some(r) = renderer() else { return 0 };
-        let scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
-        core::hint::black_box((&r, &scratch));
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        core::hint::black_box(&r);
         0
     }
 
     /// The set-up above and the vertex stage (transform, outcodes, projection).
-    pub fn vertex_only(_fb: &mut Framebuffer<'_>, s: &StandardScene) -> u32 {
-        let Some(r) = renderer() else { return 0 };
-        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
-        let _ = r.prepare(&object(s, ShadeMode::Flat), &mut scratch);
-        core::hint::black_box(&scratch);
+    pub fn vertex_only(_fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        let _ = r.prepare(&object(s, ShadeMode::Flat), &mut st.vertices);
+        core::hint::black_box(&st.vertices);
         0
     }
 
     /// Vertex stage, back-face culling on the projected area, and the bare fill of every
     /// front-facing triangle whose vertices all projected (no depth test, no shading: index
     /// 255 written with `slice::fill`). Returns the pixels written.
-    pub fn fill_only<W: EdgeWalker>(fb: &mut Framebuffer<'_>, s: &StandardScene) -> u32 {
-        let Some(r) = renderer() else { return 0 };
-        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
-        if r.prepare(&object(s, ShadeMode::Flat), &mut scratch)
-            .is_err()
-        {
+    pub fn fill_only<W: EdgeWalker>(
+        fb: &mut Framebuffer<'_>,
+        st: &mut Storage,
+        s: &StandardScene,
+    ) -> u32 {
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        let scratch = &mut st.vertices;
+        if r.prepare(&object(s, ShadeMode::Flat), scratch).is_err() {
             return 0;
         }
         let window = fb.window();
@@ -557,13 +595,20 @@ pub mod scene {
     /// polygon (vertex stage, rejection and culling once per frame; each band visits the
     /// polygons that reach it); each finished band is copied into `fb` where a device would
     /// flush it.
-    pub fn frame_in_bands(fb: &mut Framebuffer<'_>, s: &StandardScene, rows: u16) -> u32 {
+    pub fn frame_in_bands(
+        fb: &mut Framebuffer<'_>,
+        st: &mut Storage,
+        s: &StandardScene,
+        rows: u16,
+    ) -> u32 {
         const MAX_ROWS: usize = 16;
         let rows = rows.min(MAX_ROWS as u16);
         let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
         let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
-        let Some(r) = renderer() else { return 0 };
-        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
         let mut polygons = [zscan::render::PolygonRows::default(); MAX_POLYGONS];
         let objects = [object(s, ShadeMode::GouraudExact)];
         let scene = zscan::scene::Scene {
@@ -580,7 +625,7 @@ pub mod scene {
             &mut depth,
             (super::WIDTH, super::HEIGHT, rows),
             zscan::render::BandScratch {
-                vertices: &mut scratch,
+                vertices: &mut st.vertices,
                 polygons: &mut polygons,
             },
             |frame, _| {
@@ -600,12 +645,12 @@ pub mod scene {
     /// written-pixel count ([`StatsWithoutWritten`]); returns the pixels covered.
     pub fn frame(
         fb: &mut Framebuffer<'_>,
-        depth: &mut [u16],
+        st: &mut Storage,
         s: &StandardScene,
         shade: ShadeMode,
     ) -> u32 {
         let mut stats = StatsWithoutWritten::default();
-        match frame_with(fb, depth, s, shade, &mut stats) {
+        match frame_with(fb, st, s, shade, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
@@ -615,12 +660,12 @@ pub mod scene {
     /// per written pixel in the span loops); returns the pixels written.
     pub fn frame_counted(
         fb: &mut Framebuffer<'_>,
-        depth: &mut [u16],
+        st: &mut Storage,
         s: &StandardScene,
         shade: ShadeMode,
     ) -> u32 {
         let mut stats = RenderStats::default();
-        match frame_with(fb, depth, s, shade, &mut stats) {
+        match frame_with(fb, st, s, shade, &mut stats) {
             Ok(()) => stats.pixels_written,
             Err(_) => 0,
         }
@@ -628,17 +673,17 @@ pub mod scene {
 
     fn frame_with(
         fb: &mut Framebuffer<'_>,
-        depth: &mut [u16],
+        st: &mut Storage,
         s: &StandardScene,
         shade: ShadeMode,
         stats: &mut impl StatsSink,
     ) -> Result<(), ()> {
-        let mut zb = DepthBuffer::new(depth, super::WIDTH, super::HEIGHT).map_err(|_| ())?;
+        let mut zb =
+            DepthBuffer::new(&mut st.depth, super::WIDTH, super::HEIGHT).map_err(|_| ())?;
         zb.clear(); // clear depth
         fb.clear(0); // clear colour
-        let r = renderer().ok_or(())?;
-        let mut scratch = [PreparedVertex::<4>::default(); MAX_VERTICES];
-        r.draw_object(&object(s, shade), &mut scratch, fb, &mut zb, stats)
+        let r = Renderer::<4>::new(&camera().ok_or(())?).map_err(|_| ())?;
+        r.draw_object(&object(s, shade), &mut st.vertices, fb, &mut zb, stats)
             .map_err(|_| ())
     }
 
@@ -649,14 +694,14 @@ pub mod scene {
     /// per-pixel denominator).
     pub fn lit(
         fb: &mut Framebuffer<'_>,
-        depth: &mut [u16],
+        st: &mut Storage,
         s: &StandardScene,
         mode: ShadeMode,
         dither: bool,
     ) -> u32 {
         use zscan::scene::{Intensities, Object};
         use zscan::shade::lighting::{Light, Material};
-        let Ok(mut zb) = DepthBuffer::new(depth, super::WIDTH, super::HEIGHT) else {
+        let Ok(mut zb) = DepthBuffer::new(&mut st.depth, super::WIDTH, super::HEIGHT) else {
             return 0;
         };
         zb.clear();
@@ -698,9 +743,8 @@ pub mod scene {
             levels: 32,
         };
         object.dither = dither;
-        let mut prepared = [PreparedVertex::<4>::default(); MAX_VERTICES];
         let mut stats = RenderStats::default();
-        match r.draw_object(&object, &mut prepared, fb, &mut zb, &mut stats) {
+        match r.draw_object(&object, &mut st.vertices, fb, &mut zb, &mut stats) {
             Ok(()) => stats.pixels_covered,
             Err(_) => 0,
         }

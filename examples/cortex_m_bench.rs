@@ -108,10 +108,11 @@ fn main() -> ! {
     p.SYST.clear_current();
     p.SYST.enable_counter();
 
-    // The framebuffer and the depth storage live on the stack (cortex-m-rt puts it at the top
-    // of the 4 MB RAM), declared once like an application's buffers.
+    // The framebuffer and the storage (depth samples, vertex scratch) live on the stack
+    // (cortex-m-rt puts it at the top of the 4 MB RAM), declared once like an application's
+    // buffers.
     let mut pixels = [0u8; cases::FB_LEN];
-    let mut depth = [u16::MAX; cases::FB_LEN];
+    let mut storage = cases::Storage::new();
     hprintln!(
         "zscan-bench begin cases={} systick_resolution={}",
         cases::CASES.len(),
@@ -122,16 +123,16 @@ fn main() -> ! {
             .expect("the buffer has the cases' size");
         // Warm-up call (keeps the host and target harnesses identical), then the measured one.
         fb.clear(0);
-        black_box((case.run)(black_box(&mut fb), black_box(&mut depth)));
+        black_box((case.run)(black_box(&mut fb), black_box(&mut storage)));
         fb.clear(0);
         // `black_box` makes the framebuffer escape and the call indirect, so the compiler can
         // neither move drawing across the markers nor inline the case into the loop.
         let run = black_box(case.run);
         let fb = black_box(&mut fb);
-        let depth = black_box(&mut depth[..]);
+        let storage = black_box(&mut storage);
         let t0 = SYST::get_current();
         zscan_bench_begin(i as u32);
-        let px = run(fb, depth);
+        let px = run(fb, storage);
         zscan_bench_end(i as u32);
         let t1 = SYST::get_current();
         let ticks = t0.wrapping_sub(t1) & RELOAD;

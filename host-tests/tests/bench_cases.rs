@@ -6,8 +6,8 @@ use zscan_host::cli::bench::{cases, run_case};
 fn draw(case: &cases::Case) -> (u32, Vec<u8>) {
     let mut pixels = vec![0u8; cases::FB_LEN];
     let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT).unwrap();
-    let mut depth = vec![0u16; cases::FB_LEN]; // any contents: cases clear what they use
-    let px = (case.run)(&mut fb, &mut depth);
+    let mut storage = Box::new(cases::Storage::new()); // cases clear or overwrite what they use
+    let px = (case.run)(&mut fb, &mut storage);
     (px, pixels)
 }
 

@@ -51,32 +51,32 @@ pub struct BenchArgs {
 #[no_mangle]
 #[inline(never)]
 pub fn zscan_bench_host_region(
-    run: fn(&mut Framebuffer<'_>, &mut [u16]) -> u32,
+    run: fn(&mut Framebuffer<'_>, &mut cases::Storage) -> u32,
     fb: &mut Framebuffer<'_>,
-    depth: &mut [u16],
+    storage: &mut cases::Storage,
 ) -> u32 {
-    run(fb, depth)
+    run(fb, storage)
 }
 
 /// Draws `case` on a cleared frame the way the firmware does (warm-up call, clear, measured
 /// call); returns the pixels reported and the framebuffer checksum.
 pub fn run_case(case: &cases::Case) -> (u32, u32) {
     let mut pixels = vec![0u8; cases::FB_LEN];
-    let mut depth = vec![u16::MAX; cases::FB_LEN]; // declared once, like the firmware's
+    let mut storage = Box::new(cases::Storage::new()); // declared once, like the firmware's
     let px = {
         let mut fb = Framebuffer::new(&mut pixels, cases::WIDTH, cases::HEIGHT)
             .expect("the buffer has the cases' size");
         fb.clear(0);
         std::hint::black_box((case.run)(
             std::hint::black_box(&mut fb),
-            std::hint::black_box(&mut depth),
+            std::hint::black_box(&mut storage),
         ));
         fb.clear(0);
         let run = std::hint::black_box(case.run);
         zscan_bench_host_region(
             run,
             std::hint::black_box(&mut fb),
-            std::hint::black_box(&mut depth),
+            std::hint::black_box(&mut storage),
         )
     };
     (px, cases::fnv1a(&pixels))
