@@ -359,7 +359,7 @@ fn line_clipped(fb: &mut Framebuffer<'_>) -> u32 {
 ///
 /// Per-frame set-up inside the measured region: building the camera and
 /// [`Renderer`](zscan::render::Renderer) (projector, frustum); `vertex_*` measures it too.
-/// The depth samples and the vertex scratch are the harness's [`Storage`](super::Storage).
+/// The depth samples and the vertex scratch are the harness's [`Storage`].
 pub mod scene {
     use super::Storage;
     use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
