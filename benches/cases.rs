@@ -169,6 +169,10 @@ pub const CASES: &[Case] = &[
         run: |fb, st| scene::frame(fb, st, &scene::BUNNY, ShadeMode::GouraudFast),
     },
     Case {
+        name: "frame_bunny_flat",
+        run: |fb, st| scene::frame(fb, st, &scene::BUNNY, ShadeMode::Flat),
+    },
+    Case {
         name: "frame_cube_counted",
         run: |fb, st| scene::frame_counted(fb, st, &scene::CUBE, ShadeMode::GouraudExact),
     },
