@@ -41,3 +41,5 @@ pub mod render;
 pub mod scene;
 pub mod shade;
 pub mod target;
+#[cfg(test)]
+mod test_rng;

@@ -386,13 +386,8 @@ mod tests {
     /// nearest and farthest planes the range allows to random ones, or fail where they failed.
     #[test]
     fn depth_constants_match_the_u128_formulas() {
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut rnd = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::test_rng::XorShift(0x2545_F491_4F6C_DD1Du64);
+        let mut rnd = |m: u64| rng.next_u64() % m;
         let edges = [1i32, 2, 3, 0x8000, 0x1_0000, 0x7FFF_FFFE, i32::MAX];
         let mut checked = [0usize; 2];
         for i in 0..20_000 {

@@ -1418,13 +1418,8 @@ mod tests {
         )
         .unwrap();
         let r = Renderer::<4>::new(&cam).unwrap();
-        let mut seed = 0xC0FF_EE12_3456_789Bu64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = crate::test_rng::XorShift(0xC0FF_EE12_3456_789Bu64);
+        let mut rnd = || rng.next_u64();
         let (mut narrow_runs, mut codes) = (0, [0u32; 2]);
         for n in 0..60 {
             let span = [1u64 << 10, 1 << 17, 1 << 22, MAX_MESH_COORD_BITS as u64][n % 4];

@@ -399,13 +399,8 @@ mod tests {
 
     #[test]
     fn fast_outcode_equals_plane_distances() {
-        let mut seed = 0x5EED_0123_4567_89ABu64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed as i32
-        };
+        let mut rng = crate::test_rng::XorShift(0x5EED_0123_4567_89ABu64);
+        let mut rnd = || rng.next_u64() as i32;
         for guard in [1, 4, 100] {
             let f = Frustum::new::<4>(&camera(), guard).unwrap();
             for i in 0..20000 {
@@ -419,13 +414,8 @@ mod tests {
 
     #[test]
     fn narrow_outcode_equals_outcode_within_its_bound() {
-        let mut seed = 0x0123_4567_89AB_CDEFu64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = crate::test_rng::XorShift(0x0123_4567_89AB_CDEFu64);
+        let mut rnd = || rng.next_u64();
         for guard in [1, 4, 100] {
             let f = Frustum::new::<4>(&camera(), guard).unwrap();
             // The largest z bound the side planes allow, and a few smaller boxes.

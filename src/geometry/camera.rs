@@ -449,13 +449,8 @@ mod tests {
     /// extreme viewports and pixel sizes (and give `FocalTooLong` exactly where it did).
     #[test]
     fn focal_lengths_match_the_u128_formula() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut rnd = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::test_rng::XorShift(0x9E37_79B9_7F4A_7C15u64);
+        let mut rnd = |m: u64| rng.next_u64() % m;
         let fovs = [
             1u32,
             2,
@@ -481,13 +476,8 @@ mod tests {
             let (w, h, pw, ph) = if i % 4 < 3 {
                 sizes[i % 3]
             } else {
-                let side = |r: &mut dyn FnMut(u64) -> u64| 1 + r(4096) as u16;
-                (
-                    side(&mut rnd),
-                    side(&mut rnd),
-                    side(&mut rnd),
-                    side(&mut rnd),
-                )
+                let mut side = || 1 + rnd(4096) as u16;
+                (side(), side(), side(), side())
             };
             let axis = [FovAxis::Vertical, FovAxis::Horizontal, FovAxis::Diagonal][i % 3];
             let mut viewport = Viewport::new(w, h);

@@ -388,13 +388,8 @@ mod tests {
 
     #[test]
     fn wrapping_transform_equals_saturating_within_the_bound() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = crate::test_rng::XorShift(0x9E37_79B9_7F4A_7C15u64);
+        let mut rnd = || rng.next_u64();
         let mc = crate::geometry::mesh::MAX_MESH_COORD_BITS as u32;
         let r = |k: u64, b: u32| (k % (2 * b as u64 + 1)) as i64 - b as i64;
         for n in 0..400 {

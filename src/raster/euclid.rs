@@ -148,13 +148,8 @@ mod tests {
 
     #[test]
     fn reciprocal_division_is_exact() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = crate::test_rng::XorShift(0x9E37_79B9_7F4A_7C15u64);
+        let mut rnd = || rng.next_u64();
         for i in 0..200_000 {
             let d = (rnd() >> (2 + (i % 62))).max(1) as i64;
             let a = (rnd() as i64) >> (1 + (i % 63) as u32 / 2);

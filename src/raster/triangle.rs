@@ -168,13 +168,8 @@ mod tests {
 
     #[test]
     fn matches_polygon_fill_on_random_triangles() {
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut rnd = |m: i32| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64 + 1)) as i32 - m
-        };
+        let mut rng = crate::test_rng::XorShift(0x2545_F491_4F6C_DD1Du64);
+        let mut rnd = |m: i32| (rng.next_u64() % (2 * m as u64 + 1)) as i32 - m;
         let w = Window::new(-3, -2, 20, 17);
         for i in 0..4000 {
             let m = if i % 2 == 0 { 200 } else { 20 };

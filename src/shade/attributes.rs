@@ -800,13 +800,8 @@ mod tests {
 
     #[test]
     fn every_pixel_is_correctly_rounded() {
-        let mut seed = 0xDEAD_BEEF_1234_5678u64;
-        let mut rnd = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::test_rng::XorShift(0xDEAD_BEEF_1234_5678u64);
+        let mut rnd = |m: u64| rng.next_u64() % m;
         let window = crate::raster::Window::new(0, 0, 64, 64);
         let mut checked = 0;
         for _ in 0..400 {
@@ -833,13 +828,8 @@ mod tests {
 
     #[test]
     fn row_starts_equal_direct_evaluation() {
-        let mut seed = 0x1234_5678_9ABC_DEF0u64;
-        let mut rnd = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::test_rng::XorShift(0x1234_5678_9ABC_DEF0u64);
+        let mut rnd = |m: u64| rng.next_u64() % m;
         let window = crate::raster::Window::new(-5, -5, 80, 80);
         let mut rows = 0;
         for _ in 0..300 {
@@ -865,13 +855,8 @@ mod tests {
 
     #[test]
     fn exact_runs_stay_exact_up_to_their_limit() {
-        let mut seed = 0x0F0F_1234_5555_AAAAu64;
-        let mut rnd = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::test_rng::XorShift(0x0F0F_1234_5555_AAAAu64);
+        let mut rnd = |m: u64| rng.next_u64() % m;
         let mut pixels = 0u64;
         for i in 0..3000 {
             // Small and large triangles: limits from a few pixels to thousands.
@@ -898,13 +883,8 @@ mod tests {
     /// The 32-bit plane gives the general plane's exact values, remainders, steps and DDAs at
     /// every covered pixel, for boxes up to its limit and attribute differences up to 2^32.
     fn small_plane_matches<const S: u32>(seed: u64, count: usize) -> (u64, u64) {
-        let mut seed = seed;
-        let mut rnd = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::test_rng::XorShift(seed);
+        let mut rnd = |m: u64| rng.next_u64() % m;
         let lim = 1u64 << small_bits(S);
         let window = crate::raster::Window::new(-100, -100, 200, 200);
         let (mut pixels, mut planes) = (0u64, 0);
@@ -966,13 +946,8 @@ mod tests {
     #[test]
     fn corner_numerator_bound_at_the_largest_box() {
         let m = (1i32 << small_bits(4)) - 1;
-        let mut seed = 0x0DDB_1A5E_5BAD_5EEDu64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed as u32
-        };
+        let mut rng = crate::test_rng::XorShift(0x0DDB_1A5E_5BAD_5EEDu64);
+        let mut rnd = || rng.next_u64() as u32;
         let p = SubpixelPoint::<4>::new;
         let window = crate::raster::Window::new(-100, -100, 200, 200);
         let (mut largest, mut pixels) = (0u64, 0u64);
@@ -1035,13 +1010,8 @@ mod tests {
     /// The 32-bit split of a gradient equals the i64 one (the host takes the i64 form).
     #[test]
     fn narrow_gradient_split_equals_wide() {
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut rnd = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::test_rng::XorShift(0x2545_F491_4F6C_DD1Du64);
+        let mut rnd = |m: u64| rng.next_u64() % m;
         for i in 0..200_000 {
             let k = 1 + (i % 10) as u32;
             let d = 1 + rnd((1 << (2 * k)) - 1) as u32;

@@ -961,13 +961,8 @@ mod tests {
             }
             fn step(&mut self) {}
         }
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut rnd = |m: u32| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % m as u64) as u32
-        };
+        let mut rng = crate::test_rng::XorShift(0x2545_F491_4F6C_DD1Du64);
+        let mut rnd = |m: u32| (rng.next_u64() % m as u64) as u32;
         let mut pixels = 0;
         for _ in 0..200 {
             let tri = [0; 3].map(|_| {
