@@ -521,7 +521,7 @@ pub struct SmallPlane<const N: usize, const S: u32> {
     /// `2D`.
     two_d: NonZeroU32,
     /// Per attribute `(g1 mod 2^32, 2·g0, h1 mod 2^32, 2·h0, 2·c0 + D)`: `gx = D·g1 + g0`,
-    /// `gy = D·h1 + h0`, the corner's numerator `c0`.
+    /// `gy = D·h1 + h0`, and `e'` at the corner itself (`px = py = 0`).
     split: [(u32, u32, u32, u32, u32); N],
     /// Per attribute, `(q, r)` of one pixel step right.
     step_x: [(u32, u32); N],
@@ -614,14 +614,15 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
     /// `(B + g1·px + h1·py mod 2^32, e')` at offset `(px, py)`: `2M + D = 2D·(whole − A0) + e'`.
     #[inline(always)]
     fn numerator(&self, i: usize, px: u32, py: u32) -> (u32, u32) {
-        let (g1, g0x2, h1, h0x2, c0) = self.split[i];
+        let (g1, g0x2, h1, h0x2, e_corner) = self.split[i];
         let whole = self.base[i]
             .wrapping_add(g1.wrapping_mul(px))
             .wrapping_add(h1.wrapping_mul(py));
         // e' < 2^32 at a covered pixel (see the numeric contract).
         (
             whole,
-            c0.wrapping_add(g0x2.wrapping_mul(px))
+            e_corner
+                .wrapping_add(g0x2.wrapping_mul(px))
                 .wrapping_add(h0x2.wrapping_mul(py)),
         )
     }
@@ -973,8 +974,9 @@ mod tests {
                     for x in s.x0..s.x1 {
                         let (px, py) = plane.offset(x, s.y);
                         for i in 0..2 {
-                            let (_, g0x2, _, h0x2, c0) = plane.split[i];
-                            let e = c0 as u64 + g0x2 as u64 * px as u64 + h0x2 as u64 * py as u64;
+                            let (_, g0x2, _, h0x2, e_corner) = plane.split[i];
+                            let e =
+                                e_corner as u64 + g0x2 as u64 * px as u64 + h0x2 as u64 * py as u64;
                             assert!(e < 1 << 32, "e' = {e} at ({x},{}) of {v:?} {a:?}", s.y);
                             largest = largest.max(e);
                             let (got, want) = (plane.exact(i, x, s.y), general.exact(i, x, s.y));
