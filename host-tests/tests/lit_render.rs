@@ -138,34 +138,41 @@ fn frame(r: &Renderer<4>, object: &Object<'_>) -> (Vec<u8>, RenderStats) {
     (frame_into(r, object, &mut stats), stats)
 }
 
-/// One frame of `object` (background 255) counted into `stats`; its pixels.
-fn frame_into(r: &Renderer<4>, object: &Object<'_>, stats: &mut impl StatsSink) -> Vec<u8> {
+/// The pixels `draw` leaves in a `W × H` frame of background 255, given that frame, its
+/// cleared depth buffer and vertex scratch for the sphere.
+fn drawn(
+    draw: impl FnOnce(&mut Framebuffer<'_>, &mut DepthBuffer<'_, u16>, &mut [PreparedVertex<4>]),
+) -> Vec<u8> {
     let n = W as usize * H as usize;
     let (mut px, mut zs) = (vec![255u8; n], vec![0u16; n]);
     let mut fb = Framebuffer::new(&mut px, W, H).unwrap();
     let mut zb = DepthBuffer::new(&mut zs, W, H).unwrap();
     zb.clear();
-    let mut scratch = vec![PreparedVertex::<4>::default(); NV];
-    r.draw_object(object, &mut scratch, &mut fb, &mut zb, stats)
-        .unwrap();
+    draw(
+        &mut fb,
+        &mut zb,
+        &mut vec![PreparedVertex::<4>::default(); NV],
+    );
     px
+}
+
+/// One frame of `object` (background 255) counted into `stats`; its pixels.
+fn frame_into(r: &Renderer<4>, object: &Object<'_>, stats: &mut impl StatsSink) -> Vec<u8> {
+    drawn(|fb, zb, scratch| {
+        r.draw_object(object, scratch, fb, zb, stats).unwrap();
+    })
 }
 
 /// [`frame_into`] through the band path: `polygon_rows`, then `rasterize_rows` over the whole
 /// frame as one band.
 fn frame_rows(r: &Renderer<4>, object: &Object<'_>, stats: &mut impl StatsSink) -> Vec<u8> {
-    let n = W as usize * H as usize;
-    let (mut px, mut zs) = (vec![255u8; n], vec![0u16; n]);
-    let mut fb = Framebuffer::new(&mut px, W, H).unwrap();
-    let mut zb = DepthBuffer::new(&mut zs, W, H).unwrap();
-    zb.clear();
-    let mut scratch = vec![PreparedVertex::<4>::default(); NV];
-    let mut table = vec![PolygonRows::default(); object.mesh.polygon_count()];
-    r.prepare(object, &mut scratch).unwrap();
-    r.polygon_rows(object, &scratch, &mut table, stats).unwrap();
-    r.rasterize_rows(object, &scratch, &table, &mut fb, &mut zb, stats)
-        .unwrap();
-    px
+    drawn(|fb, zb, scratch| {
+        let mut table = vec![PolygonRows::default(); object.mesh.polygon_count()];
+        r.prepare(object, scratch).unwrap();
+        r.polygon_rows(object, scratch, &mut table, stats).unwrap();
+        r.rasterize_rows(object, scratch, &table, fb, zb, stats)
+            .unwrap();
+    })
 }
 
 fn renderer(cam: &Camera) -> Renderer<4> {
