@@ -82,6 +82,19 @@ pub struct Exact {
 }
 
 impl Exact {
+    /// The state from its parts: `value`, its remainder `rem < two_d`, and the per-pixel
+    /// quotient `q` and remainder `r < two_d` (`two_d < 2^31`).
+    #[inline(always)]
+    pub(crate) fn from_parts(value: u32, rem: u32, (q, r): (u32, u32), two_d: u32) -> Self {
+        Exact {
+            value,
+            rem,
+            q,
+            r,
+            two_d,
+        }
+    }
+
     /// Moves by a precomputed quotient and remainder (`r < 2D`), carrying once.
     #[inline(always)]
     pub fn advance(&mut self, (q, r): (u32, u32)) {

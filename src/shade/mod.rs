@@ -11,3 +11,4 @@ pub mod lighting;
 pub mod phong;
 pub mod shadow;
 pub mod span_writer;
+mod tiny_triangle;
