@@ -135,18 +135,15 @@ impl<const S: u32> TinyTriangle<S> {
         let (ox, oy) = (x_lo >> S, y_lo >> S);
         // Local sub-pixel coordinates from the pixel-aligned origin: 0..2^K + F.
         let p = v.map(|p| (p.x - (ox << S), p.y - (oy << S)));
-        let mut k = [0usize, 1, 2];
-        if p[k[1]].1 < p[k[0]].1 {
-            k.swap(0, 1);
-        }
-        if p[k[2]].1 < p[k[1]].1 {
-            k.swap(1, 2);
-            if p[k[1]].1 < p[k[0]].1 {
-                k.swap(0, 1);
-            }
-        }
-        let p = k.map(|i| p[i]);
-        let values = k.map(|i| values[i]);
+        // Sort by row, carrying the values (selects, no memory).
+        let t = [0, 1, 2].map(|i| (p[i], values[i]));
+        type V = ((i32, i32), [u32; 2]);
+        let order = |u: V, w: V| if w.0 .1 < u.0 .1 { (w, u) } else { (u, w) };
+        let (t0, t1) = order(t[0], t[1]);
+        let (t1, t2) = order(t1, t[2]);
+        let (t0, t1) = order(t0, t1);
+        let p = [t0.0, t1.0, t2.0];
+        let values = [t0.1, t1.1, t2.1];
         let [a, b, c] = p;
         // Twice the signed area.
         let (dx1, dy1) = (p[1].0 - p[0].0, p[1].1 - p[0].1);
