@@ -14,9 +14,10 @@
 //! Exact Gouraud or flat luminance through a 256-level ramp (the luminance is the palette
 //! index minus the ramp's first entry), a depth plane that is not constant, and a triangle
 //! whose bounding box is below `2^K` sub-pixel units on both axes (`K =`
-//! [`small_bits`]`(S)`: 64 pixels at `S = 4`) and lies inside the drawable window, so that no
-//! row or column needs clipping. `S + K ≤ 19` (every `S ≤ 9`). Other triangles return `None`
-//! from [`TinyTriangle::new`] and take the general path.
+//! [`small_bits`]`(S)`: 64 pixels at `S = 4`) whose columns lie inside the drawable window
+//! (its rows are clipped to the window's, so a band draws the triangles across its edges
+//! here too). `S + K ≤ 19` (every `S ≤ 9`). Other triangles return `None` from
+//! [`TinyTriangle::new`] and take the general path.
 //!
 //! ## Conventions
 //! Coordinates are local: sub-pixel units from the pixel-aligned corner `(ox, oy)·F` of the
@@ -66,11 +67,12 @@ pub(crate) struct TinyTriangle<const S: u32> {
     ox: i32,
     /// The row of the local origin.
     oy: i32,
-    /// Local rows of the top, middle and bottom vertices (`⌈y / F⌉`).
+    /// Local rows: the first drawn, the end of the top half, the end of the bottom half (the
+    /// vertices' rows `⌈y / F⌉` clipped to the window's).
     rows: [i32; 3],
     /// The edge from the top to the bottom vertex.
     long: Edge,
-    /// The top and bottom short edges, each started at its first row.
+    /// The top and bottom short edges, each started at its first drawn row.
     short: [Edge; 2],
     /// True when the short edges are the left ones.
     middle_left: bool,
@@ -127,8 +129,6 @@ impl<const S: u32> TinyTriangle<S> {
             || y_hi.wrapping_sub(y_lo) as u32 >= lim
             || (x_lo >> S) < window.x0
             || (x_hi >> S) >= window.x1
-            || (y_lo >> S) < window.y0
-            || (y_hi >> S) >= window.y1
         {
             return None;
         }
@@ -215,11 +215,17 @@ impl<const S: u32> TinyTriangle<S> {
         let l_step = div_floor((2 * lx) << S, two_d);
         let middle_left = neg;
         let ceil_row = |t: i32| (t + (1 << S) - 1) >> S;
-        let rows = [ceil_row(a.1), ceil_row(b.1), ceil_row(c.1)];
+        // The rows drawn, clipped to the window's (local): from the first visible row to the
+        // middle vertex's row, then to the bottom vertex's.
+        let (top, bottom) = (window.y0 - oy, window.y1 - oy);
+        let first = ceil_row(a.1).max(top);
+        let middle = ceil_row(b.1);
+        let rows = [first, middle.min(bottom), ceil_row(c.1).min(bottom)];
         let edge = |p: (i32, i32), q: (i32, i32), y: i32| {
             let (dx, dy) = (q.0 - p.0, q.1 - p.1);
             let den = (dy << S) as u32;
-            let n = (p.0 * dy + ((y << S) - p.1) * dx) as u32;
+            // Wrapping: an edge started past its last row (never divided) may leave `i32`.
+            let n = (p.0 * dy).wrapping_add((y << S).wrapping_sub(p.1).wrapping_mul(dx)) as u32;
             Edge {
                 n: n.wrapping_add(den).wrapping_sub(1),
                 step: (dx << S) as u32,
@@ -230,8 +236,8 @@ impl<const S: u32> TinyTriangle<S> {
             ox,
             oy,
             rows,
-            long: edge(a, c, rows[0]),
-            short: [edge(a, b, rows[0]), edge(b, c, rows[1])],
+            long: edge(a, c, first),
+            short: [edge(a, b, first), edge(b, c, middle.max(first))],
             middle_left,
             two_d: NonZeroU32::new(two_d)?,
             z: [base, g1, 2 * g0, h1, 2 * h0, 2 * c0 + d],
