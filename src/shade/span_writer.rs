@@ -522,10 +522,11 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
 /// Whether [`draw_triangle_on`] sends small triangles to the tiny-triangle writer
 /// (`shade/tiny_triangle.rs`): on 32-bit cores with a hardware divider, where its 32-bit
 /// set-up and one division per edge and row replace the general path's spilled state
-/// (Cortex-M4 `frame_bunny` −14.9 %, `frame_sphere` −8.7 %). Not on cores that divide in
-/// software (Cortex-M0: `frame_sphere` +11 %, each row's divisions being library calls) nor on
-/// 64-bit hosts, whose general path is already 64-bit arithmetic (x86-64 `frame_sphere`
-/// +1.7 %, `frame_bunny_flat` +10.8 %). The pictures are the same either way (tested).
+/// (Cortex-M4 `frame_bunny` −15.2 %, `frame_sphere` −8.7 %, `frame_bunny_bands16` −11.0 %).
+/// Not on cores that divide in software (Cortex-M0: `frame_sphere` +11 %, each row's
+/// divisions being library calls) nor on 64-bit hosts, whose general path is already 64-bit
+/// arithmetic (x86-64 `frame_sphere` +1.7 %, `frame_bunny_flat` +10.8 %). The pictures are
+/// the same either way (tested).
 pub const TINY_WRITER: bool = HARDWARE_DIVIDE && cfg!(target_pointer_width = "32");
 
 /// Bounding-box width (pixels) from which a triangle's spans use [`ExactRun`].
