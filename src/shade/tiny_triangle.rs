@@ -81,12 +81,16 @@ pub(crate) struct TinyTriangle<const S: u32> {
     middle_left: bool,
     /// `2D`, twice the positive doubled area.
     two_d: NonZeroU32,
-    /// Depth `(B, g1, 2·g0, h1, 2·h0, 2·c0 + D)` from the corner `z_corner`.
+    /// Depth at local pixel `(x, y)`: whole part `z[0] + z[1]·x + z[2]·y` and numerator
+    /// `e' = z[3] + z[4]·x + z[5]·y` (all mod `2^32`), the [`SmallPlane`] terms
+    /// `(B, g1, h1, 2·c0 + D, 2·g0, 2·h0)` re-based from the corner `C` to the local origin
+    /// and scaled by `F`. `e'` is below `2^32` at a covered pixel, so its wrapped value is
+    /// the true one.
+    ///
+    /// [`SmallPlane`]: super::attributes::SmallPlane
     z: [u32; 6],
     /// Depth step per pixel right, quotient and remainder by `2D`.
     z_step: (u32, u32),
-    /// The depth plane's corner `(min x, min y)` of the vertices, local units.
-    z_corner: (u32, u32),
     /// Luminance `T` at the local origin, its per-pixel and per-row increments, and `L_min`.
     l: [u32; 4],
     /// Luminance step per pixel right, quotient and remainder by `2D`.
@@ -240,9 +244,23 @@ impl<const S: u32> TinyTriangle<S> {
             short: [edge(a, b, first), edge(b, c, middle.max(first))],
             middle_left,
             two_d: NonZeroU32::new(two_d)?,
-            z: [base, g1, 2 * g0, h1, 2 * h0, 2 * c0 + d],
+            z: {
+                // Offsets from the corner are `x·F − cx`, `y·F − cy`: fold `cx`, `cy` in.
+                let (cx, cy) = (cxl as u32, cyl as u32);
+                let (g0x2, h0x2, e_corner) = (2 * g0, 2 * h0, 2 * c0 + d);
+                [
+                    base.wrapping_sub(g1.wrapping_mul(cx))
+                        .wrapping_sub(h1.wrapping_mul(cy)),
+                    g1 << S,
+                    h1 << S,
+                    e_corner
+                        .wrapping_sub(g0x2.wrapping_mul(cx))
+                        .wrapping_sub(h0x2.wrapping_mul(cy)),
+                    g0x2 << S,
+                    h0x2 << S,
+                ]
+            },
             z_step,
-            z_corner: (cxl as u32, cyl as u32),
             l: [
                 t0,
                 ((2 * lx) << S) as u32,
@@ -272,7 +290,6 @@ impl<const S: u32> TinyTriangle<S> {
         two_d: NonZeroU32::MIN,
         z: [0; 6],
         z_step: (0, 0),
-        z_corner: (0, 0),
         l: [0; 4],
         l_step: (0, 0),
     };
@@ -324,16 +341,13 @@ impl<const S: u32> TinyTriangle<S> {
         let Some((cs, zs)) = targets.span_at(px, py, (x1 - x0) as usize) else {
             return 0;
         };
-        // Depth offsets from the corner (covered pixels: ≥ 0).
-        let dx = (x0 << S).wrapping_sub(self.z_corner.0);
-        let dy = ((y as u32) << S).wrapping_sub(self.z_corner.1);
-        let [base, g1, g0x2, h1, h0x2, ec] = self.z;
-        let whole = base
-            .wrapping_add(g1.wrapping_mul(dx))
-            .wrapping_add(h1.wrapping_mul(dy));
-        let e = ec
-            .wrapping_add(g0x2.wrapping_mul(dx))
-            .wrapping_add(h0x2.wrapping_mul(dy));
+        let [b, bx, by, e0, ex, ey] = self.z;
+        let whole = b
+            .wrapping_add(bx.wrapping_mul(x0))
+            .wrapping_add(by.wrapping_mul(y as u32));
+        let e = e0
+            .wrapping_add(ex.wrapping_mul(x0))
+            .wrapping_add(ey.wrapping_mul(y as u32));
         let z = Exact::from_parts(
             whole.wrapping_add(e / two_d),
             e % two_d,
