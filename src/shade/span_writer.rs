@@ -449,18 +449,17 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
     quantizer_at: impl Fn(i32, i32) -> Q,
 ) -> Result<(u32, u32), DrawError> {
     let window = target.window;
-    if !bounds_meet(&v, &window) {
-        return Ok((0, 0));
-    }
     // Luminances above 255 saturate at the vertices: every interpolated value then lies in
     // 0..=255, which the span loops rely on ([`InRange`]).
     let values = values.map(|[z, l]| [z, l.min(255)]);
     // A plane is flat exactly when its vertex values are equal (the triangle has area).
     let constant = |i: usize| values[0][i] == values[1][i] && values[0][i] == values[2][i];
-    let flat_lum = if constant(1) {
-        values[0][1]
-    } else {
-        (values[0][1] + values[1][1] + values[2][1] + 1) / 3
+    let flat_lum = || {
+        if constant(1) {
+            values[0][1]
+        } else {
+            (values[0][1] + values[1][1] + values[2][1] + 1) / 3
+        }
     };
     let mode = match mode {
         _ if constant(1) => ShadeMode::Flat,
@@ -478,12 +477,16 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
         };
     if tiny {
         if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
-            let lum = |l: u32| if mode == ShadeMode::Flat { flat_lum } else { l } + first as u32;
+            let lum = |l: u32| if mode == ShadeMode::Flat { flat_lum() } else { l } + first as u32;
             let values = values.map(|[z, l]| [z, lum(l)]);
             if let Some(t) = TinyTriangle::<S>::new(v, values, &window) {
                 return Ok(t.draw(&mut target.targets, target.count));
             }
         }
+    }
+    // (After the tiny writer, which tests the columns itself and clips the rows.)
+    if !bounds_meet(&v, &window) {
+        return Ok((0, 0));
     }
     let spans = TriangleSpans {
         v,
@@ -492,11 +495,11 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
         count: target.count,
     };
     match mode {
-        ShadeMode::Flat if constant(0) => spans.constant(values[0][0], flat_lum, quantizer_at),
+        ShadeMode::Flat if constant(0) => spans.constant(values[0][0], flat_lum(), quantizer_at),
         ShadeMode::Flat => spans.planar(
             values.map(|a| [a[0]]),
             FlatKind {
-                luminance: Constant(flat_lum),
+                luminance: Constant(flat_lum()),
                 quantizer_at,
             },
         ),
