@@ -13,8 +13,9 @@
 //! ([`TINY_WRITER`](super::span_writer::TINY_WRITER)).
 //!
 //! ## When it applies
-//! Exact Gouraud or flat luminance through a 256-level ramp (the luminance is the palette
-//! index minus the ramp's first entry), a depth plane that is not constant, and a triangle
+//! Exact Gouraud luminance, or flat luminance over a depth plane that is not constant (flat
+//! colour at constant depth has its own block loop), through a 256-level ramp (the luminance
+//! is the palette index minus the ramp's first entry), and a triangle
 //! whose bounding box is below `2^K` sub-pixel units on both axes (`K =`
 //! [`small_bits`]`(S)`: 64 pixels at `S = 4`) whose columns lie inside the drawable window
 //! (its rows are clipped to the window's, so a band draws the triangles across its edges
