@@ -20,6 +20,21 @@ use super::edge_walker::{
 use super::polygon::FillError;
 use super::{Span, SubpixelPoint, Window};
 
+/// The bounding box of `v` in sub-pixel units: `([x_lo, x_hi], [y_lo, y_hi])`.
+#[inline(always)]
+pub fn bounds<const S: u32>(v: &[SubpixelPoint<S>; 3]) -> ([i32; 2], [i32; 2]) {
+    (
+        [
+            v[0].x.min(v[1].x).min(v[2].x),
+            v[0].x.max(v[1].x).max(v[2].x),
+        ],
+        [
+            v[0].y.min(v[1].y).min(v[2].y),
+            v[0].y.max(v[1].y).max(v[2].y),
+        ],
+    )
+}
+
 /// Twice the signed area of triangle `a, b, c` in sub-pixel units squared, `(b − a) × (c − a)`.
 /// With screen axes (`x` right, `y` down) it is negative when the vertices turn
 /// counter-clockwise on screen, and, for `a` above `c`, when `b` lies left of the line `a → c`.

@@ -33,7 +33,7 @@ use super::attributes::{
 use super::tiny_triangle::TinyTriangle;
 use crate::raster::euclid::{Divisor, HARDWARE_DIVIDE};
 use crate::raster::polygon::FillError;
-use crate::raster::triangle::fill_triangle;
+use crate::raster::triangle::{bounds, fill_triangle};
 use crate::raster::{Span, SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
@@ -836,14 +836,7 @@ pub fn drawable_window<D: DepthValue>(
 /// True when the bounding box of `v` (rounded outward to pixels) meets `window`.
 #[inline(always)]
 fn bounds_meet<const S: u32>(v: &[SubpixelPoint<S>; 3], window: &Window) -> bool {
-    let (x_lo, x_hi) = (
-        v[0].x.min(v[1].x).min(v[2].x),
-        v[0].x.max(v[1].x).max(v[2].x),
-    );
-    let (y_lo, y_hi) = (
-        v[0].y.min(v[1].y).min(v[2].y),
-        v[0].y.max(v[1].y).max(v[2].y),
-    );
+    let ([x_lo, x_hi], [y_lo, y_hi]) = bounds(v);
     (x_hi >> S) >= window.x0
         && (x_lo >> S) < window.x1
         && (y_hi >> S) >= window.y0

@@ -49,6 +49,7 @@
 use super::attributes::{small_bits, Exact};
 use super::span_writer::{depth_span_with, in_range_direct, Targets, WrittenCount};
 use crate::raster::euclid::div_floor_i32;
+use crate::raster::triangle::bounds;
 use crate::raster::{SubpixelPoint, Window};
 use crate::target::DepthValue;
 use core::num::NonZeroU32;
@@ -119,14 +120,7 @@ impl<const S: u32> TinyTriangle<S> {
             return None;
         }
         let lim = 1u32 << small_bits(S);
-        let (x_lo, x_hi) = (
-            v[0].x.min(v[1].x).min(v[2].x),
-            v[0].x.max(v[1].x).max(v[2].x),
-        );
-        let (y_lo, y_hi) = (
-            v[0].y.min(v[1].y).min(v[2].y),
-            v[0].y.max(v[1].y).max(v[2].y),
-        );
+        let ([x_lo, x_hi], [y_lo, y_hi]) = bounds(&v);
         // Unsigned: the true difference of `hi ≥ lo` is below 2^32.
         if x_hi.wrapping_sub(x_lo) as u32 >= lim
             || y_hi.wrapping_sub(y_lo) as u32 >= lim
@@ -190,10 +184,7 @@ impl<const S: u32> TinyTriangle<S> {
         let (h1, h0) = div_floor(hr, d);
         let (g1, h1) = (gq.wrapping_add(g1), hq.wrapping_add(h1));
         // Corner C = (min x, min y) of the vertices (local); offsets from vertex 0.
-        let (cxl, cyl) = (
-            p[0].0.min(p[1].0).min(p[2].0),
-            p[0].1.min(p[1].1).min(p[2].1),
-        );
+        let (cxl, cyl) = (x_lo - (ox << S), y_lo - (oy << S));
         let (cx, cy) = (cxl - p[0].0, cyl - p[0].1);
         let e = (g0 as i32)
             .wrapping_mul(cx)
