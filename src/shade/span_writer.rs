@@ -18,8 +18,8 @@
 //! columns lie inside the window (rows are clipped), with exact or flat luminance through a
 //! 256-level ramp, go one step further: the tiny-triangle writer (`shade/tiny_triangle.rs`)
 //! sets up edges and both planes at once and draws each span out of line, for the same pixels
-//! with far fewer values held across the rows (Cortex-M4 `frame_bunny` −17 %, `frame_sphere`
-//! −10 %, 16-row bands of the bunny −12 %).
+//! with far fewer values held across the rows (Cortex-M4 `frame_bunny` −19 %, `frame_sphere`
+//! −11 %, 16-row bands of the bunny −13 %).
 //!
 //! Numeric contract: as [`attributes`](super::attributes); depth values are the 32-bit
 //! normalised depth of the projection stage, stored through [`DepthValue::from_depth32`];
@@ -525,7 +525,7 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
 /// Whether [`draw_triangle_on`] sends small triangles to the tiny-triangle writer
 /// (`shade/tiny_triangle.rs`): on 32-bit cores with a hardware divider, where its 32-bit
 /// set-up and one division per edge and row replace the general path's spilled state
-/// (Cortex-M4 `frame_bunny` −17 %, `frame_sphere` −10 %, `frame_bunny_bands16` −12 %).
+/// (Cortex-M4 `frame_bunny` −19 %, `frame_sphere` −11 %, `frame_bunny_bands16` −13 %).
 /// Not on cores that divide in software (Cortex-M0: `frame_sphere` +11 %, each row's
 /// divisions being library calls) nor on 64-bit hosts, whose general path is already 64-bit
 /// arithmetic (x86-64 `frame_sphere` +1.7 %, `frame_bunny_flat` +10.8 %). The pictures are

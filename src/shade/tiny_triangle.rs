@@ -8,8 +8,8 @@
 //! luminances, and the same covered and written counts (tested on random triangles against
 //! it). What differs is the amount of state: one set-up computes everything the rows need,
 //! and each span is a call with a fresh register budget. Measured on the Cortex-M4 (QEMU,
-//! instructions): SCENES.md's bunny frame 2.57 M → 2.13 M, the sphere 1.33 M → 1.20 M,
-//! 16-row bands of the bunny 3.47 M → 3.07 M. It is used where that measured faster
+//! instructions): SCENES.md's bunny frame 2.57 M → 2.09 M, the sphere 1.33 M → 1.19 M,
+//! 16-row bands of the bunny 3.47 M → 3.02 M. It is used where that measured faster
 //! ([`TINY_WRITER`](super::span_writer::TINY_WRITER)).
 //!
 //! ## When it applies
