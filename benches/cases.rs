@@ -601,7 +601,8 @@ pub mod scene {
     /// [`render_in_bands`](zscan::render::render_in_bands), with scratch for every vertex and
     /// polygon (vertex stage, rejection and culling once per frame; each band visits the
     /// polygons that reach it); each finished band is copied into `fb` where a device would
-    /// flush it.
+    /// flush it. Written pixels are not counted, as in [`frame`], whose figure it compares
+    /// with; returns the pixels covered.
     pub fn frame_in_bands(
         fb: &mut Framebuffer<'_>,
         st: &mut Storage,
@@ -625,16 +626,17 @@ pub mod scene {
             ambient: 0,
             lights: &[],
         };
-        let stats = zscan::render::render_in_bands(
+        let mut stats = StatsWithoutWritten::default();
+        let drawn = zscan::render::render_in_bands(
             &r,
             &scene,
-            &mut band,
-            &mut depth,
+            (&mut band, &mut depth),
             (super::WIDTH, super::HEIGHT, rows),
             zscan::render::BandScratch {
                 vertices: &mut st.vertices,
                 polygons: &mut polygons,
             },
+            &mut stats,
             |frame, _| {
                 for (y, row) in frame.rows() {
                     if let Some(out) = fb.row_mut(y) {
@@ -643,7 +645,7 @@ pub mod scene {
                 }
             },
         );
-        stats.map_or(0, |s| s.pixels_written)
+        drawn.map_or(0, |()| stats.0.pixels_covered)
     }
 
     /// SCENES.md's frame: clear colour, clear depth (16-bit, the harness's depth storage

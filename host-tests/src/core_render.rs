@@ -229,13 +229,14 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
     let total = w as usize * h as usize;
     let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
-    let stats = render_in_bands(
+    let mut stats = RenderStats::default();
+    render_in_bands(
         renderer,
         scene,
-        &mut band_pixels,
-        &mut band_depths,
+        (&mut band_pixels, &mut band_depths),
         (w, h, band),
         scratch,
+        &mut stats,
         |frame, zb| {
             for y in frame.top()..frame.top() + frame.height() as i32 {
                 let at = y as usize * w as usize;

@@ -374,13 +374,13 @@ fn lit_bands_equal_one_pass() {
                 render_in_bands(
                     &r,
                     &scene,
-                    &mut band,
-                    &mut depth,
+                    (&mut band, &mut depth),
                     (W, H, rows),
                     BandScratch {
                         vertices: &mut scratch,
                         polygons: &mut polygons,
                     },
+                    &mut RenderStats::default(),
                     |f, _| {
                         for (y, row) in f.rows() {
                             let at = y as usize * W as usize;

@@ -644,7 +644,8 @@ fn render_frame<D: DepthValue>(
     };
     let renderer: Renderer<4> = Renderer::for_scene(&scene).unwrap();
     let mut scratch = vec![PreparedVertex::<4>::default(); floor.vertices.len().max(8)];
-    render_scene(&renderer, &scene, frame, depth, &mut scratch).unwrap();
+    let mut stats = zscan::render::StatsWithoutWritten::default();
+    render_scene(&renderer, &scene, frame, depth, &mut scratch, &mut stats).unwrap();
 }
 
 /// The float ray through pixel `(i, j)` of the observer meets the floor at this point.
