@@ -14,13 +14,17 @@
 //!
 //! ## When it applies
 //! Exact Gouraud luminance, or flat luminance over a depth plane that is not constant (flat
-//! colour at constant depth has its own block loop), through a 256-level ramp (the luminance
-//! is the palette index minus the ramp's first entry), and a triangle
-//! whose bounding box is below `2^K` sub-pixel units on both axes (`K =`
+//! colour at constant depth has its own block loop), and a triangle whose bounding box is below `2^K` sub-pixel units on both axes (`K =`
 //! [`small_bits`]`(S)`: 64 pixels at `S = 4`) whose columns lie inside the drawable window
 //! (its rows are clipped to the window's, so a band draws the triangles across its edges
 //! here too). `S + K ≤ 19` (every `S ≤ 9`). Other triangles return `None` from
 //! [`TinyTriangle::new`] and take the general path.
+//!
+//! The luminance reaches the palette through the span's [`Quantizer`], as on the general
+//! path: through a 256-level ramp the writers interpolate the palette index itself (the
+//! level plus the ramp's first entry) and store it; any other ramp, plain or dithered, maps
+//! the level (`0..=255`) at each pixel ([`draw_triangle_on`](super::span_writer::draw_triangle_on)
+//! sends flat triangles here only through a 256-level ramp).
 //!
 //! ## Conventions
 //! Coordinates are local: sub-pixel units from the pixel-aligned corner `(ox, oy)·F` of the
@@ -47,7 +51,7 @@
 //! - Both attributes round half up, `A0 + ⌊(2M + D) / 2D⌋`, as [`Exact`] everywhere.
 
 use super::attributes::{small_bits, Exact};
-use super::span_writer::{depth_span_with, in_range_direct, Targets, WrittenCount};
+use super::span_writer::{depth_span_with, in_range, Quantizer, Targets, WrittenCount};
 use crate::raster::euclid::div_floor_i32;
 use crate::raster::triangle::bounds;
 use crate::raster::{SubpixelPoint, Window};
@@ -286,13 +290,16 @@ impl<const S: u32> TinyTriangle<S> {
         l_step: (0, 0),
     };
 
-    /// Draws the triangle into `targets` (depth test, exact depth and luminance); returns the
-    /// pixels covered and written (0 written when `count` does not count).
+    /// Draws the triangle into `targets` (depth test, exact depth and luminance, mapped to
+    /// indices by `quantizer_at(x, y)` at each span's first pixel, as the general path's span
+    /// kinds do); returns the pixels covered and written (0 written when `count` does not
+    /// count).
     #[inline(always)]
-    pub(crate) fn draw<D: DepthValue, C: WrittenCount>(
+    pub(crate) fn draw<D: DepthValue, C: WrittenCount, Q: Quantizer>(
         &self,
         targets: &mut Targets<'_, D>,
         count: C,
+        quantizer_at: &impl Fn(i32, i32) -> Q,
     ) -> (u32, u32) {
         let (mut covered, mut written) = (0u32, 0u32);
         let mut long = self.long;
@@ -306,7 +313,7 @@ impl<const S: u32> TinyTriangle<S> {
                 let (x0, x1) = if self.middle_left { (xs, xl) } else { (xl, xs) };
                 if x0 < x1 {
                     covered += x1 - x0;
-                    written += self.span(targets, x0, x1, y, count);
+                    written += self.span(targets, x0, x1, y, count, quantizer_at);
                 }
                 long.n = long.n.wrapping_add(long.step);
                 short.n = short.n.wrapping_add(short.step);
@@ -320,13 +327,14 @@ impl<const S: u32> TinyTriangle<S> {
     /// loop, whose edges keep six values live, its starts and pixel loop spill more (measured
     /// inlined: Cortex-M4 bunny frame +3.8 %, sphere +5.4 %).
     #[inline(never)]
-    fn span<D: DepthValue, C: WrittenCount>(
+    fn span<D: DepthValue, C: WrittenCount, Q: Quantizer>(
         &self,
         targets: &mut Targets<'_, D>,
         x0: u32,
         x1: u32,
         y: i32,
         count: C,
+        quantizer_at: &impl Fn(i32, i32) -> Q,
     ) -> u32 {
         let two_d = self.two_d;
         let (px, py) = (x0 as i32 + self.ox, y + self.oy);
@@ -351,6 +359,6 @@ impl<const S: u32> TinyTriangle<S> {
             .wrapping_add(gx.wrapping_mul(x0))
             .wrapping_add(gy.wrapping_mul(y as u32));
         let lum = Exact::from_parts(l_min + t / two_d, t % two_d, self.l_step, two_d.get());
-        depth_span_with(cs, zs, z, in_range_direct(lum), count)
+        depth_span_with(cs, zs, z, in_range(lum, quantizer_at(px, py)), count)
     }
 }
