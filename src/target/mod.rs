@@ -3,7 +3,7 @@
 //! Role in the pipeline: the last stage. The raster stage writes palette indices into a
 //! caller-provided [`Framebuffer`] (one `u8` per pixel) and, when a scene needs hidden-surface
 //! removal, depth values into a caller-provided [`DepthBuffer`]. A [`Lut`] maps the 256 indices
-//! to display colours, and [`flush`] sends the frame (or only its dirty rectangle) to any
+//! to display colours, and [`flush()`] sends the frame (or only its dirty rectangle) to any
 //! embedded-graphics `DrawTarget` through `fill_contiguous`, the fast path display drivers
 //! implement.
 //!
