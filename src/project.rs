@@ -66,7 +66,7 @@
 
 use crate::clip::frustum::ClipVertex;
 use crate::geometry::camera::Camera;
-use crate::geometry::fixed::{shr_round, Coord};
+use crate::geometry::fixed::{mul_wide, mul_wide_u, shr_round, Coord};
 use crate::geometry::vector::Vec3;
 use crate::raster::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 use crate::raster::SubpixelPoint;
@@ -124,9 +124,9 @@ pub fn reciprocal(z: u32) -> (u32, u32) {
     let d16 = (zn >> 16) + 1; // (2^15, 2^16], rounds the divisor up: r0 is an underestimate
     let mut r = (u32::MAX / d16) << 14; // Q30 of 1/m, m = zn/2^32; < 2^31
     for _ in 0..2 {
-        let prod = zn as u64 * r as u64; // ≈ 2^62, below 2^63
+        let prod = mul_wide_u(zn, r); // ≈ 2^62, below 2^63
         let e = (prod.wrapping_neg() >> 30) as u32 as i32; // ⌊(2^62 − prod)/2^30⌋, |e| < 2^18
-        let d = ((r as i32 as i64 * e as i64) >> 32) as i32; // r < 2^31
+        let d = (mul_wide(r as i32, e) >> 32) as i32; // r < 2^31
         r = r.wrapping_add(d as u32); // stays in [0, 2^31] (doc)
     }
     (r.max(1 << 30), n)
@@ -247,8 +247,8 @@ impl<const S: u32> Projector<S> {
     /// doubles instead, which the range check then rejects or keeps.
     #[inline(always)]
     fn offset_fast(f_m: u32, b: u32, c: i32, r: u32) -> i32 {
-        let k = ((f_m as u64 * r as u64) >> 32) as i32; // ≤ 2^30
-        let h = ((c as i64 * k as i64) >> 32) as i32; // |h| ≤ 2^29
+        let k = (mul_wide_u(f_m, r) >> 32) as i32; // ≤ 2^30
+        let h = (mul_wide(c, k) >> 32) as i32; // |h| ≤ 2^29
         ((h >> b) + 1) >> 1 // b = t − 33 ∈ 0..30: |result| ≤ 2^28
     }
 
@@ -300,7 +300,7 @@ impl<const S: u32> Projector<S> {
         if (sx + lim) as u32 > span || (sy + lim) as u32 > span {
             return Err(ProjectError::OutOfRange);
         }
-        let t = self.depth_km as u64 * r as u64; // < 2^63 − 2^32
+        let t = mul_wide_u(self.depth_km, r); // < 2^63 − 2^32
         let kz = ((((t >> 31) as u32) >> bd) + 1) >> 1; // K/z < 2^31
         let depth = !kz.saturating_sub(self.depth_ex);
         Ok((SubpixelPoint::new(sx, sy), depth))

@@ -49,6 +49,7 @@ use heapless::Vec;
 
 use crate::clip::frustum::{ClipError, ClipVertex, Frustum};
 use crate::geometry::camera::Camera;
+use crate::geometry::fixed::mul_wide;
 use crate::geometry::matrix::{Affine3, MatrixError};
 use crate::geometry::mesh::PolygonSizes;
 use crate::geometry::vector::Vec3;
@@ -1256,7 +1257,7 @@ fn front_triangle<const S: u32>(
 ) -> bool {
     let (bx, by) = (b.x.wrapping_sub(a.x), b.y.wrapping_sub(a.y));
     let (cx, cy) = (c.x.wrapping_sub(a.x), c.y.wrapping_sub(a.y));
-    (bx as i64 * cy as i64).wrapping_add(by as i64 * cx.wrapping_neg() as i64) < 0
+    mul_wide(bx, cy).wrapping_add(mul_wide(by, cx.wrapping_neg())) < 0
 }
 
 /// Back-face test in the observer frame (eye at the origin): the face is front-facing when

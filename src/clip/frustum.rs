@@ -40,7 +40,7 @@
 use heapless::Vec;
 
 use crate::geometry::camera::Camera;
-use crate::geometry::fixed::Coord;
+use crate::geometry::fixed::{mul_wide, Coord};
 use crate::geometry::vector::Vec3;
 use crate::raster::edge_walker::MAX_COORD;
 
@@ -299,8 +299,8 @@ impl Frustum {
     pub fn outcode_narrow(&self, p: Vec3) -> u8 {
         let [x, y, z] = p.bits();
         let p = &self.planes;
-        let qx = ((p[2].c as i64 * z as i64) >> 16) as i32;
-        let qy = ((p[4].c as i64 * z as i64) >> 16) as i32;
+        let qx = (mul_wide(p[2].c, z) >> 16) as i32;
+        let qy = (mul_wide(p[4].c, z) >> 16) as i32;
         let s = [
             z.wrapping_add(p[NEAR].d),
             p[FAR].d.wrapping_sub(z),

@@ -23,7 +23,7 @@
 //! - [`mul`](Affine3::mul): entries are sums of three `Q24·Q24` products (`≤ 3·2^60`); results
 //!   outside the ranges above are [`MatrixError::OutOfRange`], never wrapped.
 
-use super::fixed::{saturate_i32, shr_round, Coord, Linear, LINEAR_FRAC};
+use super::fixed::{mul_wide, saturate_i32, shr_round, Coord, Linear, LINEAR_FRAC};
 use super::trig::{sin_cos_bits, Angle};
 use super::vector::{unit_bits, Vec3};
 
@@ -244,10 +244,8 @@ impl Affine3 {
         core::array::from_fn(|i| {
             let r = &self.m[i];
             // Q40 sum with the rounding bias already in t_wide: a plain shift rounds to nearest.
-            let acc = self.t_wide[i]
-                + r[0] as i64 * p[0] as i64
-                + r[1] as i64 * p[1] as i64
-                + r[2] as i64 * p[2] as i64;
+            let acc =
+                self.t_wide[i] + mul_wide(r[0], p[0]) + mul_wide(r[1], p[1]) + mul_wide(r[2], p[2]);
             acc >> LINEAR_FRAC
         })
     }
