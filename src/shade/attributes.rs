@@ -44,7 +44,7 @@
 //!   below `2^31` (`i32`) or `2^32` (`u32`); quotients that only move values are kept mod
 //!   `2^32`, like the values themselves.
 
-use crate::raster::euclid::{div_floor_i32, div_floor_i64, Divisor, HARDWARE_DIVIDE};
+use crate::raster::euclid::{div_floor_i32, div_floor_i64, Divisor, DivisorU32, HARDWARE_DIVIDE};
 use crate::raster::SubpixelPoint;
 use core::num::NonZeroU32;
 
@@ -531,8 +531,8 @@ pub struct SmallPlane<const N: usize, const S: u32> {
     base: [u32; N],
     /// `D` (twice the area, positive, `≤ W·H < 2^(2K)`).
     d: NonZeroU32,
-    /// `2D`.
-    two_d: NonZeroU32,
+    /// `2D`, prepared for the span starts' divisions.
+    two_d: DivisorU32,
     /// Per attribute `(g1 mod 2^32, 2·g0, h1 mod 2^32, 2·h0, 2·c0 + D)`: `gx = D·g1 + g0`,
     /// `gy = D·h1 + h0`, and `e'` at the corner itself (`px = py = 0`).
     split: [(u32, u32, u32, u32, u32); N],
@@ -591,7 +591,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
             base,
             d,
             // D < 2^(2K) ≤ 2^20: 2D does not overflow.
-            two_d: d.saturating_add(d.get()),
+            two_d: DivisorU32::new(d.saturating_add(d.get())),
             split,
             step_x,
             dda_inc,
@@ -651,9 +651,10 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
     #[inline(always)]
     fn exact_from(&self, i: usize, px: u32, py: u32) -> Exact {
         let (whole, e) = self.numerator(i, px, py);
+        let (value, rem) = self.two_d.add_div_rem(whole, e);
         Exact {
-            value: whole.wrapping_add(e / self.two_d),
-            rem: e % self.two_d,
+            value,
+            rem,
             q: self.step_x[i].0,
             r: self.step_x[i].1,
             two_d: self.two_d.get(),
@@ -678,7 +679,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
 
     /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
     pub fn run_limit(&self) -> u32 {
-        u32::MAX / self.two_d
+        self.two_d.max_quotient()
     }
 }
 
