@@ -44,7 +44,7 @@
 //!   below `2^31` (`i32`) or `2^32` (`u32`); quotients that only move values are kept mod
 //!   `2^32`, like the values themselves.
 
-use crate::raster::euclid::{div_floor_i32, div_floor_i64, Divisor, DivisorU32, HARDWARE_DIVIDE};
+use crate::raster::euclid::{div_floor_i64, Divisor, DivisorU32, HARDWARE_DIVIDE};
 use crate::raster::SubpixelPoint;
 use core::num::NonZeroU32;
 
@@ -529,8 +529,8 @@ pub struct SmallPlane<const N: usize, const S: u32> {
     corner: SubpixelPoint<S>,
     /// Per attribute, `B` (mod 2^32): the whole part of the value at the corner.
     base: [u32; N],
-    /// `D` (twice the area, positive, `≤ W·H < 2^(2K)`).
-    d: NonZeroU32,
+    /// `D` (twice the area, positive, `≤ W·H < 2^(2K)`), prepared for divisions.
+    d: DivisorU32,
     /// `2D`, prepared for the span starts' divisions.
     two_d: DivisorU32,
     /// Per attribute `(g1 mod 2^32, 2·g0, h1 mod 2^32, 2·h0, 2·c0 + D)`: `gx = D·g1 + g0`,
@@ -556,6 +556,8 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         let cross = dx1 * dy2 - dy1 * dx2; // |products| < 2^(2K)
         let negative = cross < 0;
         let d = NonZeroU32::new(cross.unsigned_abs())?;
+        // Every set-up division is by D: prepared once (a reciprocal where there is no divider).
+        let dd = DivisorU32::new(d);
         // The corner's offset from P0: (cx, cy) in (−2^K, 0].
         let (cx, cy) = (dx1.min(dx2).min(0), dy1.min(dy2).min(0));
         let corner = SubpixelPoint::new(v[0].x.wrapping_add(cx), v[0].y.wrapping_add(cy));
@@ -566,30 +568,31 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         for i in 0..N {
             let a1 = values[1][i] as i64 - values[0][i] as i64;
             let a2 = values[2][i] as i64 - values[0][i] as i64;
-            let (g1, g0) = split_gradient(a1, a2, dy2, dy1, negative, d);
-            let (h1, h0) = split_gradient(a2, a1, dx1, dx2, negative, d);
+            let (g1, g0) = split_gradient(a1, a2, dy2, dy1, negative, &dd);
+            let (h1, h0) = split_gradient(a2, a1, dx1, dx2, negative, &dd);
             // |E| = |g0·cx + h0·cy| < D·2^(K+1).
             let e = (g0 as i32)
                 .wrapping_mul(cx)
                 .wrapping_add((h0 as i32).wrapping_mul(cy));
-            let (c1, c0) = div_floor_small(e, d);
+            let (c1, c0) = div_floor_small(e, &dd);
             base[i] = values[0][i]
                 .wrapping_add(g1.wrapping_mul(cx as u32))
                 .wrapping_add(h1.wrapping_mul(cy as u32))
                 .wrapping_add(c1);
             // F·g0 < 2^(S+2K) ≤ 2^32.
             let fg0 = g0 << S;
-            step_x[i] = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
+            let (fq, fr) = dd.div_rem(fg0);
+            step_x[i] = (g1.wrapping_shl(S).wrapping_add(fq), 2 * fr);
             split[i] = (g1, 2 * g0, h1, 2 * h0, 2 * c0 + d.get());
             // ⌊gx·2^(16+S) / D⌋ = 2^(16+S)·g1 + ⌊g0·2^(16+S) / D⌋ (mod 2^32).
             dda_inc[i] = g1
                 .wrapping_shl(16 + S)
-                .wrapping_add(frac_bits(g0, d, 16 + S));
+                .wrapping_add(frac_bits(g0, &dd, 16 + S));
         }
         Some(SmallPlane {
             corner,
             base,
-            d,
+            d: dd,
             // D < 2^(2K) ≤ 2^20: 2D does not overflow.
             two_d: DivisorU32::new(d.saturating_add(d.get())),
             split,
@@ -669,8 +672,9 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         let (whole, e2) = self.numerator(i, px, py);
         // M = D·(whole − A0) + e with e = (e' − D) / 2 ≥ 0, so
         // ⌊M·2^16 / D⌋ + A0·2^16 = 2^16·(whole + ⌊e / D⌋) + ⌊(e mod D)·2^16 / D⌋ (mod 2^32).
-        let (d, e) = (self.d, e2.wrapping_sub(self.d.get()) / 2);
-        let start = (whole.wrapping_add(e / d) << 16).wrapping_add(frac_bits(e % d, d, 16));
+        let (d, e) = (&self.d, e2.wrapping_sub(self.d.get()) / 2);
+        let (q, r) = d.div_rem(e);
+        let start = (whole.wrapping_add(q) << 16).wrapping_add(frac_bits(r, d, 16));
         Dda {
             acc: start.wrapping_add(1 << 15),
             inc: self.dda_inc[i],
@@ -710,7 +714,14 @@ impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
 /// `(g1 mod 2^32, g0)` with `±(a1·c1 − a2·c2) = D·g1 + g0`, `0 ≤ g0 < D` (minus when
 /// `negative`), for `|a| < 2^32`, `|c| < 2^K`, `D < 2^(2K)` (see [`SmallPlane`]).
 #[inline(always)]
-fn split_gradient(a1: i64, a2: i64, c1: i32, c2: i32, negative: bool, d: NonZeroU32) -> (u32, u32) {
+fn split_gradient(
+    a1: i64,
+    a2: i64,
+    c1: i32,
+    c2: i32,
+    negative: bool,
+    d: &DivisorU32,
+) -> (u32, u32) {
     if cfg!(target_pointer_width = "64") {
         // One hardware division of the exact i64 gradient (|g| < 2^(33+K)).
         let g = a1 * c1 as i64 - a2 * c2 as i64;
@@ -729,7 +740,7 @@ fn split_gradient_narrow(
     c1: i32,
     c2: i32,
     negative: bool,
-    d: NonZeroU32,
+    d: &DivisorU32,
 ) -> (u32, u32) {
     let (q1, r1) = div_floor_by_u32(a1, d);
     let (q2, r2) = div_floor_by_u32(a2, d);
@@ -752,9 +763,9 @@ fn split_gradient_narrow(
 /// `(⌊a / d⌋ mod 2^32, a mod d)` for `|a| < 2^32` and `0 < d < 2^31`: one 32-bit division of
 /// `|a|`.
 #[inline(always)]
-fn div_floor_by_u32(a: i64, d: NonZeroU32) -> (u32, u32) {
+fn div_floor_by_u32(a: i64, d: &DivisorU32) -> (u32, u32) {
     let m = a.unsigned_abs() as u32;
-    let (q, r) = (m / d, m % d);
+    let (q, r) = d.div_rem(m);
     if a >= 0 {
         (q, r)
     } else if r == 0 {
@@ -767,29 +778,30 @@ fn div_floor_by_u32(a: i64, d: NonZeroU32) -> (u32, u32) {
 /// `(⌊a / d⌋ mod 2^32, a mod d)` for `d ≤ 2^20` and `|a| < 2^11·d` (the small planes' terms:
 /// `|a| < 2^(K+1)·D`, `D < 2^(2K)`, `K ≤ 10`): one unsigned division of `a + 2^11·d`, which
 /// lies in `0..2^12·d ≤ 2^32`, so no sign fix-up. Without a hardware divider
-/// ([`HARDWARE_DIVIDE`]) the floored signed division instead: the bias would lengthen the
-/// quotient by eleven bits, eleven more turns of the library routine's loop.
+/// ([`HARDWARE_DIVIDE`]) the division of the magnitude through `d`'s reciprocal and the
+/// floor's fix-up instead.
 #[inline(always)]
-fn div_floor_small(a: i32, d: NonZeroU32) -> (u32, u32) {
+fn div_floor_small(a: i32, d: &DivisorU32) -> (u32, u32) {
     if !HARDWARE_DIVIDE {
-        // A software division's loop runs once per quotient bit: the bias would add eleven.
-        let (q, r) = div_floor_i32(a, d.get() as i32);
-        return (q as u32, r as u32);
+        // The reciprocal's cost does not grow with the quotient: the magnitude's division and
+        // the floor's fix-up.
+        return div_floor_by_u32(a as i64, d);
     }
     let biased = (a as u32).wrapping_add(d.get() << 11);
-    ((biased / d).wrapping_sub(1 << 11), biased % d)
+    let (q, r) = d.div_rem(biased);
+    (q.wrapping_sub(1 << 11), r)
 }
 
 /// `⌊n·2^bits / d⌋ mod 2^32` for `0 ≤ n < d < 2^24`: long division eight bits at a time
 /// (`n·2^8 < 2^32`).
 #[inline(always)]
-fn frac_bits(mut n: u32, d: NonZeroU32, mut bits: u32) -> u32 {
+fn frac_bits(mut n: u32, d: &DivisorU32, mut bits: u32) -> u32 {
     let mut q = 0u32;
     while bits > 0 {
         let c = bits.min(8);
-        n <<= c;
-        q = (q << c).wrapping_add(n / d);
-        n %= d;
+        let (digit, rest) = d.div_rem(n << c);
+        q = (q << c).wrapping_add(digit);
+        n = rest;
         bits -= c;
     }
     q
@@ -1042,9 +1054,9 @@ mod tests {
                 g.div_euclid(d as i128) as u32,
                 g.rem_euclid(d as i128) as u32,
             );
-            let d = NonZeroU32::new(d).unwrap();
-            assert_eq!(split_gradient(a1, a2, c1, c2, negative, d), want);
-            assert_eq!(split_gradient_narrow(a1, a2, c1, c2, negative, d), want);
+            let d = DivisorU32::new(NonZeroU32::new(d).unwrap());
+            assert_eq!(split_gradient(a1, a2, c1, c2, negative, &d), want);
+            assert_eq!(split_gradient_narrow(a1, a2, c1, c2, negative, &d), want);
         }
     }
 
