@@ -140,6 +140,17 @@ impl DivisorU32 {
         }
     }
 
+    /// `2d` prepared, for `d < 2^31`, without a division: `⌊⌊(2^32 − 1)/d⌋ / 2⌋ =
+    /// ⌊(2^32 − 1)/2d⌋`.
+    #[inline(always)]
+    pub fn doubled(&self) -> Self {
+        DivisorU32 {
+            d: self.d.saturating_add(self.d.get()),
+            #[cfg(not(hardware_divide))]
+            m: self.m >> 1,
+        }
+    }
+
     /// The divisor.
     #[inline(always)]
     pub fn get(&self) -> u32 {
@@ -261,6 +272,15 @@ mod tests {
                 let div = DivisorU32::new(NonZeroU32::new(d).unwrap());
                 assert_eq!(div.div_rem(n), (n / d, n % d));
                 assert_eq!(div.max_quotient(), u32::MAX / d);
+                if d < 1 << 31 {
+                    let twice = div.doubled();
+                    assert_eq!(twice.get(), 2 * d);
+                    assert_eq!(twice.max_quotient(), u32::MAX / (2 * d));
+                    assert_eq!(
+                        reciprocal_divide_u32(n, 2 * d, m >> 1),
+                        (n / (2 * d), n % (2 * d))
+                    );
+                }
             }
         }
     }

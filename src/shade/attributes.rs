@@ -594,7 +594,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
             base,
             d: dd,
             // D < 2^(2K) ≤ 2^20: 2D does not overflow.
-            two_d: DivisorU32::new(d.saturating_add(d.get())),
+            two_d: dd.doubled(),
             split,
             step_x,
             dda_inc,
