@@ -34,9 +34,10 @@ pub fn div_floor_i64(a: i64, b: i64) -> (i64, i64) {
 
 /// True where a 32-bit division is one instruction: x86, x86-64, AArch64, and 32-bit Arm with
 /// 32-bit atomics (Cortex-M3/M4 and richer cores; ARMv6-M, `thumbv6m`, has none), recognised
-/// that way on stable Rust (by `build.rs`, as `cfg(hardware_divide)`). Elsewhere (Cortex-M0/M0+) a division is a library routine whose
-/// loop runs once per quotient bit, so divisions biased to be unsigned (no sign fix-up, but a
-/// quotient 11 to 16 bits longer) take their signed forms there. The choice changes speed,
+/// that way on stable Rust (by `build.rs`, as `cfg(hardware_divide)`). Elsewhere
+/// (Cortex-M0/M0+) a division is a library routine whose loop runs once per quotient bit, so
+/// divisions biased to be unsigned (no sign fix-up, but a quotient 11 to 16 bits longer) take
+/// their signed forms there. The choice changes speed,
 /// never results: a core misjudged by this test (an ARMv6K or ARMv7-A core without a divider)
 /// is slower, not wrong.
 pub const HARDWARE_DIVIDE: bool = cfg!(hardware_divide);
@@ -214,16 +215,17 @@ fn reciprocal_divide(a: u64, d: u64, m: u64) -> (u64, u64) {
     (q, r)
 }
 
-/// The high 64 bits of the 128-bit product `a·b`, from four 32×32→64-bit products (what a
-/// 32-bit core multiplies natively).
+/// The high 64 bits of the 128-bit product `a·b`, from four 32×32→64-bit products
+/// ([`mul_wide_u`]: what a 32-bit core multiplies natively, or its 16-bit split on the
+/// Cortex-M0).
 #[inline(always)]
 pub fn mul_high(a: u64, b: u64) -> u64 {
-    let (a0, a1) = (a & 0xFFFF_FFFF, a >> 32);
-    let (b0, b1) = (b & 0xFFFF_FFFF, b >> 32);
-    let lo = a0 * b0;
-    let mid1 = a1 * b0;
-    let mid2 = a0 * b1;
-    let hi = a1 * b1;
+    let (a0, a1) = (a as u32, (a >> 32) as u32);
+    let (b0, b1) = (b as u32, (b >> 32) as u32);
+    let lo = mul_wide_u(a0, b0);
+    let mid1 = mul_wide_u(a1, b0);
+    let mid2 = mul_wide_u(a0, b1);
+    let hi = mul_wide_u(a1, b1);
     // Carry from the middle column: (lo >> 32) + low halves of mid1 and mid2, each < 2^32.
     let carry = ((lo >> 32) + (mid1 & 0xFFFF_FFFF) + (mid2 & 0xFFFF_FFFF)) >> 32;
     hi + (mid1 >> 32) + (mid2 >> 32) + carry

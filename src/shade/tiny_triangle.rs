@@ -14,8 +14,9 @@
 //!
 //! ## When it applies
 //! Exact Gouraud luminance, or flat luminance over a depth plane that is not constant (flat
-//! colour at constant depth has its own block loop), and a triangle whose bounding box is below `2^K` sub-pixel units on both axes (`K =`
-//! [`small_bits`]`(S)`: 64 pixels at `S = 4`) whose columns lie inside the drawable window
+//! colour at constant depth has its own block loop), and a triangle whose bounding box is
+//! below `2^K` sub-pixel units on both axes (`K =` [`small_bits`]`(S)`: 64 pixels at
+//! `S = 4`) whose columns lie inside the drawable window
 //! (its rows are clipped to the window's, so a band draws the triangles across its edges
 //! here too). `S + K ≤ 19` (every `S ≤ 9`). Other triangles return `None` from
 //! [`TinyTriangle::new`] and take the general path.
