@@ -355,7 +355,7 @@ fn line_clipped(fb: &mut Framebuffer<'_>) -> u32 {
     8 * 320 + 8 * 240
 }
 
-/// The standard scenes of `shared/bench/SCENES.md` (exported by `zscan export-scenes
+/// The standard scenes of `docs/SCENES.md` (exported by `zscan export-scenes
 /// benches/scenes`, tables in flash, validated at compile time) and the three kinds of scene
 /// case: the vertex stage alone, the vertex stage plus the bare fill (no depth, no shading:
 /// fill cost = `fill_*` − `vertex_*`), and the whole frame (clear colour, clear depth,

@@ -1,4 +1,4 @@
-//! The four standard benchmark scenes of `shared/bench/SCENES.md` (`quad`, `cube`, `sphere`,
+//! The four standard benchmark scenes of `docs/SCENES.md` (`quad`, `cube`, `sphere`,
 //! `bunny`), built in `f64` exactly as that document defines them, and the generic
 //! "camera + triangles" description [`Scene`] that the float reference renderer
 //! ([`crate::reference::float_render`]) draws and `zscan export-scenes` writes out.
@@ -30,7 +30,6 @@
 //! - bunny: the mesh is read with [`crate::obj::load_obj`] as stored (outward winding), polygons
 //!   fanned as `(0, i, i+1)` (the file holds triangles only).
 use std::f64::consts::PI;
-use std::path::PathBuf;
 
 /// A 3-vector of `f64` (world or view space).
 pub type Vec3 = [f64; 3];
@@ -342,17 +341,19 @@ pub fn sphere() -> Scene {
     finish_smooth("sphere", vertices, triangles, s)
 }
 
-/// Where the bunny mesh lives: `shared/meshes/bunny.obj` next to the repository.
-pub fn bunny_path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/meshes/bunny.obj")
+/// The Stanford bunny (public domain), `host-tests/meshes/bunny.obj`, built into the binary so
+/// that the tool and the tests find it wherever they run from.
+pub const BUNNY_OBJ: &str = include_str!("../meshes/bunny.obj");
+
+/// The bunny mesh parsed from [`BUNNY_OBJ`].
+pub fn bunny_mesh() -> Result<crate::obj::ObjMesh, String> {
+    crate::obj::parse_obj(BUNNY_OBJ).map_err(|e| format!("built-in bunny mesh: {e}"))
 }
 
-/// `bunny`: `shared/meshes/bunny.obj` with its bounding box centred, rotated +90° about Y (it
+/// `bunny`: `host-tests/meshes/bunny.obj` with its bounding box centred, rotated +90° about Y (it
 /// then faces the camera), centred again, fitted to 0.70. Smooth vertex-normal lighting.
 pub fn bunny() -> Result<Scene, String> {
-    let path = bunny_path();
-    let mesh =
-        crate::obj::load_obj(&path).map_err(|e| format!("bunny mesh {}: {e}", path.display()))?;
+    let mesh = bunny_mesh()?;
     let raw = mesh.vertices;
     // Polygons fanned as (0, i, i + 1); the bunny's are all triangles already.
     let triangles: Vec<[usize; 3]> = mesh

@@ -573,7 +573,7 @@ fn extreme_inputs_never_panic() {
 
 #[test]
 fn bunny_obj() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/meshes/bunny.obj");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/meshes/bunny.obj");
     let m = load_obj(path).unwrap();
     assert_eq!(m.vertices.len(), 1839);
     assert_eq!(m.polygons.len(), 3674);

@@ -1,4 +1,4 @@
-//! The standard scenes (shared/bench/SCENES.md), the f64 reference renderer and
+//! The standard scenes (docs/SCENES.md), the f64 reference renderer and
 //! `zscan export-scenes`.
 //!
 //! The facts asserted here are computed independently of the code under test: the coverage

@@ -844,12 +844,21 @@ fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, St
     if let Some(g) = &o.generator {
         return generate(g.get_ref(), o).map_err(|e| format!("`generator` (line {}): {e}", at(g)));
     }
-    let (path, key) = if let Some(p) = &o.obj {
-        (dir.join(p.get_ref()), p)
+    let (path, key, mesh) = if let Some(p) = &o.obj {
+        let path = dir.join(p.get_ref());
+        let mesh = crate::obj::load_obj(&path).map_err(|e| match &e.kind {
+            crate::obj::ObjErrorKind::Io(msg) => format!("mesh (line {}): cannot read {msg}", at(p)),
+            _ => format!("mesh (line {}): {}: {e}", at(p), path.display()),
+        })?;
+        (path, p, mesh)
     } else {
         let b = o.builtin.as_ref().ok_or("no mesh source")?;
         match b.get_ref().as_str() {
-            "bunny" => (crate::scenes::bunny_path(), b),
+            "bunny" => (
+                std::path::PathBuf::from("builtin:bunny"),
+                b,
+                crate::scenes::bunny_mesh().map_err(|e| format!("mesh (line {}): {e}", at(b)))?,
+            ),
             other => {
                 return Err(format!(
                     "`builtin` (line {}): unknown builtin {other:?} (expected \"bunny\")",
@@ -858,10 +867,6 @@ fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, St
             }
         }
     };
-    let mesh = crate::obj::load_obj(&path).map_err(|e| match &e.kind {
-        crate::obj::ObjErrorKind::Io(msg) => format!("mesh (line {}): cannot read {msg}", at(key)),
-        _ => format!("mesh (line {}): {}: {e}", at(key), path.display()),
-    })?;
     if mesh.polygons.is_empty() {
         return Err(format!(
             "mesh (line {}): {}: no faces",
