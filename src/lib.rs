@@ -33,6 +33,7 @@
 #![deny(unsafe_code)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub(crate) mod arith;
 pub mod clip;
 pub mod geometry;
 pub mod project;
