@@ -152,8 +152,16 @@ fn camera_basis_is_orthonormal_and_matches_course() {
             r.uniform(-100.0, 100.0),
             r.uniform(-100.0, 100.0),
         ];
-        let dir = [r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0)];
-        let up = [r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0)];
+        let dir = [
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+        ];
+        let up = [
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+        ];
         let cam = match Camera::new(
             v(pos),
             v(dir),
@@ -541,7 +549,9 @@ fn extreme_inputs_never_panic() {
         let vs: Vec<Vec3> = (0..n)
             .map(|_| Vec3::from_bits(pick(&mut r) % lim, pick(&mut r) % lim, pick(&mut r) % lim))
             .collect();
-        let is: Vec<u16> = (0..3 * n).map(|_| (r.next_u64() % n as u64) as u16).collect();
+        let is: Vec<u16> = (0..3 * n)
+            .map(|_| (r.next_u64() % n as u64) as u16)
+            .collect();
         let m = Mesh::triangles(&vs, &is).unwrap();
         let mut vn = vec![Vec3::ZERO; n];
         m.vertex_normals(&mut vn).unwrap();

@@ -144,9 +144,13 @@ pub struct BandScratch<'a, const S: u32> {
 
 /// Draws a `width × height` picture band by band through one band-sized pair of buffers:
 /// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band,
-/// then calls `band_done` with the finished band — flush it to the display there (e.g.
-/// [`flush`](crate::target::flush)). The picture is the same as one pass (the raster stage
-/// writes exactly the rows a buffer holds), whatever the scratch ([`BandScratch`]).
+/// then calls `band_done` with the finished band, mutable (draw an overlay into it there, with
+/// embedded-graphics text or shapes, since a [`Framebuffer`] is a `DrawTarget`), and flush it to
+/// the display (e.g. [`flush`](crate::target::flush)). An error returned by `band_done` stops
+/// the frame and is returned; `E` is the caller's error type, which a [`RenderError`] converts
+/// into (`zscan::Error`, `Box<dyn Error>`, or [`RenderError`] itself). The picture is the same
+/// as one pass (the raster stage writes exactly the rows a buffer holds), whatever the scratch
+/// ([`BandScratch`]).
 ///
 /// The band's buffers `(pixels, depths)` need `width × band_rows` elements each. Statistics
 /// are added to `stats` (a [`StatsSink`], as for [`render_scene`]) summed over bands: pixel
@@ -154,15 +158,15 @@ pub struct BandScratch<'a, const S: u32> {
 /// the polygon table, `polygons_in`, `rejected` and `culled` are counted once per frame;
 /// without it, once per band pass (`culled` then counts, per band, the back faces that reach
 /// the band's rows: a band skips projected polygons above or below it first).
-pub fn render_in_bands<D: DepthValue, const S: u32>(
+pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
     renderer: &Renderer<S>,
     scene: &Scene<'_>,
     (pixels, depths): (&mut [u8], &mut [D]),
     (width, height, band_rows): (u16, u16, u16),
     scratch: BandScratch<'_, S>,
     stats: &mut impl StatsSink,
-    mut band_done: impl FnMut(&Framebuffer<'_>, &DepthBuffer<'_, D>),
-) -> Result<(), RenderError> {
+    mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
+) -> Result<(), E> {
     let BandScratch { vertices, polygons } = scratch;
     let band_rows = band_rows.clamp(1, height.max(1));
     let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
@@ -209,7 +213,7 @@ pub fn render_in_bands<D: DepthValue, const S: u32>(
         } else {
             render_scene(renderer, scene, &mut frame, &mut depth, vertices, stats)?;
         }
-        band_done(&frame, &depth);
+        band_done(&mut frame, &depth)?;
         top += rows;
     }
     Ok(())

@@ -147,8 +147,88 @@ impl<'t, D: DepthValue, C: WrittenCount> RasterTarget<'t, D, C> {
     }
 }
 
+/// What draws one triangle: the span kind and whether the tiny-triangle writer is tried first.
+/// Decided by [`plan`] once per triangle, before any set-up; the size class (tiny box, small
+/// plane, general plane) follows from the set-up itself, each smaller class falling back to
+/// the next when the triangle does not fit it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct TrianglePlan {
+    /// What each span writes.
+    pub(crate) kind: Kind,
+    /// Whether, and how, small triangles take the tiny-triangle writer.
+    pub(crate) tiny: Tiny,
+}
+
+/// The span kinds of [`draw_triangle_on`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Kind {
+    /// Constant depth and colour: no plane at all (`TriangleSpans::constant`).
+    Constant,
+    /// Flat colour over the exact depth plane (one attribute, `FlatKind`).
+    Flat,
+    /// Exact Gouraud: depth and luminance planes (`ExactKind`).
+    Exact,
+    /// Fast Gouraud: the exact depth, a 16.16 luminance (`FastKind`).
+    Fast,
+}
+
+/// Whether the tiny-triangle writer (`shade/tiny_triangle.rs`) is tried first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Tiny {
+    /// Not for this triangle (or not on this core).
+    No,
+    /// With the ramp's first index added to the luminance and stored as it is (a 256-level
+    /// ramp).
+    Direct,
+    /// With the luminance mapped per pixel by the quantizer (exact Gouraud through any other
+    /// ramp or a dithered one).
+    Mapped,
+}
+
+/// The one decision of how a triangle is drawn, from the shading mode asked for, whether the
+/// depth and the luminance are constant over the triangle (equal vertex values), whether the
+/// quantizer is a 256-level ramp whose index can be interpolated directly
+/// ([`Quantizer::offset`]), and whether the core takes the tiny-triangle writer
+/// ([`TINY_WRITER`]):
+///
+/// - a constant luminance is flat whatever the mode; Phong without normals is exact Gouraud;
+/// - flat at constant depth needs no plane ([`Kind::Constant`]);
+/// - the tiny writer takes exact Gouraud through any quantizer and flat colour through a
+///   256-level ramp (a flat triangle of another ramp maps once per span on the general path,
+///   which measured faster: the lit flat sphere of a 32-level ramp +17 % through the tiny
+///   writer); never fast Gouraud nor constant depth and colour.
+pub(crate) const fn plan(
+    mode: ShadeMode,
+    depth_constant: bool,
+    luminance_constant: bool,
+    direct_ramp: bool,
+    tiny_writer: bool,
+) -> TrianglePlan {
+    let kind = match mode {
+        _ if luminance_constant => {
+            if depth_constant {
+                Kind::Constant
+            } else {
+                Kind::Flat
+            }
+        }
+        ShadeMode::Flat if depth_constant => Kind::Constant,
+        ShadeMode::Flat => Kind::Flat,
+        ShadeMode::GouraudFast => Kind::Fast,
+        ShadeMode::GouraudExact | ShadeMode::Phong => Kind::Exact,
+    };
+    let tiny = match kind {
+        _ if !tiny_writer => Tiny::No,
+        Kind::Exact | Kind::Flat if direct_ramp => Tiny::Direct,
+        Kind::Exact => Tiny::Mapped,
+        _ => Tiny::No,
+    };
+    TrianglePlan { kind, tiny }
+}
+
 /// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
-/// target per object and band).
+/// target per object and band). The one place that decides which path draws a triangle:
+/// [`plan`], then the set-up of that path.
 pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
@@ -169,35 +249,32 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
             (values[0][1] + values[1][1] + values[2][1] + 1) / 3
         }
     };
-    let mode = match mode {
-        _ if constant(1) => ShadeMode::Flat,
-        ShadeMode::Phong => ShadeMode::GouraudExact,
-        m => m,
-    };
-    // Exact or flat luminance over a depth plane: a small triangle within the window's
-    // columns takes the tiny-triangle writer (same pixels, less state), on the cores where it
-    // measured faster ([`TINY_WRITER`](crate::arith::TINY_WRITER)). A 256-level ramp's first index is interpolated with
-    // the luminance and stored as it is ([`Direct`]). Any other mapping is applied per pixel,
-    // for exact Gouraud only: a flat triangle's general path maps once per span instead
-    // (measured: the lit flat sphere of a 32-level ramp +17 % through the tiny writer).
-    let tiny = TINY_WRITER
-        && match mode {
-            ShadeMode::GouraudExact => true,
-            ShadeMode::Flat => !constant(0),
-            _ => false,
-        };
-    if tiny {
-        if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
-            let lum = |l: u32| if mode == ShadeMode::Flat { flat_lum() } else { l } + first as u32;
+    // A 256-level ramp's first index is interpolated with the luminance and stored as it is
+    // ([`Direct`]): exact rounding and the 16.16 start commute with adding an integer, and the
+    // loops hold two fewer values.
+    let first = quantizer_at(v[0].x >> S, v[0].y >> S).offset();
+    let plan = plan(mode, constant(0), constant(1), first.is_some(), TINY_WRITER);
+    let offset = |lum: u32| lum + first.unwrap_or(0) as u32;
+    match plan.tiny {
+        Tiny::Direct => {
+            let lum = |l: u32| {
+                offset(if plan.kind == Kind::Flat {
+                    flat_lum()
+                } else {
+                    l
+                })
+            };
             let values = values.map(|[z, l]| [z, lum(l)]);
             if let Some(t) = TinyTriangle::<S>::new(v, values, &window) {
                 return Ok(t.draw(&mut target.targets, target.count, &|_, _| Direct));
             }
-        } else if mode == ShadeMode::GouraudExact {
+        }
+        Tiny::Mapped => {
             if let Some(drawn) = tiny_mapped(target, v, values, &quantizer_at) {
                 return Ok(drawn);
             }
         }
+        Tiny::No => {}
     }
     // (After the tiny writer, which tests the columns itself and clips the rows.)
     if !bounds_meet(&v, &window) {
@@ -209,31 +286,20 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
         targets: &mut target.targets,
         count: target.count,
     };
-    match mode {
-        ShadeMode::Flat if constant(0) => spans.constant(values[0][0], flat_lum(), quantizer_at),
-        ShadeMode::Flat => spans.planar(
+    let direct = values.map(|[z, l]| [z, offset(l)]);
+    match (plan.kind, first) {
+        (Kind::Constant, _) => spans.constant(values[0][0], flat_lum(), quantizer_at),
+        (Kind::Flat, _) => spans.planar(
             values.map(|a| [a[0]]),
             FlatKind {
                 luminance: Constant(flat_lum()),
                 quantizer_at,
             },
         ),
-        _ => {
-            // A 256-level ramp adds its first index: interpolating `first + lum` gives the
-            // same values shifted (exact rounding and the 16.16 start commute with adding an
-            // integer), and the loops store them as they are, with two fewer live values.
-            if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
-                let values = values.map(|[z, l]| [z, l + first as u32]);
-                return match mode {
-                    ShadeMode::GouraudFast => spans.planar(values, FastKind(|_, _| Direct)),
-                    _ => spans.planar(values, ExactKind(|_, _| Direct)),
-                };
-            }
-            match mode {
-                ShadeMode::GouraudFast => spans.planar(values, FastKind(quantizer_at)),
-                _ => spans.planar(values, ExactKind(quantizer_at)),
-            }
-        }
+        (Kind::Fast, Some(_)) => spans.planar(direct, FastKind(|_, _| Direct)),
+        (Kind::Exact, Some(_)) => spans.planar(direct, ExactKind(|_, _| Direct)),
+        (Kind::Fast, None) => spans.planar(values, FastKind(quantizer_at)),
+        (Kind::Exact, None) => spans.planar(values, ExactKind(quantizer_at)),
     }
 }
 
@@ -649,6 +715,63 @@ mod tests {
             drawn += counts.map_or(0, |(covered, _)| (covered > 0) as u32);
         }
         drawn
+    }
+
+    /// The dispatch decisions, as a table: each row is what the module doc and the span
+    /// kinds promise for one combination (mode; constant depth, constant luminance, 256-level
+    /// ramp, tiny writer on the core).
+    #[test]
+    fn plan_decides_as_documented() {
+        use ShadeMode::*;
+        let p = |kind, tiny| TrianglePlan { kind, tiny };
+        let rows = [
+            // A constant luminance is flat whatever the mode; at constant depth, no plane.
+            (
+                (GouraudExact, true, true, true, true),
+                p(Kind::Constant, Tiny::No),
+            ),
+            (
+                (Phong, false, true, true, true),
+                p(Kind::Flat, Tiny::Direct),
+            ),
+            (
+                (GouraudFast, false, true, false, true),
+                p(Kind::Flat, Tiny::No),
+            ),
+            ((Flat, true, false, true, true), p(Kind::Constant, Tiny::No)),
+            (
+                (Flat, false, false, true, true),
+                p(Kind::Flat, Tiny::Direct),
+            ),
+            ((Flat, false, false, false, true), p(Kind::Flat, Tiny::No)),
+            // Phong without normals is exact Gouraud; exact takes the tiny writer through
+            // any quantizer, fast never does.
+            (
+                (Phong, false, false, true, true),
+                p(Kind::Exact, Tiny::Direct),
+            ),
+            (
+                (GouraudExact, true, false, false, true),
+                p(Kind::Exact, Tiny::Mapped),
+            ),
+            (
+                (GouraudFast, false, false, true, true),
+                p(Kind::Fast, Tiny::No),
+            ),
+            // Cores without the tiny writer never try it.
+            (
+                (GouraudExact, false, false, true, false),
+                p(Kind::Exact, Tiny::No),
+            ),
+            ((Flat, false, false, true, false), p(Kind::Flat, Tiny::No)),
+        ];
+        for ((mode, z, l, direct, tiny), expected) in rows {
+            assert_eq!(
+                plan(mode, z, l, direct, tiny),
+                expected,
+                "{mode:?} {z} {l} {direct}"
+            );
+        }
     }
 
     #[test]
