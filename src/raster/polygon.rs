@@ -51,10 +51,12 @@
 //!
 //! ## Numeric contract
 //! Vertices are [`SubpixelPoint<S>`] with `|x|, |y| ≤ `[`MAX_COORD`]` = 2^28 − 1` and
-//! `S ≤ `[`MAX_SUBPIXEL_BITS`](super::edge_walker::MAX_SUBPIXEL_BITS); other input is rejected with [`FillError::CoordinateOutOfRange`].
+//! `S ≤ `[`MAX_SUBPIXEL_BITS`]; other input is rejected with [`FillError::CoordinateOutOfRange`].
 //! See [`edge_walker`](super::edge_walker) for why nothing overflows in that range.
 
-use super::edge_walker::{ceil_shift, Edge, EdgeSide, EdgeWalker, IncrementalWalker, MAX_COORD};
+use super::edge_walker::{
+    ceil_shift, Edge, EdgeSide, EdgeWalker, IncrementalWalker, MAX_COORD, MAX_SUBPIXEL_BITS,
+};
 use super::triangle::check_range;
 use super::{Span, SubpixelPoint, Window};
 use heapless::Vec;
@@ -80,6 +82,10 @@ impl core::fmt::Display for FillError {
             FillError::TooManyEdges { capacity } => {
                 write!(f, "polygon has more than {capacity} non-horizontal edges")
             }
+            FillError::CoordinateOutOfRange { vertex: usize::MAX } => write!(
+                f,
+                "sub-pixel bits exceed the fill's maximum of {MAX_SUBPIXEL_BITS}"
+            ),
             FillError::CoordinateOutOfRange { vertex } => write!(
                 f,
                 "vertex {vertex} is outside the fill's range of ±{MAX_COORD} sub-pixel units"
