@@ -221,7 +221,8 @@ impl core::error::Error for RenderError {}
 ///
 /// Its message is the stage error's own. A display's error type is the driver's, not the
 /// crate's: displays that cannot fail (`Infallible`, as the simulator and embedded-graphics'
-/// mock display) convert with `?` too; others need a `map_err`.
+/// mock display) convert with `?` too; for others, [`Error::Display`] stands for the
+/// driver's error (`flush(..).map_err(|_| zscan::Error::Display)?`).
 ///
 /// ```
 /// use zscan::target::Framebuffer;
@@ -268,6 +269,9 @@ pub enum Error {
     Shadow(ShadowError),
     /// A frame or object could not be rendered.
     Render(RenderError),
+    /// The display's driver rejected the pixels sent to it (its error type is the driver's:
+    /// map it with `.map_err(|_| zscan::Error::Display)`).
+    Display,
 }
 
 macro_rules! from_stage_errors {
@@ -284,6 +288,7 @@ macro_rules! from_stage_errors {
             fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
                 match self {
                     $(Error::$variant(e) => fmt::Display::fmt(e, f),)*
+                    Error::Display => write!(f, "the display rejected the pixels sent to it"),
                 }
             }
         }
@@ -568,5 +573,6 @@ mod tests {
             Ok(())
         }
         assert_eq!(infallible(), Ok(()));
+        assert!(Error::Display.to_string().contains("display"));
     }
 }
