@@ -1,6 +1,8 @@
 //! Two jobs, both for the target being built:
-//! - puts `memory.x` (the Cortex-M example's memory layout) on the linker's search path (on
-//!   other targets this does nothing that matters: the file is only read by `link.x`);
+//! - with the `cortex-m-example` feature, puts `memory.x` (the benchmark firmware's memory
+//!   layout) on the linker's search path (the file is only read by cortex-m-rt's `link.x`;
+//!   without the feature nothing is added, so a firmware depending on zscan links with its
+//!   own `memory.x`);
 //! - sets `cfg(hardware_divide)` where a 32-bit division is one instruction: x86, x86-64,
 //!   AArch64, and 32-bit Arm with 32-bit atomics (Cortex-M3/M4 and richer; ARMv6-M, the
 //!   Cortex-M0/M0+, has neither). `raster::euclid::HARDWARE_DIVIDE` is this cfg; a type whose
@@ -8,9 +10,13 @@
 use std::{env, fs, path::PathBuf};
 
 fn main() {
-    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    fs::copy("memory.x", out.join("memory.x")).expect("memory.x at the crate root");
-    println!("cargo::rustc-link-search={}", out.display());
+    // Only for the benchmark firmware (feature `cortex-m-example`): a link search path set
+    // here reaches every binary that depends on zscan, whose own memory.x it would shadow.
+    if env::var_os("CARGO_FEATURE_CORTEX_M_EXAMPLE").is_some() {
+        let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+        fs::copy("memory.x", out.join("memory.x")).expect("memory.x at the crate root");
+        println!("cargo::rustc-link-search={}", out.display());
+    }
     println!("cargo::rerun-if-changed=memory.x");
     println!("cargo::rerun-if-changed=build.rs");
 

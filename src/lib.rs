@@ -17,6 +17,55 @@
 //! [`scene`] describes what to draw (meshes in static slices, transforms, intensities) and
 //! [`render`] runs the stages above in order for a whole frame or a band of it.
 //!
+//! ## A frame
+//!
+//! Everything lives in memory the caller owns (statics, the stack); [`prelude`] names what a
+//! frame needs and [`Error`] takes every stage's error with `?`. A lit sphere, 48 × 32 pixels:
+//!
+//! ```
+//! use zscan::prelude::*;
+//!
+//! // The mesh: a UV sphere written into your tables, and its vertex normals.
+//! let (nv, ni) = uv_sphere_sizes(16, 8);
+//! let (mut vertices, mut indices) = ([Vec3::ZERO; 114], [0u16; 672]);
+//! assert_eq!((nv, ni), (vertices.len(), indices.len()));
+//! let mesh = uv_sphere(16, 8, Coord::ONE, &mut vertices, &mut indices)?;
+//! let mut normals = [Vec3::ZERO; 114];
+//! mesh.vertex_normals(&mut normals)?;
+//!
+//! let mut sphere = Object::new(mesh);
+//! sphere.intensities = Intensities::Lit {
+//!     material: Material::from_thousandths(100, 700, 300, 20),
+//!     normals: &normals,
+//! };
+//! sphere.shade = ShadeMode::GouraudExact;
+//! let lights = [Light::Directional { toward: Vec3::from_int(1, 1, 1), intensity: 255 }];
+//! let lens = Lens::new(Angle::from_degrees(50), Coord::lit("0.5"), Coord::lit("10"));
+//! let up = Vec3::from_int(0, 1, 0);
+//! let camera = Camera::look_at(Vec3::from_int(0, 0, 4), Vec3::ZERO, up, lens, Viewport::new(48, 32))?;
+//! let objects = [sphere];
+//! let scene = Scene { camera, ambient: 20, lights: &lights, objects: &objects, background: 0 };
+//!
+//! // The frame: 8-bit palette indices, 16-bit depth, vertex scratch.
+//! let (mut pixels, mut depths) = ([0u8; 48 * 32], [0u16; 48 * 32]);
+//! let mut frame = Framebuffer::new(&mut pixels, 48, 32)?;
+//! let mut depth = DepthBuffer::new(&mut depths, 48, 32)?;
+//! let mut scratch = [PreparedVertex::default(); 114];
+//! let mut stats = RenderStats::default();
+//! let renderer = Renderer::<4>::for_scene(&scene)?;
+//! render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
+//!
+//! // The sphere covers the middle of the picture, lit brighter toward the light (up right).
+//! assert_eq!(frame.pixel(0, 0), Some(0));
+//! let (centre, lit, shaded) = (frame.pixel(24, 16), frame.pixel(27, 13), frame.pixel(19, 21));
+//! assert!(centre > Some(0) && lit > shaded, "{centre:?} {lit:?} {shaded:?}");
+//! # Ok::<(), zscan::Error>(())
+//! ```
+//!
+//! Then [`target::flush`] sends the frame through a [`target::Lut`] to any embedded-graphics
+//! `DrawTarget`; [`render::render_in_bands`] draws the same picture through band-sized
+//! buffers.
+//!
 //! ## Conventions (stated once, owned by the modules named)
 //! - **Pixels are lattice points.** Pixel `(x, y)` is the point with integer coordinates `(x, y)`;
 //!   `x` grows to the right, `y` grows **downward** (screen convention). See [`raster`].
@@ -35,7 +84,9 @@
 
 pub(crate) mod arith;
 pub mod clip;
+mod error;
 pub mod geometry;
+pub mod prelude;
 pub mod project;
 pub mod raster;
 pub mod render;
@@ -44,3 +95,5 @@ pub mod shade;
 pub mod target;
 #[cfg(test)]
 mod test_rng;
+
+pub use error::Error;

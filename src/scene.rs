@@ -49,6 +49,28 @@ pub enum Intensities<'a> {
 }
 
 /// One mesh placed in the world, with its shading.
+///
+/// ```
+/// use zscan::geometry::{fixed::Coord, generators::unit_cube, matrix::Affine3};
+/// use zscan::geometry::{trig::Angle, vector::Vec3};
+/// use zscan::scene::{Intensities, Object};
+/// use zscan::shade::{lighting::Material, span_writer::{LuminanceRamp, ShadeMode}};
+///
+/// let mut cube = Object::new(unit_cube()); // the mesh's tables stay where they are (flash)
+/// cube.transform = Affine3::builder()
+///     .scale(Coord::from_num(2))
+///     .translate(Vec3::from_int(-1, -1, -1)) // the unit cube [0, 1]³ becomes [−1, 1]³…
+///     .rotate_y(Angle::from_degrees(30)) // …then turns and moves away
+///     .translate(Vec3::from_int(0, 0, -3))
+///     .build()?;
+/// cube.intensities = Intensities::Lit {
+///     material: Material::from_thousandths(150, 600, 300, 20),
+///     normals: &[], // flat shading uses face normals
+/// };
+/// cube.shade = ShadeMode::Flat;
+/// cube.ramp = LuminanceRamp { first: 0, levels: 64 }; // palette indices 0..64
+/// # Ok::<(), zscan::geometry::matrix::MatrixError>(())
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Object<'a> {
     /// The geometry, in the model frame.
@@ -99,6 +121,25 @@ impl<'a> Object<'a> {
 }
 
 /// A camera, its lights and the objects it sees.
+///
+/// ```
+/// use zscan::geometry::camera::{Camera, Lens, Viewport};
+/// use zscan::geometry::{fixed::Coord, generators::unit_cube, trig::Angle, vector::Vec3};
+/// use zscan::scene::{Object, Scene};
+/// use zscan::shade::lighting::Light;
+///
+/// let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+/// let up = Vec3::from_int(0, 1, 0);
+/// let camera = Camera::look_at(Vec3::from_int(3, 2, 4), Vec3::ZERO, up, lens, Viewport::new(320, 240))?;
+/// let lights = [
+///     Light::Point { position: Vec3::from_int(-2, 5, 3), intensity: 200 },
+///     Light::Directional { toward: Vec3::from_int(1, 1, 0), intensity: 60 },
+/// ];
+/// let objects = [Object::new(unit_cube())];
+/// let scene = Scene { camera, ambient: 30, lights: &lights, objects: &objects, background: 0 };
+/// assert_eq!(scene.objects.len(), 1);
+/// # Ok::<(), zscan::geometry::camera::CameraError>(())
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Scene<'a> {
     /// The observer.

@@ -81,6 +81,36 @@ pub struct Lens {
     pub far: Coord,
 }
 
+impl Lens {
+    /// A lens with a **vertical** field of view `fov` and the depth range `near..far`
+    /// (usable in a `const`; [`Camera::new`] checks `0 < fov < half a turn` and
+    /// `0 < near < far`). [`with_axis`](Lens::with_axis) measures the field of view on
+    /// another extent.
+    ///
+    /// ```
+    /// use zscan::geometry::camera::{FovAxis, Lens};
+    /// use zscan::geometry::{fixed::Coord, trig::Angle};
+    ///
+    /// const LENS: Lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+    /// assert_eq!(LENS.axis, FovAxis::Vertical);
+    /// let wide = LENS.with_axis(FovAxis::Horizontal);
+    /// assert_eq!((wide.fov, wide.near, wide.far), (LENS.fov, LENS.near, LENS.far));
+    /// ```
+    pub const fn new(fov: Angle, near: Coord, far: Coord) -> Lens {
+        Lens {
+            fov,
+            axis: FovAxis::Vertical,
+            near,
+            far,
+        }
+    }
+
+    /// The same lens with its field of view measured on `axis`.
+    pub const fn with_axis(self, axis: FovAxis) -> Lens {
+        Lens { axis, ..self }
+    }
+}
+
 /// The screen: size in pixels, principal point, pixel shape.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Viewport {
@@ -115,6 +145,21 @@ impl Viewport {
 }
 
 /// The observer: position, basis, focal lengths and screen (see the module doc).
+///
+/// ```
+/// use zscan::geometry::camera::{Camera, Lens, Viewport};
+/// use zscan::geometry::{fixed::Coord, trig::Angle, vector::Vec3};
+///
+/// let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+/// let eye = Vec3::from_int(0, 0, 5);
+/// let up = Vec3::from_int(0, 1, 0);
+/// let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(320, 240))?;
+/// // The target is straight ahead: on the optical axis (x = y = 0), 5 units deep.
+/// assert_eq!(camera.to_observer(Vec3::ZERO), Vec3::from_int(0, 0, 5));
+/// // World +x appears on the viewer's right.
+/// assert_eq!(camera.to_observer(Vec3::from_int(1, 0, 0)), Vec3::from_int(1, 0, 5));
+/// # Ok::<(), zscan::geometry::camera::CameraError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Camera {
     position: Vec3,
@@ -442,6 +487,20 @@ mod tests {
             near: Coord::from_num(0.5),
             far: Coord::from_num(10),
         }
+    }
+
+    #[test]
+    fn lens_new_is_the_literal() {
+        const L: Lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("10"));
+        assert_eq!(L, lens());
+        let d = L.with_axis(FovAxis::Diagonal);
+        assert_eq!(
+            d,
+            Lens {
+                axis: FovAxis::Diagonal,
+                ..lens()
+            }
+        );
     }
 
     /// The focal lengths equal the former u128 formula, `⌊(r·cos + sin/2)/sin⌋` then rounded

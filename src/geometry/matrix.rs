@@ -325,9 +325,152 @@ impl Affine3 {
     }
 }
 
+impl Affine3 {
+    /// A [`Affine3Builder`] starting from the identity: chain steps in the order they apply
+    /// and check the result once with [`build`](Affine3Builder::build).
+    ///
+    /// ```
+    /// use zscan::geometry::{fixed::Coord, matrix::Affine3, trig::Angle, vector::Vec3};
+    ///
+    /// let m = Affine3::builder()
+    ///     .rotate_y(Angle::from_degrees(90))
+    ///     .scale(Coord::from_num(2))
+    ///     .translate(Vec3::from_int(0, 1, 0))
+    ///     .build()?;
+    /// // (1, 0, 0) turns to (0, 0, -1), doubles to (0, 0, -2), moves up to (0, 1, -2).
+    /// assert_eq!(m.transform_point(Vec3::from_int(1, 0, 0)), Vec3::from_int(0, 1, -2));
+    /// # Ok::<(), zscan::geometry::matrix::MatrixError>(())
+    /// ```
+    pub const fn builder() -> Affine3Builder {
+        Affine3Builder {
+            state: Ok(Affine3::IDENTITY),
+        }
+    }
+}
+
+/// Composes transforms in application order without a `Result` per step
+/// ([`Affine3::builder`]).
+///
+/// Each step applies after the ones before it (`builder().rotate_y(a).translate(t)` rotates,
+/// then translates), exactly as chaining [`Affine3::then`] would. A step that fails (a
+/// factor beyond ±64, a zero rotation axis, a product out of range) puts the builder in a
+/// failed state that later steps keep: [`build`](Affine3Builder::build) reports the first
+/// error, once.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[must_use = "a builder does nothing until `build` is called"]
+pub struct Affine3Builder {
+    state: Result<Affine3, MatrixError>,
+}
+
+impl Affine3Builder {
+    /// Applies `next` after the steps so far (the first error sticks).
+    pub fn then(self, next: &Affine3) -> Affine3Builder {
+        self.then_result(Ok(*next))
+    }
+
+    fn then_result(self, next: Result<Affine3, MatrixError>) -> Affine3Builder {
+        Affine3Builder {
+            state: self.state.and_then(|m| m.then(&next?)),
+        }
+    }
+
+    /// Then a rotation by `a` about the x axis ([`Affine3::rotation_x`]).
+    pub fn rotate_x(self, a: Angle) -> Affine3Builder {
+        self.then(&Affine3::rotation_x(a))
+    }
+
+    /// Then a rotation by `a` about the y axis ([`Affine3::rotation_y`]).
+    pub fn rotate_y(self, a: Angle) -> Affine3Builder {
+        self.then(&Affine3::rotation_y(a))
+    }
+
+    /// Then a rotation by `a` about the z axis ([`Affine3::rotation_z`]).
+    pub fn rotate_z(self, a: Angle) -> Affine3Builder {
+        self.then(&Affine3::rotation_z(a))
+    }
+
+    /// Then a rotation by `a` about `axis` through the origin ([`Affine3::rotation_axis`];
+    /// a zero axis fails the builder).
+    pub fn rotate_axis(self, axis: Vec3, a: Angle) -> Affine3Builder {
+        self.then_result(Affine3::rotation_axis(axis, a))
+    }
+
+    /// Then a uniform scaling by `s` about the origin ([`Affine3::scale`]; `|s| > 64` fails
+    /// the builder).
+    pub fn scale(self, s: Coord) -> Affine3Builder {
+        self.then_result(Affine3::scale(s))
+    }
+
+    /// Then a scaling by `(sx, sy, sz)` about the origin ([`Affine3::scale3`]).
+    pub fn scale3(self, sx: Coord, sy: Coord, sz: Coord) -> Affine3Builder {
+        self.then_result(Affine3::scale3(sx, sy, sz))
+    }
+
+    /// Then a translation by `t` ([`Affine3::translation`]).
+    pub fn translate(self, t: Vec3) -> Affine3Builder {
+        self.then(&Affine3::translation(t))
+    }
+
+    /// True once a step has failed ([`build`](Affine3Builder::build) will return its error).
+    pub const fn has_failed(&self) -> bool {
+        self.state.is_err()
+    }
+
+    /// The composed transform, or the first step's error.
+    pub const fn build(self) -> Result<Affine3, MatrixError> {
+        self.state
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn builder_equals_chained_then() {
+        let a = Angle::from_degrees(37);
+        let s = Coord::from_num(1.5);
+        let t = Vec3::from_int(3, -2, 7);
+        let built = Affine3::builder()
+            .rotate_x(a)
+            .rotate_y(a + a)
+            .rotate_z(-a)
+            .scale(s)
+            .rotate_axis(Vec3::from_int(1, 2, 3), a)
+            .scale3(s, Coord::ONE, s)
+            .translate(t)
+            .build()
+            .unwrap();
+        let chained = Affine3::rotation_x(a)
+            .then(&Affine3::rotation_y(a + a))
+            .and_then(|m| m.then(&Affine3::rotation_z(-a)))
+            .and_then(|m| m.then(&Affine3::scale(s)?))
+            .and_then(|m| m.then(&Affine3::rotation_axis(Vec3::from_int(1, 2, 3), a)?))
+            .and_then(|m| m.then(&Affine3::scale3(s, Coord::ONE, s)?))
+            .and_then(|m| m.then(&Affine3::translation(t)))
+            .unwrap();
+        assert_eq!(built, chained);
+        assert_eq!(Affine3::builder().build(), Ok(Affine3::IDENTITY));
+    }
+
+    #[test]
+    fn builder_reports_the_first_error_once() {
+        let big = Coord::from_num(100);
+        let b = Affine3::builder().scale(big);
+        assert!(b.has_failed());
+        // Later steps, even failing ones of another kind, keep the first error.
+        let b = b
+            .rotate_axis(Vec3::ZERO, Angle::from_degrees(10))
+            .translate(Vec3::from_int(1, 0, 0));
+        assert_eq!(b.build(), Err(MatrixError::OutOfRange));
+        let b = Affine3::builder().rotate_axis(Vec3::ZERO, Angle::from_degrees(10));
+        assert_eq!(b.scale(big).build(), Err(MatrixError::ZeroAxis));
+        // A product out of range fails too: 8 × 8 × 8 exceeds ±64.
+        let eight = Coord::from_num(8);
+        let b = Affine3::builder().scale(eight).scale(eight);
+        assert!(!b.has_failed());
+        assert_eq!(b.scale(eight).build(), Err(MatrixError::OutOfRange));
+    }
 
     fn v(x: f64, y: f64, z: f64) -> Vec3 {
         Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))

@@ -29,6 +29,10 @@ impl core::fmt::Display for FillError {
             FillError::TooManyEdges { capacity } => {
                 write!(f, "polygon has more than {capacity} non-horizontal edges")
             }
+            FillError::CoordinateOutOfRange { vertex: usize::MAX } => write!(
+                f,
+                "sub-pixel bits exceed the fill's maximum of {MAX_SUBPIXEL_BITS}"
+            ),
             FillError::CoordinateOutOfRange { vertex } => write!(
                 f,
                 "vertex {vertex} is outside the fill's range of ±{MAX_COORD} sub-pixel units"

@@ -52,6 +52,17 @@ impl DepthValue for u32 {
 }
 
 /// A depth buffer of `D` samples (possibly a band of a taller picture, like the framebuffer).
+///
+/// ```
+/// use zscan::target::{DepthBuffer, DepthValue};
+///
+/// let mut samples = [0u16; 8 * 4]; // your memory: 16 bits per pixel (u32 for finer depth)
+/// let mut depth = DepthBuffer::new(&mut samples, 8, 4)?;
+/// depth.clear(); // everything far
+/// assert_eq!(depth.get(7, 3), Some(u16::FAR));
+/// assert_eq!(depth.get(8, 0), None);
+/// # Ok::<(), zscan::target::TargetError>(())
+/// ```
 #[derive(Debug)]
 pub struct DepthBuffer<'a, D: DepthValue> {
     samples: &'a mut [D],

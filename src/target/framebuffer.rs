@@ -11,6 +11,25 @@ use super::{check_layout, TargetError};
 use crate::raster::Window;
 
 /// An 8-bit indexed framebuffer (possibly a band of a taller picture).
+///
+/// ```
+/// use zscan::target::Framebuffer;
+///
+/// let mut pixels = [0u8; 8 * 4]; // your memory: one palette index per pixel
+/// let mut frame = Framebuffer::new(&mut pixels, 8, 4)?;
+/// frame.clear(3);
+/// frame.set_pixel(2, 1, 200);
+/// assert_eq!((frame.pixel(2, 1), frame.pixel(0, 0)), (Some(200), Some(3)));
+/// assert_eq!(frame.pixel(8, 0), None); // outside: no pixel, no panic
+///
+/// // Rows 16..20 of a taller picture: coordinates stay absolute.
+/// let mut band_pixels = [0u8; 8 * 4];
+/// let mut band = Framebuffer::band(&mut band_pixels, 8, 4, 16)?;
+/// band.set_pixel(0, 17, 9);
+/// assert_eq!(band.pixel(0, 17), Some(9));
+/// assert_eq!(band.pixel(0, 1), None);
+/// # Ok::<(), zscan::target::TargetError>(())
+/// ```
 #[derive(Debug)]
 pub struct Framebuffer<'a> {
     pixels: &'a mut [u8],

@@ -7,7 +7,7 @@
 //! rounding to nearest: `channel = (base * (shade + 1) + levels / 2) / levels` — shade
 //! `levels - 1` is the full base colour and shade 0 is the darkest non-black step.
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 
 /// Why a palette could not be built.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -33,6 +33,22 @@ impl core::fmt::Display for LutError {
 }
 
 /// 256 display colours indexed by a palette index.
+///
+/// ```
+/// use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+/// use zscan::target::Lut;
+///
+/// // Built at compile time, kept in flash.
+/// static GREY: Lut<Rgb565> = Lut::<Rgb565>::GREY;
+/// assert_eq!(GREY.get(255), Rgb565::WHITE);
+/// assert_eq!(GREY, Lut::<Rgb565>::grey_ramp());
+///
+/// // Two materials of 32 shades each: indices 0..32 red, 32..64 teal.
+/// let bases = [Rgb888::new(255, 40, 40), Rgb888::new(0, 160, 160)];
+/// let lut = Lut::<Rgb565>::shaded(&bases, 32, 0)?;
+/// assert_eq!(lut.get(63), Rgb565::from(bases[1]));
+/// # Ok::<(), zscan::target::LutError>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Lut<C> {
     entries: [C; 256],
@@ -46,8 +62,8 @@ impl<C: Copy> Lut<C> {
         }
     }
 
-    /// A table from explicit entries.
-    pub fn from_entries(entries: [C; 256]) -> Self {
+    /// A table from explicit entries (usable in a `const` or `static`).
+    pub const fn from_entries(entries: [C; 256]) -> Self {
         Lut { entries }
     }
 
@@ -66,6 +82,42 @@ impl<C: Copy> Lut<C> {
     pub fn entries(&self) -> &[C; 256] {
         &self.entries
     }
+}
+
+/// `v` (8 bits) on `bits` bits, rounded to nearest: embedded-graphics' own channel conversion
+/// (`Rgb888` → `Rgb565`, …), in a `const fn`.
+const fn channel(v: u8, bits: u32) -> u8 {
+    let max = (1u32 << bits) - 1;
+    ((v as u32 * max + 127) / 255) as u8
+}
+
+impl Lut<Rgb565> {
+    /// The grey ramp ([`grey_ramp`](Lut::grey_ramp)) as a constant: a `static` of it lives
+    /// in flash.
+    pub const GREY: Lut<Rgb565> = {
+        let mut entries = [Rgb565::BLACK; 256];
+        let mut i = 0;
+        while i < 256 {
+            let v = i as u8;
+            entries[i] = Rgb565::new(channel(v, 5), channel(v, 6), channel(v, 5));
+            i += 1;
+        }
+        Lut::from_entries(entries)
+    };
+}
+
+impl Lut<Rgb888> {
+    /// The grey ramp ([`grey_ramp`](Lut::grey_ramp)) as a constant.
+    pub const GREY: Lut<Rgb888> = {
+        let mut entries = [Rgb888::BLACK; 256];
+        let mut i = 0;
+        while i < 256 {
+            let v = i as u8;
+            entries[i] = Rgb888::new(v, v, v);
+            i += 1;
+        }
+        Lut::from_entries(entries)
+    };
 }
 
 impl<C: Copy + From<Rgb888>> Lut<C> {
@@ -119,4 +171,22 @@ pub const fn shaded_index(first: u8, levels: u8, material: u8, shade: u8) -> u8 
     first
         .wrapping_add(material.wrapping_mul(levels))
         .wrapping_add(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grey_constants_equal_the_grey_ramp() {
+        assert_eq!(Lut::<Rgb565>::GREY, Lut::<Rgb565>::grey_ramp());
+        assert_eq!(Lut::<Rgb888>::GREY, Lut::<Rgb888>::grey_ramp());
+    }
+
+    #[test]
+    fn from_entries_is_const() {
+        const RED: Lut<Rgb565> = Lut::from_entries([Rgb565::RED; 256]);
+        assert_eq!(RED, Lut::filled(Rgb565::RED));
+        assert_eq!(RED.get(17), Rgb565::RED);
+    }
 }

@@ -160,16 +160,39 @@ pub enum ShadowError {
 impl core::fmt::Display for ShadowError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            ShadowError::BadSize => write!(f, "shadow map size zero, too small or too large"),
-            ShadowError::BadLight => write!(f, "light direction, radius or frame unusable"),
-            ShadowError::OutOfRange => write!(f, "light distance or radius out of range"),
-            ShadowError::Transform => write!(f, "transform overflow or not rigid"),
-            ShadowError::Projection(e) => write!(f, "projection: {e:?}"),
-            ShadowError::PolygonTooLarge => write!(f, "polygon too large for the clipper"),
-            ShadowError::Raster => write!(f, "triangle outside the raster's limits"),
-            ShadowError::FrameMismatch => {
-                write!(f, "frame, depth buffer and camera viewport do not match")
+            ShadowError::BadSize => write!(
+                f,
+                "shadow map samples shorter than width × height, or a size zero, below 4 \
+                 (perspective), above 2^14 or with width × height above 2^19"
+            ),
+            ShadowError::BadLight => write!(
+                f,
+                "light unusable: zero direction, non-positive radius or no light frame"
+            ),
+            ShadowError::OutOfRange => write!(
+                f,
+                "light distance or radius out of range: beyond I16F16 (±32768), a radius above \
+                 8192, or a focal length reaching 2^15 texels"
+            ),
+            ShadowError::Transform => {
+                write!(
+                    f,
+                    "occluder or observer transform overflowed, or camera not rigid"
+                )
             }
+            ShadowError::Projection(e) => write!(f, "shadow projection: {e}"),
+            ShadowError::PolygonTooLarge => {
+                write!(
+                    f,
+                    "occluder polygon has more vertices than the clipper holds"
+                )
+            }
+            ShadowError::Raster => write!(f, "triangle outside the raster's limits"),
+            ShadowError::FrameMismatch => write!(
+                f,
+                "frame, depth buffer and camera viewport do not match, or the viewport is too \
+                 wide for the back-projection (|i − i0| ≥ 2^16)"
+            ),
         }
     }
 }

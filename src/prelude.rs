@@ -1,0 +1,63 @@
+//! What a user names to render a lit mesh and show it on an embedded-graphics display, in
+//! one import: `use zscan::prelude::*;`.
+//!
+//! Re-exports only; every item keeps its home module (linked from each name) and its
+//! documentation there. The list follows a frame's set-up in order: the mesh and its place
+//! in the world, its light and shading, the camera, the renderer and its memory, the target
+//! buffers and the flush.
+//!
+//! `Angle` is also the name of an item of `embedded_graphics::prelude`. With both preludes
+//! glob-imported, name the one you mean explicitly (`use zscan::prelude::Angle;` after the
+//! globs shadows both) — otherwise a use of `Angle` is ambiguous.
+//!
+//! ```
+//! use zscan::prelude::*;
+//!
+//! let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+//! let camera = Camera::look_at(
+//!     Vec3::from_int(0, 0, 4),
+//!     Vec3::ZERO,
+//!     Vec3::from_int(0, 1, 0),
+//!     lens,
+//!     Viewport::new(32, 24),
+//! )?;
+//! let objects = [Object::new(unit_cube())];
+//! let scene = Scene { camera, objects: &objects, background: 0, ambient: 0, lights: &[] };
+//! let renderer = Renderer::<4>::for_scene(&scene)?;
+//! let (mut pixels, mut depths) = ([0u8; 32 * 24], [0u16; 32 * 24]);
+//! let mut frame = Framebuffer::new(&mut pixels, 32, 24)?;
+//! let mut depth = DepthBuffer::new(&mut depths, 32, 24)?;
+//! let mut scratch = [PreparedVertex::default(); 8];
+//! let mut stats = RenderStats::default();
+//! render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
+//! assert!(stats.pixels_covered > 0);
+//! # Ok::<(), zscan::Error>(())
+//! ```
+
+// The mesh and its place in the world.
+pub use crate::geometry::fixed::Coord;
+pub use crate::geometry::generators::{torus, torus_sizes, unit_cube, uv_sphere, uv_sphere_sizes};
+pub use crate::geometry::matrix::{Affine3, Affine3Builder};
+pub use crate::geometry::mesh::{Mesh, PolygonSizes};
+pub use crate::geometry::trig::Angle;
+pub use crate::geometry::vector::Vec3;
+pub use crate::scene::{Intensities, Object, Scene};
+
+// Light and shading.
+pub use crate::shade::lighting::{Light, Material};
+pub use crate::shade::span_writer::{LuminanceRamp, ShadeMode};
+
+// The camera.
+pub use crate::geometry::camera::{Camera, FovAxis, Lens, Viewport};
+
+// The renderer and its memory.
+pub use crate::render::{
+    render_in_bands, render_scene, BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer,
+    StatsSink, StatsWithoutWritten,
+};
+
+// The target buffers, the palette and the display.
+pub use crate::target::{flush, shaded_index, DepthBuffer, DepthValue, Framebuffer, Lut};
+
+// Errors.
+pub use crate::Error;
