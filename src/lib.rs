@@ -52,7 +52,7 @@
 //! let mut depth = DepthBuffer::new(&mut depths, 48, 32)?;
 //! let mut scratch = [PreparedVertex::default(); 114];
 //! let mut stats = RenderStats::default();
-//! let renderer = Renderer::<4>::for_scene(&scene)?;
+//! let renderer = Renderer::for_scene(&scene)?;
 //! render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
 //!
 //! // The sphere covers the middle of the picture, lit brighter toward the light (up right).

@@ -23,7 +23,7 @@
 //! )?;
 //! let objects = [Object::new(unit_cube())];
 //! let scene = Scene { camera, objects: &objects, background: 0, ambient: 0, lights: &[] };
-//! let renderer = Renderer::<4>::for_scene(&scene)?;
+//! let renderer = Renderer::for_scene(&scene)?;
 //! let (mut pixels, mut depths) = ([0u8; 32 * 24], [0u16; 32 * 24]);
 //! let mut frame = Framebuffer::new(&mut pixels, 32, 24)?;
 //! let mut depth = DepthBuffer::new(&mut depths, 32, 24)?;

@@ -363,7 +363,7 @@ fn lit_bands_equal_one_pass() {
                 ambient: 40,
                 lights: &light,
             };
-            let r = Renderer::<4>::for_scene(&scene).unwrap();
+            let r = Renderer::for_scene(&scene).unwrap();
             let (one, _) = frame(&r, &objects[0]);
             for (rows, table) in [(1u16, false), (5, false), (72, false), (1, true), (5, true)] {
                 let n = W as usize * rows as usize;

@@ -43,8 +43,10 @@ impl<const S: u32> Renderer<S> {
         Ok(self)
     }
 
-    /// The renderer of a scene: its camera, ambient intensity and lights.
-    pub fn for_scene(scene: &Scene<'_>) -> Result<Self, RenderError> {
+    /// The renderer of a scene at `S` sub-pixel bits: its camera, ambient intensity and
+    /// lights ([`for_scene`](Renderer::for_scene) is the same at the default 4 bits, without a
+    /// turbofish).
+    pub fn from_scene(scene: &Scene<'_>) -> Result<Self, RenderError> {
         Renderer::new(&scene.camera)?.with_lights(scene.ambient, scene.lights)
     }
 
@@ -64,5 +66,14 @@ impl<const S: u32> Renderer<S> {
             .transform
             .then(&self.view)
             .map_err(RenderError::Transform)
+    }
+}
+
+impl Renderer {
+    /// The renderer of a scene at the default 4 sub-pixel bits: its camera, ambient intensity
+    /// and lights. `Renderer::for_scene(&scene)?` needs no type annotation; other precisions
+    /// use [`Renderer::<S>::from_scene`](Renderer::from_scene).
+    pub fn for_scene(scene: &Scene<'_>) -> Result<Renderer<4>, RenderError> {
+        Renderer::<4>::from_scene(scene)
     }
 }

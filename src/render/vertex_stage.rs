@@ -27,7 +27,7 @@ pub(super) const UNPROJECTED: u8 = 0x80;
 /// One mesh vertex after the vertex stage: 28 bytes (the scratch a mesh needs is 28 bytes per
 /// vertex; the bunny's 1,839 vertices take 51 KB).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PreparedVertex<const S: u32> {
+pub struct PreparedVertex<const S: u32 = 4> {
     /// Observer-frame position.
     pub view: Vec3,
     /// Screen position (valid when `outcode == 0`).

@@ -124,7 +124,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ambient: 35,
         lights: &lights,
     };
-    let renderer = Renderer::<4>::for_scene(&scene)?;
+    let renderer = Renderer::for_scene(&scene)?;
 
     // Band-sized buffers; vertex scratch and polygon table for all objects (the vertex stage
     // runs once per frame, each band visits only the polygons that reach it).

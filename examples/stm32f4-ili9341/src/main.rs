@@ -202,7 +202,7 @@ fn run<D: DrawTarget<Color = Rgb565>>(
         lights: &lights,
     };
     // Camera and lights do not change: the renderer is set up once.
-    let renderer = Renderer::<4>::for_scene(&base)?;
+    let renderer = Renderer::for_scene(&base)?;
 
     let lut = palette()?;
     let mut text = heapless::String::<48>::new();
