@@ -204,7 +204,8 @@ impl CoreMesh {
             polygons: &mut table,
         };
         let (pixels, depth, stats) =
-            render_picture(&renderer, &scene, (w, h), band_rows, band_scratch)?;
+            render_picture(&renderer, &scene, (w, h), band_rows, band_scratch)
+                .map_err(|e| e.to_string())?;
         Ok(CoreFrame {
             pixels,
             depth,
@@ -223,7 +224,7 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     (w, h): (u16, u16),
     band_rows: Option<u16>,
     scratch: BandScratch<'_, SB>,
-) -> Result<(Vec<u8>, Vec<D>, RenderStats), String> {
+) -> Result<(Vec<u8>, Vec<D>, RenderStats), zscan::render::RenderError> {
     let band = band_rows.unwrap_or(h).clamp(1, h.max(1));
     let n = w as usize * band as usize;
     let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
@@ -247,7 +248,6 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
             }
             Ok::<(), RenderError>(())
         },
-    )
-    .map_err(|e| e.to_string())?;
+    )?;
     Ok((pixels, depth, stats))
 }

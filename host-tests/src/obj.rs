@@ -3,6 +3,17 @@
 //! comments. Other statements (`vt`, `vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, …) are skipped.
 //! Errors carry the 1-based line number.
 //!
+//! ## Limits
+//! Every limit is checked before the memory it bounds is allocated, so no file can make the
+//! reader allocate more than the mesh it describes needs:
+//! - a file is read up to [`MAX_OBJ_BYTES`] (64 MiB); a longer one (or an endless device such
+//!   as `/dev/zero`) is [`ObjErrorKind::FileTooLarge`] after reading one byte past the limit;
+//! - at most [`MAX_OBJ_VERTICES`] (65 536, what the core's `u16` indices address) vertices and
+//!   [`MAX_OBJ_FACES`] (2^20) faces, each of at most [`MAX_FACE_VERTICES`] (255) vertices;
+//! - a face index is any `i64` written in the file; `0`, and positive or negative (relative)
+//!   indices beyond the vertices defined so far, are [`ObjErrorKind::IndexOutOfRange`] (no
+//!   arithmetic on the index can overflow: relative indices use `unsigned_abs`).
+//!
 //! Output is `f64` positions and 0-based polygon index lists; [`ObjMesh::to_zscan`] converts to
 //! the core's flash-friendly tables ([`zscan::geometry::mesh`]).
 
@@ -11,6 +22,15 @@ use std::path::Path;
 
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::vector::Vec3;
+
+/// Longest OBJ file read: 64 MiB.
+pub const MAX_OBJ_BYTES: u64 = 64 << 20;
+/// Most vertices an OBJ file may define (the core's `u16` indices address 65 536).
+pub const MAX_OBJ_VERTICES: usize = 65_536;
+/// Most faces an OBJ file may define: 2^20.
+pub const MAX_OBJ_FACES: usize = 1 << 20;
+/// Most vertices of one face (the core's polygon sizes are `u8`).
+pub const MAX_FACE_VERTICES: usize = 255;
 
 /// A parsed OBJ file.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -47,6 +67,14 @@ pub enum ObjErrorKind {
     IndexOutOfRange(i64),
     /// The file could not be read.
     Io(String),
+    /// The file is longer than [`MAX_OBJ_BYTES`] (the path).
+    FileTooLarge(String),
+    /// More than [`MAX_OBJ_VERTICES`] vertices.
+    TooManyVertices,
+    /// More than [`MAX_OBJ_FACES`] faces.
+    TooManyFaces,
+    /// A face with more than [`MAX_FACE_VERTICES`] vertices.
+    FaceTooLarge,
 }
 
 impl fmt::Display for ObjError {
@@ -60,6 +88,20 @@ impl fmt::Display for ObjError {
             ObjErrorKind::ZeroIndex => write!(f, "vertex index 0 is not valid (OBJ is 1-based)"),
             ObjErrorKind::IndexOutOfRange(i) => write!(f, "vertex index {i} out of range"),
             ObjErrorKind::Io(e) => write!(f, "{e}"),
+            ObjErrorKind::FileTooLarge(p) => write!(
+                f,
+                "{p}: file is longer than the OBJ reader's limit of {MAX_OBJ_BYTES} bytes"
+            ),
+            ObjErrorKind::TooManyVertices => {
+                write!(
+                    f,
+                    "more than {MAX_OBJ_VERTICES} vertices (the core's u16 indices)"
+                )
+            }
+            ObjErrorKind::TooManyFaces => write!(f, "more than {MAX_OBJ_FACES} faces"),
+            ObjErrorKind::FaceTooLarge => {
+                write!(f, "face with more than {MAX_FACE_VERTICES} vertices")
+            }
         }
     }
 }
@@ -88,21 +130,34 @@ pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
                         return Err(err(ObjErrorKind::NonFinite));
                     }
                 }
+                if mesh.vertices.len() >= MAX_OBJ_VERTICES {
+                    return Err(err(ObjErrorKind::TooManyVertices));
+                }
                 mesh.vertices.push(c);
             }
             Some("f") => {
+                if mesh.polygons.len() >= MAX_OBJ_FACES {
+                    return Err(err(ObjErrorKind::TooManyFaces));
+                }
                 let mut poly = Vec::new();
                 for w in words {
+                    if poly.len() >= MAX_FACE_VERTICES {
+                        return Err(err(ObjErrorKind::FaceTooLarge));
+                    }
                     let first = w.split('/').next().unwrap_or("");
                     let i: i64 = first
                         .parse()
                         .map_err(|_| err(ObjErrorKind::BadNumber(first.to_string())))?;
-                    let count = mesh.vertices.len() as i64;
+                    // count ≤ MAX_OBJ_VERTICES; |i| as u64 cannot overflow (i64::MIN included).
+                    let count = mesh.vertices.len() as u64;
+                    let magnitude = i.unsigned_abs();
                     let idx = match i {
                         0 => return Err(err(ObjErrorKind::ZeroIndex)),
-                        i if i > 0 && i <= count => i - 1,
-                        i if i < 0 && -i <= count => count + i,
-                        i => return Err(err(ObjErrorKind::IndexOutOfRange(i))),
+                        _ if magnitude > count => {
+                            return Err(err(ObjErrorKind::IndexOutOfRange(i)))
+                        }
+                        i if i > 0 => magnitude - 1,
+                        _ => count - magnitude,
                     };
                     poly.push(idx as usize);
                 }
@@ -117,11 +172,28 @@ pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
     Ok(mesh)
 }
 
-/// Reads and parses an OBJ file.
+/// Reads and parses an OBJ file of at most [`MAX_OBJ_BYTES`] (see the module doc).
 pub fn load_obj(path: impl AsRef<Path>) -> Result<ObjMesh, ObjError> {
-    let text = std::fs::read_to_string(path.as_ref()).map_err(|e| ObjError {
+    use std::io::Read;
+    let path = path.as_ref();
+    let io = |e: std::io::Error| ObjError {
         line: 0,
-        kind: ObjErrorKind::Io(format!("{}: {e}", path.as_ref().display())),
+        kind: ObjErrorKind::Io(format!("{}: {e}", path.display())),
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_OBJ_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > MAX_OBJ_BYTES {
+        return Err(ObjError {
+            line: 0,
+            kind: ObjErrorKind::FileTooLarge(path.display().to_string()),
+        });
+    }
+    let text = String::from_utf8(bytes).map_err(|e| ObjError {
+        line: 0,
+        kind: ObjErrorKind::Io(format!("{}: not UTF-8 text: {e}", path.display())),
     })?;
     parse_obj(&text)
 }
@@ -226,5 +298,53 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("line 0"));
+    }
+
+    /// Issue "hostile inputs" #5: `i64::MIN` (and other huge indices) are out of range, with
+    /// no overflow negating them.
+    #[test]
+    fn extreme_indices_are_out_of_range() {
+        for i in [i64::MIN, i64::MIN + 1, i64::MAX, -4, 4] {
+            let text = format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 {i}\n");
+            let e = parse_obj(&text).unwrap_err();
+            assert_eq!(
+                (e.line, e.kind),
+                (4, ObjErrorKind::IndexOutOfRange(i)),
+                "{i}"
+            );
+        }
+        let m = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 2 -1\n").unwrap();
+        assert_eq!(m.polygons, vec![vec![0, 1, 2]]);
+    }
+
+    /// Issue "hostile inputs" #6: an endless file stops at the size limit; counts are limited
+    /// before they are allocated.
+    #[test]
+    fn limits_are_checked_before_allocating() {
+        let e = load_obj("/dev/zero").unwrap_err();
+        assert_eq!(e.kind, ObjErrorKind::FileTooLarge("/dev/zero".into()));
+        assert!(e.to_string().contains(&MAX_OBJ_BYTES.to_string()), "{e}");
+        let many = "v 0 0 0\n".repeat(MAX_OBJ_VERTICES + 1);
+        let e = parse_obj(&many).unwrap_err();
+        assert_eq!(
+            (e.line, e.kind),
+            (MAX_OBJ_VERTICES + 1, ObjErrorKind::TooManyVertices)
+        );
+        let big_face = format!("v 0 0 0\nf{}\n", " 1".repeat(MAX_FACE_VERTICES + 1));
+        assert_eq!(
+            parse_obj(&big_face).unwrap_err().kind,
+            ObjErrorKind::FaceTooLarge
+        );
+        let ok_face = format!("v 0 0 0\nf{}\n", " 1".repeat(MAX_FACE_VERTICES));
+        assert_eq!(
+            parse_obj(&ok_face).unwrap().polygons[0].len(),
+            MAX_FACE_VERTICES
+        );
+        let faces = format!("v 0 0 0\n{}", "f 1 1 1\n".repeat(MAX_OBJ_FACES + 1));
+        let e = parse_obj(&faces).unwrap_err();
+        assert_eq!(
+            (e.line, e.kind),
+            (MAX_OBJ_FACES + 2, ObjErrorKind::TooManyFaces)
+        );
     }
 }

@@ -690,7 +690,7 @@ fn back_projection_lands_on_the_floor() {
                     continue;
                 }
                 let s = db.get(x, y).unwrap();
-                let q = f3(pass.observer_point(x, y, s.to_depth32()));
+                let q = f3(pass.observer_point(x, y, s.to_depth32()).unwrap());
                 let p = pixel_floor_point(&cam, x as f64, y as f64);
                 let e: [f64; 3] = [dot(sub(p, o), w), dot(sub(p, o), v), dot(sub(p, o), u)];
                 let err = (0..3).map(|k| (q[k] - e[k]).abs()).fold(0.0, f64::max);

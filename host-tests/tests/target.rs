@@ -171,6 +171,68 @@ fn flush_sends_one_block_through_the_lut() {
     assert_eq!(display.single_pixels, 0);
 }
 
+/// Issue "hostile inputs" #3: dirty rectangles far larger than the frame (sizes up to
+/// `u32::MAX`, corners anywhere) are intersected with the frame without overflow; the area
+/// given to the display always matches the colours streamed.
+#[test]
+fn flush_intersects_huge_dirty_rectangles_without_overflow() {
+    let (w, h) = (4u16, 3u16);
+    let mut buf: Vec<u8> = (0..12).collect();
+    let fb = Framebuffer::new(&mut buf, w, h).unwrap();
+    let lut = test_lut();
+    let cases = [
+        // (dirty, expected area)
+        (
+            Rectangle::new(Point::zero(), Size::new(u32::MAX, 1)),
+            Some(Rectangle::new(Point::zero(), Size::new(4, 1))),
+        ),
+        (
+            Rectangle::new(
+                Point::new(i32::MIN, i32::MIN),
+                Size::new(u32::MAX, u32::MAX),
+            ),
+            Some(Rectangle::new(Point::zero(), Size::new(4, 3))),
+        ),
+        (
+            Rectangle::new(Point::new(-100_000, 1), Size::new(92_000_000, 92_000_000)),
+            Some(Rectangle::new(Point::new(0, 1), Size::new(4, 2))),
+        ),
+        (
+            Rectangle::new(
+                Point::new(i32::MAX, i32::MAX),
+                Size::new(u32::MAX, u32::MAX),
+            ),
+            None,
+        ),
+        (
+            Rectangle::new(Point::new(i32::MIN, 0), Size::new(u32::MAX / 2, 3)),
+            None,
+        ),
+        (Rectangle::new(Point::new(1, 1), Size::new(0, 5)), None),
+        (
+            Rectangle::new(Point::new(2, -5), Size::new(1, u32::MAX)),
+            Some(Rectangle::new(Point::new(2, 0), Size::new(1, 3))),
+        ),
+    ];
+    for (dirty, want) in cases {
+        let mut display = Recorder::new(64, 64);
+        flush(&fb, &lut, &mut display, Some(dirty)).unwrap();
+        match want {
+            None => assert!(display.contiguous.is_empty(), "{dirty:?}"),
+            Some(area) => {
+                assert_eq!(display.contiguous.len(), 1, "{dirty:?}");
+                let (got, colours) = &display.contiguous[0];
+                assert_eq!(*got, area, "{dirty:?}");
+                let n = (area.size.width * area.size.height) as usize;
+                assert_eq!(colours.len(), n, "{dirty:?}");
+                let x0 = area.top_left.x as u8;
+                let y0 = area.top_left.y as u8;
+                assert_eq!(colours[0], colour(y0 * 4 + x0), "{dirty:?}");
+            }
+        }
+    }
+}
+
 #[test]
 fn flushing_a_band_lands_at_its_absolute_rows() {
     let mut buf = vec![7u8, 8, 9, 10, 11, 12];

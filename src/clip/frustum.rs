@@ -33,9 +33,21 @@
 //!   For oblique planes (the side planes) it may be outside by less than one raw unit per
 //!   coordinate, which the guard band's margin absorbs.
 //! - Capacity: the output is a `heapless::Vec<_, N>`; a polygon that would need more than `N`
-//!   vertices (each plane adds at most one) is [`ClipError::CapacityExceeded`], never truncated.
-//!   Output with fewer than three vertices (a polygon that only touches the volume) is returned
-//!   empty.
+//!   vertices is [`ClipError::CapacityExceeded`], never truncated. Output with fewer than three
+//!   vertices (a polygon that only touches the volume) is returned empty.
+//!
+//! ## How many vertices clipping can add
+//! One plane turns an `n`-gon with `k` vertices inside and `c` edges crossing the plane into
+//! `k + c` vertices. A **convex** polygon crosses a plane at most twice (`c ≤ 2`, `k ≤ n − 1`
+//! when it crosses), so each plane adds at most one vertex: `n + 6` after the six planes. A
+//! **non-convex** polygon can cross a plane on every edge: with `c ≤ min(n, 2k, 2(n − k))`,
+//! `k + c ≤ ⌊3n/2⌋`, so one plane can add up to `⌊n/2⌋` vertices (a 24-vertex comb whose teeth
+//! reach through the near plane becomes 36), and six planes up to `n·(3/2)^6 ≈ 11.4·n`, which
+//! no fixed stack buffer of a microcontroller should hold. [`Frustum::clip`] therefore
+//! reports [`ClipError::CapacityExceeded`] for such polygons, and [`Frustum::clip_fan`] draws
+//! them anyway: when the polygon's clip does not fit it clips each fan triangle
+//! `(P_0, P_k, P_{k+1})` instead (a triangle is convex: at most 9 vertices), which covers
+//! exactly what the renderer's fan from `P_0` covers for a polygon that needs no clipping.
 
 use heapless::Vec;
 
@@ -372,6 +384,40 @@ impl Frustum {
         }
         Ok(a)
     }
+
+    /// Clips a polygon to the frustum and hands the result to `emit`, never failing for lack
+    /// of capacity when `N ≥ 9` (module doc, "How many vertices clipping can add").
+    ///
+    /// Normally `emit` is called once with what [`Frustum::clip`] returns (nothing when that is
+    /// empty), so convex polygons, and non-convex ones whose clip fits `N`, are clipped exactly
+    /// as before. When the clipped polygon would exceed `N` vertices (only possible for a
+    /// non-convex polygon), `emit` is instead called once per non-empty clipped fan triangle
+    /// `(input[0], input[k], input[k + 1])`, `k = 1..n − 1`, in order: the same region as the
+    /// fan of the unclipped polygon, cut by the frustum (each piece at most 9 vertices).
+    ///
+    /// Errors: [`ClipError::CapacityExceeded`] only when `input` itself exceeds `N` or `N < 9`
+    /// for a fan triangle; `emit`'s own error stops the walk and is returned.
+    pub fn clip_fan<const A: usize, const N: usize, E: From<ClipError>>(
+        &self,
+        input: &[ClipVertex<A>],
+        mut emit: impl FnMut(&[ClipVertex<A>]) -> Result<(), E>,
+    ) -> Result<(), E> {
+        match self.clip::<A, N>(input) {
+            Ok(poly) if poly.is_empty() => Ok(()),
+            Ok(poly) => emit(&poly),
+            Err(ClipError::CapacityExceeded) if input.len() <= N => {
+                for k in 1..input.len().saturating_sub(1) {
+                    let tri = [input[0], input[k], input[k + 1]];
+                    let piece = self.clip::<A, N>(&tri)?;
+                    if !piece.is_empty() {
+                        emit(&piece)?;
+                    }
+                }
+                Ok(())
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -547,5 +593,75 @@ mod tests {
         ];
         assert_eq!(f.clip::<1, 3>(&inside).unwrap().as_slice(), &inside);
         assert_eq!(f.clip::<1, 2>(&inside), Err(ClipError::CapacityExceeded));
+    }
+
+    /// Issue "hostile inputs" #2: a planar, simple, non-convex 24-vertex polygon (a comb in
+    /// the plane `y = 0` whose 11 teeth reach through the near plane) needs 35 vertices after
+    /// the near plane alone, more than the renderer's 30: `clip` reports it, `clip_fan` clips
+    /// its fan triangles instead, and the pieces cover exactly the polygon's part inside.
+    #[test]
+    fn non_convex_polygon_beyond_capacity_is_clipped_by_fan() {
+        let f = Frustum::new::<4>(&camera(), Frustum::DEFAULT_GUARD).unwrap();
+        // Base from x = −0.4 to 0.4 at z = 2, then 22 vertices back along x alternating tips
+        // at z = 0.2 (outside near = 0.5) and valleys at z = 1.
+        let mut poly: heapless::Vec<ClipVertex<1>, 24> = heapless::Vec::new();
+        poly.push(cv(-0.4, 0.0, 2.0, 0)).unwrap();
+        poly.push(cv(0.4, 0.0, 2.0, 0)).unwrap();
+        for k in 0..22 {
+            let x = 0.4 - 0.8 * (k as f64 + 0.5) / 22.0;
+            let z = if k % 2 == 0 { 0.2 } else { 1.0 };
+            poly.push(cv(x, 0.0, z, k)).unwrap();
+        }
+        assert_eq!(f.clip::<1, 30>(&poly), Err(ClipError::CapacityExceeded));
+        let big: Vec<ClipVertex<1>, 64> = f.clip(&poly).unwrap();
+        assert_eq!(big.len(), 35);
+        // Signed area in the xz plane (f64 from the raw coordinates).
+        let area = |p: &[ClipVertex<1>]| -> f64 {
+            let q: heapless::Vec<(f64, f64), 64> = p
+                .iter()
+                .map(|v| (v.pos.x.to_num::<f64>(), v.pos.z.to_num::<f64>()))
+                .collect();
+            (0..q.len())
+                .map(|i| {
+                    let (a, b) = (q[i], q[(i + 1) % q.len()]);
+                    a.0 * b.1 - b.0 * a.1
+                })
+                .sum::<f64>()
+                / 2.0
+        };
+        let mut pieces = 0;
+        let mut sum = 0.0;
+        f.clip_fan::<1, 30, ClipError>(&poly, |piece| {
+            assert!(piece.len() >= 3 && piece.len() <= 9, "{}", piece.len());
+            for v in piece {
+                assert!(v.pos.z >= Coord::from_num(0.5), "{v:?}");
+            }
+            pieces += 1;
+            sum += area(piece);
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(pieces, 22);
+        let want = area(&big);
+        assert!((sum - want).abs() < 1e-6, "{sum} vs {want}");
+        // A polygon whose clip fits is emitted once, exactly as `clip` returns it.
+        let tri = [
+            cv(0.0, 0.0, -2.0, 0),
+            cv(0.3, 0.0, 3.0, 255),
+            cv(-0.3, 0.2, 3.0, 255),
+        ];
+        let mut calls = 0;
+        f.clip_fan::<1, 30, ClipError>(&tri, |piece| {
+            assert_eq!(piece, f.clip::<1, 30>(&tri).unwrap().as_slice());
+            calls += 1;
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(calls, 1);
+        // Capacity below the input's size is still an error.
+        assert_eq!(
+            f.clip_fan::<1, 20, ClipError>(&poly, |_| Ok(())),
+            Err(ClipError::CapacityExceeded)
+        );
     }
 }

@@ -76,7 +76,7 @@ fn polar(r: i64, a: Angle) -> (i32, i32) {
 }
 
 fn check_out(vertices: &[Vec3], indices: &[u16], need: (usize, usize)) -> Result<(), MeshError> {
-    if need.0 > 65_536 {
+    if need.0 > MAX_GENERATED_VERTICES {
         return Err(MeshError::BadParameters);
     }
     if vertices.len() < need.0 || indices.len() < need.1 {
@@ -96,14 +96,40 @@ fn finished<'a>(
     Ok((vs, is))
 }
 
+/// Most vertices a generated mesh may have: 65 536 (its indices are `u16`).
+pub const MAX_GENERATED_VERTICES: usize = 65_536;
+
 /// `(vertices, indices)` needed by [`uv_sphere`]: `2 + (rings − 1)·segments` and
-/// `6·segments·(rings − 1)`.
+/// `6·segments·(rings − 1)` (saturating at `usize::MAX` on targets where they do not fit; see
+/// [`uv_sphere_sizes_checked`] to validate parameters before allocating).
 pub const fn uv_sphere_sizes(segments: u16, rings: u16) -> (usize, usize) {
     let (s, r) = (segments as usize, rings as usize);
     if r < 1 {
         return (2, 0);
     }
-    (2 + (r - 1) * s, 6 * s * (r - 1))
+    let ring_vertices = (r - 1).saturating_mul(s);
+    (
+        ring_vertices.saturating_add(2),
+        ring_vertices.saturating_mul(6),
+    )
+}
+
+/// [`uv_sphere_sizes`] when [`uv_sphere`] accepts the counts: `segments ≥ 3`, `rings ≥ 2` and
+/// at most [`MAX_GENERATED_VERTICES`] vertices (`2 + (rings − 1)·segments ≤ 65 536`, so at
+/// most `6·65 534` indices); [`MeshError::BadParameters`] otherwise. Call it before
+/// allocating the output slices: it never allocates or overflows.
+pub const fn uv_sphere_sizes_checked(
+    segments: u16,
+    rings: u16,
+) -> Result<(usize, usize), MeshError> {
+    // (rings − 1)·segments < 2^32: computed in u64 on every target.
+    if segments < 3
+        || rings < 2
+        || 2 + (rings as u64 - 1) * segments as u64 > MAX_GENERATED_VERTICES as u64
+    {
+        return Err(MeshError::BadParameters);
+    }
+    Ok(uv_sphere_sizes(segments, rings))
 }
 
 /// A UV sphere of `radius` centred at the origin (SCENES.md's convention, module doc);
@@ -171,6 +197,15 @@ pub const fn hollow_prism_sizes(sides: u16) -> (usize, usize) {
     (4 * sides as usize, 16 * sides as usize)
 }
 
+/// [`hollow_prism_sizes`] when [`hollow_prism`] accepts the count: `3 ≤ sides ≤ 16 384`
+/// (`4·sides ≤` [`MAX_GENERATED_VERTICES`]); [`MeshError::BadParameters`] otherwise.
+pub const fn hollow_prism_sizes_checked(sides: u16) -> Result<(usize, usize), MeshError> {
+    if sides < 3 || 4 * sides as usize > MAX_GENERATED_VERTICES {
+        return Err(MeshError::BadParameters);
+    }
+    Ok(hollow_prism_sizes(sides))
+}
+
 /// Course exercise 4: a hollow prism with `sides` sides (6: the hollow hexagonal cylinder)
 /// about the `z` axis, `z ∈ [−half_height, half_height]`, circumradii `outer > inner > 0`.
 /// The course's instance is `(6, 1, 0.8, 1)`.
@@ -226,10 +261,21 @@ pub fn hollow_prism<'a>(
     Mesh::new(vs, is, PolygonSizes::Uniform(4))
 }
 
-/// `(vertices, indices)` needed by [`torus`]: `rings·sides` and `4·rings·sides`.
+/// `(vertices, indices)` needed by [`torus`]: `rings·sides` and `4·rings·sides` (saturating
+/// at `usize::MAX` where they do not fit; see [`torus_sizes_checked`]).
 pub const fn torus_sizes(rings: u16, sides: u16) -> (usize, usize) {
-    let n = rings as usize * sides as usize;
-    (n, 4 * n)
+    let n = (rings as usize).saturating_mul(sides as usize);
+    (n, n.saturating_mul(4))
+}
+
+/// [`torus_sizes`] when [`torus`] accepts the counts: `rings, sides ≥ 3` and
+/// `rings·sides ≤` [`MAX_GENERATED_VERTICES`]; [`MeshError::BadParameters`] otherwise. Call
+/// it before allocating the output slices.
+pub const fn torus_sizes_checked(rings: u16, sides: u16) -> Result<(usize, usize), MeshError> {
+    if rings < 3 || sides < 3 || rings as u64 * sides as u64 > MAX_GENERATED_VERTICES as u64 {
+        return Err(MeshError::BadParameters);
+    }
+    Ok(torus_sizes(rings, sides))
 }
 
 /// A torus about the `y` axis (module doc): `rings ≥ 3` around the axis, `sides ≥ 3` around
@@ -314,6 +360,52 @@ mod tests {
             uv_sphere(u16::MAX, u16::MAX, Coord::ONE, &mut vs, &mut is),
             Err(MeshError::BadParameters)
         );
+    }
+
+    /// Issue "hostile inputs" #6: the checked sizes refuse what the generators refuse, before
+    /// anything is allocated, and agree with them at the vertex limit.
+    #[test]
+    fn checked_sizes_validate_before_allocating() {
+        assert_eq!(
+            uv_sphere_sizes_checked(u16::MAX, u16::MAX),
+            Err(MeshError::BadParameters)
+        );
+        assert_eq!(
+            torus_sizes_checked(u16::MAX, u16::MAX),
+            Err(MeshError::BadParameters)
+        );
+        assert_eq!(
+            hollow_prism_sizes_checked(u16::MAX),
+            Err(MeshError::BadParameters)
+        );
+        for (s, r) in [(2, 5), (5, 1), (0, 0)] {
+            assert_eq!(uv_sphere_sizes_checked(s, r), Err(MeshError::BadParameters));
+        }
+        assert_eq!(torus_sizes_checked(2, 9), Err(MeshError::BadParameters));
+        assert_eq!(hollow_prism_sizes_checked(2), Err(MeshError::BadParameters));
+        // At the limit: 2 + 2·32767 = 65536 vertices; torus 256·256; prism 16384 sides.
+        assert_eq!(
+            uv_sphere_sizes_checked(32767, 3),
+            Ok(uv_sphere_sizes(32767, 3))
+        );
+        assert_eq!(
+            uv_sphere_sizes_checked(32768, 3),
+            Err(MeshError::BadParameters)
+        );
+        assert_eq!(torus_sizes_checked(256, 256), Ok((65536, 4 * 65536)));
+        assert_eq!(torus_sizes_checked(256, 257), Err(MeshError::BadParameters));
+        assert_eq!(hollow_prism_sizes_checked(16384), Ok((65536, 16 * 16384)));
+        assert_eq!(
+            hollow_prism_sizes_checked(16385),
+            Err(MeshError::BadParameters)
+        );
+        // The unchecked sizes saturate instead of wrapping.
+        assert_eq!(torus_sizes(u16::MAX, u16::MAX).0, 65535 * 65535);
+        // The smallest accepted sphere fits its checked sizes exactly.
+        let (nv, ni) = uv_sphere_sizes_checked(3, 2).unwrap();
+        let (mut vs, mut is) = ([Vec3::ZERO; 5], [0u16; 18]);
+        assert_eq!((nv, ni), (5, 18));
+        assert!(uv_sphere(3, 2, Coord::ONE, &mut vs, &mut is).is_ok());
     }
 
     #[test]

@@ -86,11 +86,14 @@ pub struct Edge {
     pub y1: i32,
 }
 
-/// `⌈v / 2^s⌉` for any `v` except `i32::MIN` (arithmetic shift rounds toward −∞, so negate
-/// twice).
+/// `⌈v / 2^s⌉` for **every** `i32` `v` (`i32::MIN` included) and `s < 32`: the floor
+/// `v >> s` (arithmetic shift rounds toward −∞) plus one when a remainder bit is set. No term
+/// can overflow: the floor is at least `i32::MIN / 2^s` and one is added only when
+/// `v ≠ floor·2^s`, so the result lies between `v / 2^s` and `v / 2^s + 1`.
 #[inline(always)]
 pub const fn ceil_shift(v: i32, s: u32) -> i32 {
-    -((-v) >> s)
+    let mask = ((1u32 << s) - 1) as i32; // s < 32; `1 << 31` − 1 as u32 is fine
+    (v >> s) + ((v & mask) != 0) as i32
 }
 
 impl Edge {
@@ -557,5 +560,42 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Issue "hostile inputs" #8: `ceil_shift` (and so `polygon::row_range`) is exact for every
+    /// `i32`, `i32::MIN` included, with no overflow.
+    #[test]
+    fn ceil_shift_is_exact_for_every_i32() {
+        let exact = |v: i32, s: u32| {
+            (v as i64).div_euclid(1 << s) + ((v as i64).rem_euclid(1 << s) != 0) as i64
+        };
+        let mut rng = crate::test_rng::XorShift(0xC311_5A1F_0000_0008);
+        for s in [0u32, 1, 4, 16, 31] {
+            for v in [
+                i32::MIN,
+                i32::MIN + 1,
+                -17,
+                -16,
+                -1,
+                0,
+                1,
+                15,
+                16,
+                i32::MAX - 1,
+                i32::MAX,
+            ] {
+                assert_eq!(ceil_shift(v, s) as i64, exact(v, s), "{v} {s}");
+            }
+            for _ in 0..2000 {
+                let v = rng.next_u64() as i32;
+                assert_eq!(ceil_shift(v, s) as i64, exact(v, s), "{v} {s}");
+            }
+        }
+        use crate::raster::{polygon::row_range, SubpixelPoint};
+        let p = |x: i32, y: i32| SubpixelPoint::<4>::new(x, y);
+        assert_eq!(
+            row_range(&[p(0, i32::MIN), p(0, i32::MAX)]),
+            (-(1 << 27), 1 << 27)
+        );
     }
 }

@@ -334,6 +334,29 @@ impl Bresenham {
         })
     }
 
+    /// The last pixel the iterator will yield (the current one when a single pixel remains).
+    ///
+    /// After `L = steps_left` major moves from `point`, the error has received `L·2a`; with
+    /// `r = error + 2n ∈ [0, 2n)`, the minor moves taken are `⌊(r + L·2a) / 2n⌋` (at most one
+    /// per step, since `2a ≤ 2n`). `r < 2^33`, `L < 2^32`, `2a ≤ 2^33`: the sum is below
+    /// `2^66`, so it is formed in `u128`; the result is on the segment, so it fits `i32`.
+    fn last_point(&self) -> Point {
+        let l = self.steps_left as i64;
+        if l == 0 || self.error_step_minor == 0 {
+            return self.point;
+        }
+        let r = (self.error + self.error_step_minor) as u128;
+        let minor_moves = ((r + l as u128 * self.error_step_major as u128)
+            / self.error_step_minor as u128) as i64;
+        let at = |p: i32, major: i32, minor: i32| {
+            (p as i64 + major as i64 * l + minor as i64 * minor_moves) as i32
+        };
+        Point::new(
+            at(self.point.x, self.major_step.x, self.minor_step.x),
+            at(self.point.y, self.major_step.y, self.minor_step.y),
+        )
+    }
+
     /// Pixels not yet yielded (up to `2^32` for a closed line across the whole `i32` range).
     pub fn remaining(&self) -> u64 {
         if self.done {
@@ -427,26 +450,36 @@ pub fn draw_line_with_ends(
 impl Bresenham {
     /// Writes every remaining pixel into `fb` with one tight loop: the pixel's offset in the
     /// buffer moves by a precomputed major (and, on error overflow, minor) stride, so a pixel
-    /// costs a store, two adds, a compare and the loop test. Pixels must lie in the frame
-    /// (true for [`Bresenham::clipped`] against `fb.window()`); a pixel outside it ends the
-    /// line instead of writing out of bounds. Lines whose error terms exceed `i32` (end points
-    /// farther apart than 2^30) take the iterator instead.
+    /// costs a store, two adds, a compare and the loop test.
+    ///
+    /// Writes exactly the remaining pixels of the line that `fb` holds (its window, bands
+    /// included); pixels outside it are skipped, never written elsewhere (not into another
+    /// row, nor into the padding of a buffer whose stride exceeds its width). The tight loop
+    /// runs when the line's first and last remaining pixels are both in the window — then
+    /// every pixel between them is, since both coordinates move monotonically — which is
+    /// always true for [`Bresenham::clipped`] against `fb.window()`. Otherwise, and for lines
+    /// whose error terms exceed `i32` (end points farther apart than 2^30), each pixel goes
+    /// through the checked [`Framebuffer::set_pixel`].
     pub fn draw(self, fb: &mut Framebuffer<'_>, index: u8) {
         if self.done {
             return;
         }
         let fits = |v: i64| v.unsigned_abs() < 1 << 30;
-        if !(fits(self.error) && fits(self.error_step_major) && fits(self.error_step_minor)) {
+        let window = fb.window();
+        let inside = |p: Point| window.contains(p.x, p.y);
+        let fast = fits(self.error)
+            && fits(self.error_step_major)
+            && fits(self.error_step_minor)
+            && inside(self.point)
+            && inside(self.last_point());
+        if !fast {
             for p in self {
                 fb.set_pixel(p.x, p.y, index);
             }
             return;
         }
-        let (width, stride, top) = (fb.width() as i32, fb.stride() as isize, fb.top());
+        let (stride, top) = (fb.stride() as isize, fb.top());
         let (x, y) = (self.point.x, self.point.y - top);
-        if x < 0 || x >= width || y < 0 {
-            return;
-        }
         let offset = |p: Point| (p.x as isize + p.y as isize * stride) as usize;
         let start = (y as isize * stride + x as isize) as usize;
         let steps = BresenhamSteps {
@@ -706,5 +739,79 @@ mod tests {
             }
         }
         assert!(draw_line(&mut fb, Point::new(0, 0), Point::new(MAX_COORD + 1, 0), 1).is_err());
+    }
+
+    /// Issue "hostile inputs" #4: an unclipped line partly outside the frame writes only its
+    /// own pixels that the frame holds: not row 0 for (1,1)→(−6,1) on a 4×3 frame, nothing in
+    /// the padding of a buffer whose stride exceeds its width.
+    #[test]
+    fn unclipped_draw_writes_only_the_lines_pixels_in_the_frame() {
+        let mut buf = [0u8; 12];
+        let mut fb = Framebuffer::new(&mut buf, 4, 3).unwrap();
+        Bresenham::new(Point::new(1, 1), Point::new(-6, 1)).draw(&mut fb, 7);
+        assert_eq!(buf, [0, 0, 0, 0, 7, 7, 0, 0, 0, 0, 0, 0]);
+
+        let mut rng = crate::test_rng::XorShift(0xB2E5_3A17_0D1C_44F1);
+        let (w, h) = (5usize, 4usize);
+        for i in 0..20000 {
+            // Even cases: stride 8 > width 5, rows 0..4; odd ones: a band of rows 3..7.
+            let (stride, top) = if i % 2 == 0 { (8usize, 0i32) } else { (w, 3) };
+            let mut r = |m: u64| (rng.next_u64() % m) as i32;
+            let span = [12, 40, 1 << 12][i % 3];
+            let p0 = Point::new(r(span as u64) - span / 2, r(span as u64) - span / 2 + top);
+            let p1 = Point::new(r(span as u64) - span / 2, r(span as u64) - span / 2 + top);
+            let ends = if i % 4 < 2 {
+                Ends::Closed
+            } else {
+                Ends::HalfOpen
+            };
+            let mut line = Bresenham::with_ends(p0, p1, ends);
+            // Sometimes start part-way along the line.
+            for _ in 0..r(3) {
+                line.next();
+            }
+            let mut want = [0u8; 8 * 4];
+            for p in line.clone() {
+                let (x, y) = (p.x, p.y - top);
+                if (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
+                    want[y as usize * stride + x as usize] = 1;
+                }
+            }
+            let mut got = [0u8; 8 * 4];
+            let mut fb = if top == 0 {
+                Framebuffer::with_stride(&mut got, w as u16, h as u16, stride).unwrap()
+            } else {
+                Framebuffer::band(&mut got[..w * h], w as u16, h as u16, top as u16).unwrap()
+            };
+            line.draw(&mut fb, 1);
+            assert_eq!(got, want, "{p0:?} -> {p1:?} {ends:?}");
+        }
+    }
+
+    #[test]
+    fn last_point_is_the_last_pixel_yielded() {
+        let mut rng = crate::test_rng::XorShift(0x1A57_9017_7000_0001);
+        for i in 0..5000 {
+            let shift = [1, 20, 25][i % 3];
+            let mut r = || (rng.next_u64() as i32) >> shift;
+            let (p0, p1) = (Point::new(r(), r()), Point::new(r(), r()));
+            let line = if shift == 1 {
+                // Long lines (up to 2^31 pixels): clipped to a small window around p1, so the
+                // state starts mid-line and few pixels remain.
+                let (p0, p1) = (p0 / 2, p1 / 2); // within ±2^29: clipping's range
+                let w = Window::new(p1.x - 20, p1.y - 20, p1.x + 20, p1.y + 20);
+                assert_eq!(Bresenham::new(p0, p1).last_point(), p1);
+                Bresenham::clipped(p0, p1, Ends::Closed, &w).unwrap()
+            } else {
+                Bresenham::new(p0, p1)
+            };
+            assert_eq!(
+                Some(line.last_point()),
+                line.clone().last(),
+                "{p0:?} {p1:?}"
+            );
+        }
+        let far = Bresenham::new(Point::new(i32::MIN, i32::MIN), Point::new(i32::MAX, 5));
+        assert_eq!(far.last_point(), Point::new(i32::MAX, 5));
     }
 }

@@ -180,6 +180,20 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
             end_row: i32,
             side: EdgeSide,
         }
+        impl<W: EdgeWalker> Active<W> {
+            /// The row's winding event position: `xG` for a left edge, `xD + 1` for a right one.
+            #[inline(always)]
+            fn key(&self) -> i32 {
+                match self.side {
+                    EdgeSide::Left => self.walker.x(),
+                    EdgeSide::Right => self.walker.x() + 1,
+                }
+            }
+        }
+        // The active edges stay sorted by their event position from row to row: a row only
+        // reorders edges that cross, so the insertion sort below costs O(n + crossings), and
+        // it hands over to an O(n log n) sort when a row holds many inversions (many new or
+        // crossing edges), so no row costs more than O(n log n) (n = active edges).
         let mut active: Vec<Active<W>, MAX_EDGES> = Vec::new();
         let mut ends: Vec<(i32, i8), MAX_EDGES> = Vec::new();
         let mut y = first_row;
@@ -196,27 +210,26 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
                     side,
                 });
             }
-            // Collect this row's ends as winding events: +1 at xG, −1 at xD + 1.
+            // This row's ends as winding events, sorted: +1 at xG, −1 at xD + 1.
+            sort_nearly_sorted(&mut active, Active::key);
             ends.clear();
             for a in active.iter() {
                 let ev = match a.side {
-                    EdgeSide::Left => (a.walker.x(), 1),
-                    EdgeSide::Right => (a.walker.x() + 1, -1),
+                    EdgeSide::Left => (a.key(), 1),
+                    EdgeSide::Right => (a.key(), -1),
                 };
                 let _ = ends.push(ev);
             }
-            insertion_sort(&mut ends);
             emit_row(y, &ends, window, &mut emit);
-            // Step, retiring edges whose last row this was.
-            let mut i = 0;
-            while i < active.len() {
-                if active[i].end_row <= y + 1 {
-                    active.swap_remove(i);
+            // Step, retiring edges whose last row this was (keeping the others' order).
+            active.retain_mut(|a| {
+                if a.end_row <= y + 1 {
+                    false
                 } else {
-                    active[i].walker.step();
-                    i += 1;
+                    a.walker.step();
+                    true
                 }
-            }
+            });
             y += 1;
             if active.is_empty() {
                 // Skip empty rows up to the next edge (a polygon with a gap between parts).
@@ -228,16 +241,24 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
     }
 }
 
-/// Sorts a row's few ends; insertion sort is fastest for the handful a row holds.
-fn insertion_sort(v: &mut [(i32, i8)]) {
+/// Sorts `v` by `key`, fast when it is nearly sorted (the active edges of the previous row):
+/// insertion sort, O(n + inversions), fastest for the handful of edges a row usually holds;
+/// after `4n + 16` moves it hands over to `sort_unstable_by_key` (O(n log n)), so a row never
+/// costs more than O(n log n). Equal keys may end in any order (the row's events at one
+/// position are applied together).
+fn sort_nearly_sorted<T>(v: &mut [T], key: impl Fn(&T) -> i32) {
+    let mut budget = 4 * v.len() + 16;
     for i in 1..v.len() {
-        let cur = v[i];
         let mut j = i;
-        while j > 0 && v[j - 1].0 > cur.0 {
-            v[j] = v[j - 1];
+        while j > 0 && key(&v[j - 1]) > key(&v[j]) {
+            if budget == 0 {
+                v.sort_unstable_by_key(|t| key(t));
+                return;
+            }
+            budget -= 1;
+            v.swap(j - 1, j);
             j -= 1;
         }
-        v[j] = cur;
     }
 }
 
@@ -281,7 +302,8 @@ pub fn fill_polygon<const S: u32, const MAX_EDGES: usize>(
     Ok(())
 }
 
-/// The rows `⌈y_min⌉ .. ⌈y_max⌉` a polygon's edges can cover (helper for callers sizing bands).
+/// The rows `⌈y_min⌉ .. ⌈y_max⌉` a polygon's edges can cover (helper for callers sizing bands);
+/// exact for any `i32` coordinates, not only the fill's range ([`ceil_shift`]).
 pub fn row_range<const S: u32>(vertices: &[SubpixelPoint<S>]) -> (i32, i32) {
     let lo = vertices.iter().map(|p| p.y).min().unwrap_or(0);
     let hi = vertices.iter().map(|p| p.y).max().unwrap_or(0);
@@ -383,5 +405,33 @@ mod tests {
         e.fill_with::<IncrementalWalker, 4>(&w, |s| b.push(s).unwrap());
         assert!(!a.is_empty());
         assert_eq!(a, b);
+    }
+
+    /// Issue "hostile inputs" #10: the active-edge sort is a correct sort whatever the input
+    /// (nearly sorted, reversed, random, with ties), and its budget bounds the work.
+    #[test]
+    fn nearly_sorted_sort_sorts_everything() {
+        let mut rng = crate::test_rng::XorShift(0x50A7_ED00_0000_0010);
+        for i in 0..2000 {
+            let n = (rng.next_u64() % 200) as usize;
+            let mut v: Vec<(i32, u16), 200> = Vec::new();
+            for k in 0..n {
+                let x = match i % 4 {
+                    0 => k as i32 + (rng.next_u64() % 3) as i32, // nearly sorted
+                    1 => -(k as i32),                            // reversed
+                    2 => (rng.next_u64() % 8) as i32,            // many ties
+                    _ => rng.next_u64() as i32,                  // random
+                };
+                let _ = v.push((x, k as u16));
+            }
+            let mut want = v.clone();
+            want.sort_unstable();
+            sort_nearly_sorted(&mut v, |t| t.0);
+            let keys = |v: &[(i32, u16)]| -> Vec<i32, 200> { v.iter().map(|t| t.0).collect() };
+            assert_eq!(keys(&v), keys(&want));
+            let mut ids: Vec<u16, 200> = v.iter().map(|t| t.1).collect();
+            ids.sort_unstable();
+            assert!(ids.iter().enumerate().all(|(k, &id)| id == k as u16));
+        }
     }
 }

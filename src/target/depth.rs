@@ -6,6 +6,14 @@
 //! top bits, so one code path serves both widths: `u16` resolves 1/65 536 of the depth range,
 //! `u32` 1/4 294 967 296. The test is strict, nearer wins (course algorithm 3.3, TIPE §2):
 //! equal depths keep the first surface drawn.
+//!
+//! **Every surface inside `[near, far]` can win against the cleared buffer.** A stored depth is
+//! at most `FAR − 1`: [`DepthValue::from_depth32`] keeps the top bits and lowers the one value
+//! that would equal `FAR` (`u16`: the last step, 32-bit depths `≥ 2^32 − 2^16`, i.e. surfaces
+//! within `Δz ≈ z²(far − near)/(far·near·2^16)` of `far`; `u32`: the depth `2^32 − 1` of a
+//! point at `far` or within the projection's rounding of it) to `FAR − 1`. Those surfaces used
+//! to store `FAR` and never pass the strict test against the clear, so they vanished; every
+//! other depth is stored unchanged (the same pictures). The cost is one `min` per stored pixel.
 
 use super::{check_layout, TargetError};
 
@@ -15,7 +23,8 @@ pub trait DepthValue: Copy + Ord + core::fmt::Debug + 'static {
     const FAR: Self;
     /// Bits stored per sample.
     const BITS: u32;
-    /// Keeps the top [`Self::BITS`] bits of a 32-bit depth (smaller is nearer).
+    /// Keeps the top [`Self::BITS`] bits of a 32-bit depth (smaller is nearer), at most
+    /// `FAR − 1` so that the surface can win against the cleared value (module doc).
     fn from_depth32(d: u32) -> Self;
     /// Sets every sample of `dst` to [`Self::FAR`] ([`DepthBuffer::clear`]). `u16` and `u32`
     /// write 32 bytes per loop iteration as runs of word stores.
@@ -30,7 +39,7 @@ impl DepthValue for u16 {
     const BITS: u32 = 16;
     #[inline(always)]
     fn from_depth32(d: u32) -> Self {
-        (d >> 16) as u16
+        ((d >> 16) as u16).min(u16::MAX - 1)
     }
     #[inline]
     fn fill_far(dst: &mut [Self]) {
@@ -43,7 +52,7 @@ impl DepthValue for u32 {
     const BITS: u32 = 32;
     #[inline(always)]
     fn from_depth32(d: u32) -> Self {
-        d
+        d.min(u32::MAX - 1)
     }
     #[inline]
     fn fill_far(dst: &mut [Self]) {

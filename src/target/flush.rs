@@ -4,6 +4,14 @@
 //! `fill_contiguous` is the call display drivers (mipidsi, ssd1306, the simulator) implement as
 //! one address-window set-up followed by a stream of pixels, so a flush costs one window per
 //! call, not one per pixel. An optional dirty rectangle limits the transfer to changed pixels.
+//!
+//! ## Dirty rectangles
+//! Any `Rectangle` is accepted: its position is any `Point` (`i32`) and its size any `Size`
+//! (`u32`), so its far corner may lie past `i32::MAX`. The region sent is the intersection of
+//! the rectangle with the frame's window, computed in `i64` (`x0 + width < 2^31 + 2^32`), so
+//! no size overflows and the display is never told to fill more pixels than are streamed: the
+//! area passed to `fill_contiguous` is exactly the rows × columns whose colours follow. An empty
+//! intersection (a rectangle beside the frame, or of zero width or height) sends nothing.
 
 use super::{Framebuffer, Lut};
 use embedded_graphics_core::{
@@ -30,20 +38,27 @@ where
     D: DrawTarget<Color = C>,
 {
     let w = frame.window();
-    let full = Rectangle::new(
-        Point::new(w.x0, w.y0),
-        Size::new((w.x1 - w.x0) as u32, (w.y1 - w.y0) as u32),
-    );
-    let area = match dirty {
-        Some(d) => d.intersection(&full),
-        None => full,
-    };
-    let Some(br) = area.bottom_right() else {
+    // The frame's window, and `dirty ∩ window` in i64: a `Size` up to u32::MAX added to an
+    // i32 corner cannot overflow there (embedded-graphics' own intersection works in i32).
+    let (mut x0, mut y0, mut x1, mut y1) = (w.x0 as i64, w.y0 as i64, w.x1 as i64, w.y1 as i64);
+    if let Some(d) = dirty {
+        let (dx, dy) = (d.top_left.x as i64, d.top_left.y as i64);
+        x0 = x0.max(dx);
+        y0 = y0.max(dy);
+        x1 = x1.min(dx + d.size.width as i64);
+        y1 = y1.min(dy + d.size.height as i64);
+    }
+    if x0 >= x1 || y0 >= y1 {
         return Ok(());
-    };
-    let (x0, x1) = (area.top_left.x as usize, br.x as usize + 1);
-    let colours = (area.top_left.y..=br.y)
+    }
+    // Inside the window now: 0 ≤ x0 < x1 ≤ width and top ≤ y0 < y1 ≤ top + height, all i32.
+    let area = Rectangle::new(
+        Point::new(x0 as i32, y0 as i32),
+        Size::new((x1 - x0) as u32, (y1 - y0) as u32),
+    );
+    let (c0, c1) = (x0 as usize, x1 as usize);
+    let colours = (y0 as i32..y1 as i32)
         .filter_map(|y| frame.row(y))
-        .flat_map(|row| row[x0..x1].iter().map(|&i| lut.get(i)));
+        .flat_map(move |row| row.get(c0..c1).unwrap_or(&[]).iter().map(|&i| lut.get(i)));
     display.fill_contiguous(&area, colours)
 }

@@ -176,6 +176,7 @@ pub fn draw(fb: &mut Framebuffer<'_>, prims: &[Primitive]) -> Result<(), CliErro
 /// Runs `zscan lines`.
 pub fn run(args: LinesArgs) -> Result<(), CliError> {
     let (w, h) = (args.width, args.height);
+    super::check_picture_size("--width/--height", w, h)?;
     let mut pixels = vec![0u8; w as usize * h as usize];
     let mut fb = Framebuffer::new(&mut pixels, w, h)
         .map_err(|e| format!("cannot make a {w}×{h} frame: {e}"))?;

@@ -271,14 +271,44 @@ pub struct LightKey {
 }
 
 /// An object's `material`: a palette ramp index, or a table with the ramp and the reflection
-/// coefficients of the core's lighting model.
+/// coefficients of the core's lighting model. Read through [`toml::Value`] so that a bad value
+/// gets a message with the range (`0..=255`) instead of serde's "did not match any variant".
 #[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(untagged)]
+#[serde(try_from = "toml::Value")]
 pub enum MaterialKey {
     /// Index of the material's ramp in a shaded LUT (lit by `[light]`, SCENES.md's model).
     Ramp(u8),
     /// Lit by the core with `[lighting]`: `{ ramp, ka, kd, ks, n }`.
     Lit(LitMaterialKey),
+}
+
+impl TryFrom<toml::Value> for MaterialKey {
+    type Error = String;
+
+    fn try_from(v: toml::Value) -> Result<Self, String> {
+        match v {
+            toml::Value::Integer(i) => u8::try_from(i)
+                .map(MaterialKey::Ramp)
+                .map_err(|_| format!("material = {i} is outside the ramp indices 0..=255")),
+            toml::Value::Table(t) => {
+                if let Some(r) = t.get("ramp") {
+                    if !matches!(r, toml::Value::Integer(i) if (0..=255).contains(i)) {
+                        return Err(format!(
+                            "material ramp = {r} is outside the ramp indices 0..=255"
+                        ));
+                    }
+                }
+                toml::Value::Table(t)
+                    .try_into::<LitMaterialKey>()
+                    .map(MaterialKey::Lit)
+                    .map_err(|e| format!("material table: {}", e.message()))
+            }
+            other => Err(format!(
+                "material must be a ramp index 0..=255 or a table {{ ramp, ka, kd, ks, n }}, \
+                 got {other}"
+            )),
+        }
+    }
 }
 
 impl Default for MaterialKey {
@@ -688,7 +718,13 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
         "sphere" => {
             let (s, r) = (o.segments.unwrap_or(32), o.rings.unwrap_or(16));
             let radius = positive("radius", o.radius.unwrap_or(1.0))?;
-            let (nv, ni) = generators::uv_sphere_sizes(s, r);
+            let (nv, ni) = generators::uv_sphere_sizes_checked(s, r).map_err(|_| {
+                format!(
+                    "sphere needs segments ≥ 3, rings ≥ 2 and 2 + (rings − 1)·segments ≤ {} \
+                     vertices, got segments = {s}, rings = {r}",
+                    generators::MAX_GENERATED_VERTICES
+                )
+            })?;
             let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
             generators::uv_sphere(s, r, radius, &mut vs, &mut is)
                 .map(from_core)
@@ -698,7 +734,13 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
             let (r, s) = (o.rings.unwrap_or(24), o.sides.unwrap_or(12));
             let major = positive("major", o.major.unwrap_or(1.0))?;
             let minor = positive("minor", o.minor.unwrap_or(0.35))?;
-            let (nv, ni) = generators::torus_sizes(r, s);
+            let (nv, ni) = generators::torus_sizes_checked(r, s).map_err(|_| {
+                format!(
+                    "torus needs rings, sides ≥ 3 and rings·sides ≤ {} vertices, \
+                     got rings = {r}, sides = {s}",
+                    generators::MAX_GENERATED_VERTICES
+                )
+            })?;
             let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
             generators::torus(r, s, major, minor, &mut vs, &mut is)
                 .map(from_core)
@@ -709,7 +751,12 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
             let outer = positive("outer", o.outer.unwrap_or(1.0))?;
             let inner = positive("inner", o.inner.unwrap_or(0.8))?;
             let hh = positive("half_height", o.half_height.unwrap_or(1.0))?;
-            let (nv, ni) = generators::hollow_prism_sizes(s);
+            let (nv, ni) = generators::hollow_prism_sizes_checked(s).map_err(|_| {
+                format!(
+                    "prism needs 3 ≤ sides ≤ {}, got sides = {s}",
+                    generators::MAX_GENERATED_VERTICES / 4
+                )
+            })?;
             let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
             generators::hollow_prism(s, outer, inner, hh, &mut vs, &mut is)
                 .map(from_core)
@@ -850,6 +897,11 @@ fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, St
             crate::obj::ObjErrorKind::Io(msg) => {
                 format!("mesh (line {}): cannot read {msg}", at(p))
             }
+            crate::obj::ObjErrorKind::FileTooLarge(_) => format!(
+                "mesh (line {}): {}",
+                at(p),
+                e.to_string().trim_start_matches("line 0: ")
+            ),
             _ => format!("mesh (line {}): {}: {e}", at(p), path.display()),
         })?;
         (path, p, mesh)
@@ -953,6 +1005,56 @@ fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
     Ok(o)
 }
 
+/// Largest magnitude of a camera or principal-point value: the core's I16F16 holds
+/// `−32768 ≤ v < 32768`; values are rounded to 2^-16 once.
+pub const MAX_CAMERA_VALUE: f64 = 32767.0;
+
+/// `v` as the core's I16F16, or an error naming `field`, the value and the range
+/// `lo..=hi` (both within ±[`MAX_CAMERA_VALUE`]); never a silent clamp.
+fn fixed_in(
+    field: &str,
+    v: f64,
+    lo: f64,
+    hi: f64,
+) -> Result<zscan::geometry::fixed::Coord, String> {
+    if !(v.is_finite() && lo <= v && v <= hi) {
+        return Err(format!(
+            "{field} = {v} is outside the supported range {lo}..={hi}"
+        ));
+    }
+    Ok(coord(v))
+}
+
+/// A point or vector of `[camera]`, each coordinate within ±[`MAX_CAMERA_VALUE`].
+fn camera_point(field: &str, a: [f64; 3]) -> Result<Vec3, String> {
+    let m = MAX_CAMERA_VALUE;
+    let mut c = [zscan::geometry::fixed::Coord::ZERO; 3];
+    for (k, slot) in c.iter_mut().enumerate() {
+        *slot = fixed_in(&format!("[camera] {field}[{k}]"), a[k], -m, m)?;
+    }
+    Ok(Vec3::new(c[0], c[1], c[2]))
+}
+
+/// Words for the core's camera errors (the core's enum has no `Display` in this tree).
+fn camera_error_words(e: zscan::geometry::camera::CameraError) -> String {
+    use zscan::geometry::camera::CameraError as E;
+    match e {
+        E::ZeroViewDirection => "eye and target are the same point (no view direction)".into(),
+        E::UpParallelToView => "`up` is zero or parallel to the view direction".into(),
+        E::FovOutOfRange => "fov_deg is not strictly between 0 and 180 degrees".into(),
+        E::FocalTooLong => {
+            "the field of view is so narrow that a focal length reaches 32768 pixels".into()
+        }
+        E::BadViewport => "the viewport's image extent (size × pixel_aspect) exceeds 2^20 \
+             physical units, or a size is zero"
+            .into(),
+        E::BadDepthRange => "near and far do not satisfy 0 < near < far in I16F16".into(),
+        E::OutOfRange => "a derived position or distance (eye − target, focal length) leaves \
+             the core's range ±32768"
+            .into(),
+    }
+}
+
 fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String> {
     if !(c.fov_deg.is_finite() && c.fov_deg > 0.0 && c.fov_deg < 180.0) {
         return Err(format!(
@@ -960,18 +1062,23 @@ fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String
             c.fov_deg
         ));
     }
-    if !(c.near.is_finite() && c.near > 0.0 && c.far.is_finite() && c.far > c.near) {
+    // near ≥ 2^-16 (the smallest positive I16F16), far ≤ 32767, and still near < far after
+    // rounding to 2^-16.
+    let min_near = 1.0 / 65536.0;
+    let near = fixed_in("[camera] near", c.near, min_near, MAX_CAMERA_VALUE)?;
+    let far = fixed_in("[camera] far", c.far, min_near, MAX_CAMERA_VALUE)?;
+    if far <= near {
         return Err(format!(
-            "[camera] needs 0 < near < far, got near = {}, far = {}",
+            "[camera] needs near < far (after rounding to 1/65536), got near = {}, far = {}",
             c.near, c.far
         ));
     }
-    if ![c.eye, c.target, c.up].iter().all(|p| finite(p)) {
-        return Err("[camera] eye, target and up must be finite".into());
-    }
-    if v.width == 0 || v.height == 0 {
-        return Err("[viewport] width and height must be positive".into());
-    }
+    let (eye, target, up) = (
+        camera_point("eye", c.eye)?,
+        camera_point("target", c.target)?,
+        camera_point("up", c.up)?,
+    );
+    super::check_picture_size("[viewport] width × height", v.width, v.height)?;
     if v.pixel_aspect.contains(&0) {
         return Err("[viewport] pixel_aspect entries must be positive".into());
     }
@@ -985,22 +1092,23 @@ fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String
             FovAxisKey::Horizontal => FovAxis::Horizontal,
             FovAxisKey::Diagonal => FovAxis::Diagonal,
         },
-        near: coord(c.near),
-        far: coord(c.far),
+        near,
+        far,
     };
     let mut vp = Viewport::new(v.width, v.height);
     if let Some([px, py]) = v.principal {
-        if !finite(&[px, py]) {
-            return Err("[viewport] principal must be finite".into());
-        }
-        vp.principal_x = coord(px);
-        vp.principal_y = coord(py);
+        let m = MAX_CAMERA_VALUE;
+        vp.principal_x = fixed_in("[viewport] principal[0]", px, -m, m)?;
+        vp.principal_y = fixed_in("[viewport] principal[1]", py, -m, m)?;
     }
     vp.pixel_width = v.pixel_aspect[0];
     vp.pixel_height = v.pixel_aspect[1];
-    let p = |a: [f64; 3]| Vec3::new(coord(a[0]), coord(a[1]), coord(a[2]));
-    Camera::look_at(p(c.eye), p(c.target), p(c.up), lens, vp)
-        .map_err(|e| format!("[camera]: cannot build the camera: {e:?}"))
+    Camera::look_at(eye, target, up, lens, vp).map_err(|e| {
+        format!(
+            "[camera]: cannot build the camera: {}",
+            camera_error_words(e)
+        )
+    })
 }
 
 fn build_lut(l: &LutSection) -> Result<(Lut<Rgb888>, Vec<LuminanceRamp>), String> {
@@ -1152,13 +1260,35 @@ pub struct Frame<D> {
 
 impl LoadedScene {
     /// Renders the frame with the core, in one pass or in bands of `band_rows` rows.
+    ///
+    /// Errors are in words ([`render_error_words`]); when the frame fails, each object is
+    /// rendered alone to name the first one that fails by itself (`object k of n`).
     pub fn render<D: DepthValue>(&self, band_rows: Option<u16>) -> Result<Frame<D>, String> {
+        self.render_objects::<D>(band_rows, None).map_err(|e| {
+            let n = self.objects.len();
+            let culprit = (0..n).find(|&k| self.render_objects::<D>(band_rows, Some(k)).is_err());
+            match culprit {
+                Some(k) if n > 1 => format!("render: object {} of {n}: {e}", k + 1),
+                Some(_) => format!("render: object 1: {e}"),
+                None => format!("render: {e}"),
+            }
+        })
+    }
+
+    /// [`LoadedScene::render`] of every object, or of object `only` alone.
+    fn render_objects<D: DepthValue>(
+        &self,
+        band_rows: Option<u16>,
+        only: Option<usize>,
+    ) -> Result<Frame<D>, String> {
         let vp = *self.camera.viewport();
         let (w, h) = (vp.width, vp.height);
+        super::check_picture_size("[viewport] width × height", w, h)?;
         let objects = self
             .objects
             .iter()
             .enumerate()
+            .filter(|(k, _)| only.is_none_or(|o| o == *k))
             .map(|(k, o)| o.object().map_err(|e| format!("object {}: {e}", k + 1)))
             .collect::<Result<Vec<_>, _>>()?;
         let scene = Scene {
@@ -1168,8 +1298,8 @@ impl LoadedScene {
             ambient: self.ambient,
             lights: &self.lights,
         };
-        let renderer =
-            Renderer::<SUBPIXEL_BITS>::for_scene(&scene).map_err(|e| format!("camera: {e}"))?;
+        let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
+            .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
         // The vertex stage once per frame and the polygon table (render_in_bands' faster
         // switches): scratch for every object's vertices and polygons.
         let vertices: usize = objects.iter().map(|o| o.mesh.vertices().len()).sum();
@@ -1188,13 +1318,77 @@ impl LoadedScene {
                 polygons: &mut table,
             },
         )
-        .map_err(|e| format!("render: {e}"))?;
+        .map_err(|e| render_error_words(&e))?;
         Ok(Frame {
             pixels,
             depth,
             stats,
             bands,
         })
+    }
+}
+
+/// Words for a core [`RenderError`](zscan::render::RenderError), naming the limit that was
+/// reached (the core's own `Display` prints some inner errors by their Debug names).
+pub fn render_error_words(e: &zscan::render::RenderError) -> String {
+    use zscan::clip::frustum::ClipError;
+    use zscan::geometry::matrix::MatrixError;
+    use zscan::project::ProjectError;
+    use zscan::render::{RenderError as R, MAX_POLYGON_VERTICES};
+    use zscan::shade::lighting::LightingError;
+    use zscan::shade::span_writer::DrawError;
+    let matrix = |m: &MatrixError| match m {
+        MatrixError::OutOfRange => {
+            "a linear entry would exceed ±64 or a translation would leave ±32768".to_string()
+        }
+        MatrixError::ZeroAxis => "a rotation axis is the zero vector".into(),
+        MatrixError::NotRigid => "the view's linear part is not a rotation".into(),
+    };
+    match e {
+        R::Transform(m) => format!("transform: {}", matrix(m)),
+        R::Projection(p) => match p {
+            ProjectError::BehindNearPlane => {
+                "projection: a vertex is nearer than the near plane".into()
+            }
+            ProjectError::OutOfRange => format!(
+                "projection: a vertex projects outside the raster's range of ±{} sub-pixel units",
+                zscan::raster::edge_walker::MAX_COORD
+            ),
+            ProjectError::SubpixelBitsTooLarge => {
+                "projection: sub-pixel bits above the raster's limit of 16".into()
+            }
+        },
+        R::Clip(c) => match c {
+            ClipError::CapacityExceeded => format!(
+                "clipping: a clipped polygon needs more vertices than the clipper holds \
+                 ({MAX_POLYGON_VERTICES} + 6; non-convex polygons can exceed it)"
+            ),
+            ClipError::PlaneOutOfRange => {
+                "clipping: a frustum plane coefficient exceeds ±8192".into()
+            }
+            #[allow(unreachable_patterns)]
+            other => format!("clipping: {other:?}"),
+        },
+        R::Draw(d) => match d {
+            DrawError::Fill(f) => format!("raster: {f}"),
+            DrawError::TooLarge => "raster: a projected triangle is too large for exact \
+                 attribute interpolation (twice its area must stay below 2^30 sub-pixel units²)"
+                .into(),
+        },
+        R::Lighting(l) => match l {
+            LightingError::TooManyLights => format!(
+                "lighting: more than {} lights",
+                zscan::shade::lighting::MAX_LIGHTS
+            ),
+            LightingError::ZeroDirection => {
+                "lighting: a directional light has a zero direction".into()
+            }
+            LightingError::OutputTooSmall => {
+                "lighting: a normal or scratch table is shorter than the mesh's".into()
+            }
+            LightingError::Transform(m) => format!("lighting transform: {}", matrix(m)),
+        },
+        other => other.to_string(),
     }
 }
 
@@ -1273,7 +1467,18 @@ fn finish<D: DepthValue + Into<u64>>(
         let text = serde_json::to_string_pretty(&json)?;
         fs::write(p, text + "\n").map_err(|e| format!("{}: {e}", p.display()))?;
     }
+    println!("{}", summary(&args.output, w, h, &frame.stats));
     Ok(())
+}
+
+/// The one-line summary `zscan render` prints on success.
+pub fn summary(output: &Path, w: u16, h: u16, stats: &RenderStats) -> String {
+    format!(
+        "wrote {}: {w}×{h}, {} triangles drawn, {} pixels covered",
+        output.display(),
+        stats.triangles_drawn,
+        stats.pixels_covered
+    )
 }
 
 /// Runs `zscan render`.

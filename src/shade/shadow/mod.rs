@@ -155,6 +155,18 @@ pub enum ShadowError {
     /// The frame and the depth buffer differ in size or rows, or do not fit the camera's
     /// viewport, or the viewport is too wide for the back-projection (`|i − i0| ≥ 2^16`).
     FrameMismatch,
+    /// A pixel given to [`ShadowPass::observer_point`] or [`ShadowPass::classify_pixel`] is
+    /// outside the camera's viewport `0 ≤ x < width`, `0 ≤ y < height`.
+    PixelOutOfRange {
+        /// The pixel's column.
+        x: i32,
+        /// The pixel's row.
+        y: i32,
+        /// The viewport's width.
+        width: u16,
+        /// The viewport's height.
+        height: u16,
+    },
 }
 
 impl core::fmt::Display for ShadowError {
@@ -192,6 +204,16 @@ impl core::fmt::Display for ShadowError {
                 f,
                 "frame, depth buffer and camera viewport do not match, or the viewport is too \
                  wide for the back-projection (|i − i0| ≥ 2^16)"
+            ),
+            ShadowError::PixelOutOfRange {
+                x,
+                y,
+                width,
+                height,
+            } => write!(
+                f,
+                "pixel ({x}, {y}) is outside the camera's {width}×{height} viewport \
+                 (0 ≤ x < {width}, 0 ≤ y < {height})"
             ),
         }
     }

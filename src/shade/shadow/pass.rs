@@ -30,9 +30,9 @@
 //! 5. [`ShadowMap::classify_light_frame`]; the pixel's index becomes `remap(index, lit)`.
 //!
 //! ## Conventions
-//! - Pixels whose depth is still [`DepthValue::FAR`] (background after the clear; also a
-//!   surface drawn within the last `u16` step before the far plane) are left alone: `remap`
-//!   is not called for them.
+//! - Pixels whose depth is still [`DepthValue::FAR`] (background after the clear; a drawn
+//!   surface stores at most `FAR − 1`, see [`target::depth`](crate::target::depth)) are left
+//!   alone: `remap` is not called for them.
 //! - Pixels are visited row by row from the band's top, left to right; the result depends
 //!   only on the pixel's position, depth and index, so a picture processed band by band is
 //!   identical to the same picture processed in one pass (tested).
@@ -199,8 +199,34 @@ impl<'m, 'a, M: DepthValue> ShadowPass<'m, 'a, M> {
 
     /// The observer-frame point seen at pixel `(x, y)` (absolute picture coordinates) whose
     /// 32-bit depth is `depth` (module doc, steps 2–3).
+    ///
+    /// The pixel must lie in the camera's viewport (`0 ≤ x < width`, `0 ≤ y < height`): the
+    /// set-up bounds `|x·2^16 − i0|`, `|y·2^16 − j0|` below `2^32` there, which keeps the
+    /// products below `2^63`. Any other pixel is [`ShadowError::PixelOutOfRange`], returned
+    /// before any arithmetic.
     #[inline]
-    pub fn observer_point(&self, x: i32, y: i32, depth: u32) -> Vec3 {
+    pub fn observer_point(&self, x: i32, y: i32, depth: u32) -> Result<Vec3, ShadowError> {
+        self.check_pixel(x, y)?;
+        Ok(self.observer_point_in(x, y, depth))
+    }
+
+    /// `Ok` when `(x, y)` is in the viewport.
+    #[inline]
+    fn check_pixel(&self, x: i32, y: i32) -> Result<(), ShadowError> {
+        if x < 0 || y < 0 || x >= self.width as i32 || y >= self.height as i32 {
+            return Err(ShadowError::PixelOutOfRange {
+                x,
+                y,
+                width: self.width,
+                height: self.height,
+            });
+        }
+        Ok(())
+    }
+
+    /// [`ShadowPass::observer_point`] for a pixel known to be in the viewport.
+    #[inline]
+    fn observer_point_in(&self, x: i32, y: i32, depth: u32) -> Vec3 {
         let z = self.observer_z(depth) as i64;
         let di = ((x as i64) << 16) - self.i0;
         let dj = self.j0 - ((y as i64) << 16);
@@ -209,10 +235,18 @@ impl<'m, 'a, M: DepthValue> ShadowPass<'m, 'a, M> {
         Vec3::from_bits(saturate_i32(ox), saturate_i32(oy), z as i32)
     }
 
-    /// The shadow test of the point seen at pixel `(x, y)` with 32-bit depth `depth`.
+    /// The shadow test of the point seen at pixel `(x, y)` with 32-bit depth `depth`; the
+    /// pixel must be in the viewport ([`ShadowPass::observer_point`], same error).
     #[inline]
-    pub fn classify_pixel(&self, x: i32, y: i32, depth: u32) -> Visibility {
-        let p = self.observer_point(x, y, depth);
+    pub fn classify_pixel(&self, x: i32, y: i32, depth: u32) -> Result<Visibility, ShadowError> {
+        self.check_pixel(x, y)?;
+        Ok(self.classify_pixel_in(x, y, depth))
+    }
+
+    /// [`ShadowPass::classify_pixel`] for a pixel known to be in the viewport.
+    #[inline]
+    fn classify_pixel_in(&self, x: i32, y: i32, depth: u32) -> Visibility {
+        let p = self.observer_point_in(x, y, depth);
         self.map
             .classify_light_frame(self.to_light.transform_point(p), self.bias)
     }
@@ -248,7 +282,8 @@ impl<'m, 'a, M: DepthValue> ShadowPass<'m, 'a, M> {
                 if s == D::FAR {
                     continue;
                 }
-                let vis = self.classify_pixel(x as i32, y, s.to_depth32());
+                // In the viewport: the frame was checked against it above.
+                let vis = self.classify_pixel_in(x as i32, y, s.to_depth32());
                 stats.tested += 1;
                 stats.shadowed += (vis == Visibility::Shadowed) as u32;
                 stats.outside += (vis == Visibility::Outside) as u32;
@@ -339,7 +374,7 @@ mod tests {
                 s ^= s << 5;
                 let (x, y) = ((s % 160) as i32, ((s >> 8) % 120) as i32);
                 let d = s.min(u32::MAX - 1);
-                let q = pass.observer_point(x, y, d);
+                let q = pass.observer_point(x, y, d).unwrap();
                 let z = q.bits()[2] as f64;
                 let Ok((p, d2)) = projector.project_point(q) else {
                     panic!("{x} {y} {d}: {q:?}");
@@ -350,5 +385,57 @@ mod tests {
                 assert!(((d2 as f64) - d as f64).abs() <= allow, "{d} {d2} {allow}");
             }
         }
+    }
+
+    /// Issue "hostile inputs" #8: a pixel outside the viewport (a far one would overflow the
+    /// `i64` back-projection) is an error, checked before any arithmetic.
+    #[test]
+    fn far_pixels_are_rejected() {
+        let cam = Camera::look_at(
+            Vec3::from_int(0, 0, 5),
+            Vec3::ZERO,
+            Vec3::from_int(0, 1, 0),
+            Lens {
+                fov: Angle::from_degrees(60),
+                axis: FovAxis::Vertical,
+                near: Coord::from_num(0.5),
+                far: Coord::from_num(10),
+            },
+            Viewport::new(160, 120),
+        )
+        .unwrap();
+        let mut store = [0u16; 16];
+        let map = ShadowMap::new(
+            &mut store,
+            4,
+            4,
+            Vec3::from_int(0, 1, 0),
+            Vec3::ZERO,
+            Coord::from_num(4),
+        )
+        .unwrap();
+        let pass = ShadowPass::new(&map, &cam, 0).unwrap();
+        for (x, y) in [
+            (i32::MAX, 0),
+            (0, i32::MIN),
+            (i32::MIN, i32::MAX),
+            (160, 0),
+            (0, 120),
+            (-1, 5),
+        ] {
+            let want = Err(ShadowError::PixelOutOfRange {
+                x,
+                y,
+                width: 160,
+                height: 120,
+            });
+            assert_eq!(pass.observer_point(x, y, 1 << 31), want);
+            assert_eq!(
+                pass.classify_pixel(x, y, 1 << 31),
+                want.map(|_| Visibility::Lit)
+            );
+        }
+        assert!(pass.observer_point(159, 119, 1 << 31).is_ok());
+        assert!(pass.classify_pixel(0, 0, u32::MAX).is_ok());
     }
 }
