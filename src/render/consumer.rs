@@ -25,7 +25,7 @@ use crate::raster::SubpixelPoint;
 use crate::scene::Object;
 use crate::shade::dither::Bayer4;
 use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
-use crate::shade::span_writer::{draw_triangle_on, RasterTarget, WrittenCount};
+use crate::shade::span_writer::{draw_in_range, RasterTarget, WrittenCount};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// One triangle corner handed to a consumer: screen position, depth, observer-frame position
@@ -86,9 +86,9 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 1>
         let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
         let (ramp, shade) = (self.object.ramp, self.object.shade);
         if self.object.dither {
-            draw_triangle_on(self.target, v, values, shade, |x, y| Bayer4::at(ramp, x, y))
+            draw_in_range(self.target, v, values, shade, |x, y| Bayer4::at(ramp, x, y))
         } else {
-            draw_triangle_on(self.target, v, values, shade, |_, _| ramp)
+            draw_in_range(self.target, v, values, shade, |_, _| ramp)
         }
         .map_err(RenderError::Draw)
     }

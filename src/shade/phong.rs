@@ -127,8 +127,9 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     corners: [PhongVertex<S>; 3],
     ctx: &PhongContext<'_>,
 ) -> Result<(u32, u32), DrawError> {
-    let window = super::span_writer::drawable_window(frame, depth);
     let v = corners.map(|c| c.screen);
+    crate::raster::range::check_range(&v).map_err(DrawError::Fill)?;
+    let window = super::span_writer::drawable_window(frame, depth);
     let plane = match AttributePlane::<7, S>::new(v, corners.map(|c| corner_values(&c))) {
         Ok(p) => p,
         Err(PlaneError::Degenerate) => return Ok((0, 0)),

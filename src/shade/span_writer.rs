@@ -39,6 +39,7 @@ use super::tiny_triangle::TinyTriangle;
 use crate::arith::euclid::Divisor;
 use crate::arith::TINY_WRITER;
 use crate::raster::polygon::FillError;
+use crate::raster::range::check_range;
 use crate::raster::triangle::{bounds, fill_triangle};
 use crate::raster::{SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
@@ -229,6 +230,10 @@ pub(crate) const fn plan(
 /// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
 /// target per object and band). The one place that decides which path draws a triangle:
 /// [`plan`], then the set-up of that path.
+///
+/// Vertices outside the raster's range (`|x|, |y| ≤ 2^28 − 1` sub-pixel units, `S ≤ 16`) are
+/// [`DrawError::Fill`] with [`FillError::CoordinateOutOfRange`], checked before any
+/// arithmetic.
 pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
@@ -236,6 +241,25 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
     mode: ShadeMode,
     quantizer_at: impl Fn(i32, i32) -> Q,
 ) -> Result<(u32, u32), DrawError> {
+    check_range(&v).map_err(DrawError::Fill)?;
+    draw_in_range(target, v, values, mode, quantizer_at)
+}
+
+/// [`draw_triangle_on`] for vertices already within the raster's range: the renderer's
+/// consumers call it with projected vertices, which the projector keeps within
+/// `±(2^28 − 1)` (checked there once per vertex, asserted here in checked builds).
+#[inline(always)]
+pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
+    target: &mut RasterTarget<'_, D, C>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    mode: ShadeMode,
+    quantizer_at: impl Fn(i32, i32) -> Q,
+) -> Result<(u32, u32), DrawError> {
+    debug_assert!(
+        check_range(&v).is_ok(),
+        "vertices outside the raster's range"
+    );
     let window = target.window;
     // Luminances above 255 saturate at the vertices: every interpolated value then lies in
     // 0..=255, which the span loops rely on ([`InRange`]).
@@ -715,6 +739,52 @@ mod tests {
             drawn += counts.map_or(0, |(covered, _)| (covered > 0) as u32);
         }
         drawn
+    }
+
+    /// Vertices past the raster's range are an error before any plane arithmetic (the
+    /// products of i32::MIN/MAX coordinates overflowed in the planes' set-up), at every
+    /// extreme and in both builds (the suite runs with overflow checks too).
+    #[test]
+    fn out_of_range_vertices_are_errors_before_set_up() {
+        let mut px = [0u8; 16 * 16];
+        let mut zs = [0u16; 16 * 16];
+        let mut fb = Framebuffer::new(&mut px, 16, 16).unwrap();
+        let mut zb = DepthBuffer::new(&mut zs, 16, 16).unwrap();
+        let p = SubpixelPoint::<4>::new;
+        let far = (1 << 28) - 1;
+        let values = [[1u32 << 20, 10], [1 << 21, 200], [1 << 22, 90]];
+        for bad in [i32::MIN, i32::MAX, far + 1, -far - 1] {
+            for k in 0..3 {
+                let mut v = [p(0, 0), p(160, 0), p(0, 160)];
+                v[k] = if k == 1 { p(bad, 3) } else { p(5, bad) };
+                for mode in [
+                    ShadeMode::Flat,
+                    ShadeMode::GouraudExact,
+                    ShadeMode::GouraudFast,
+                ] {
+                    let r = draw_triangle(&mut fb, &mut zb, v, values, LuminanceRamp::GREY, mode);
+                    assert_eq!(
+                        r,
+                        Err(DrawError::Fill(FillError::CoordinateOutOfRange {
+                            vertex: k
+                        })),
+                        "{bad} at {k}, {mode:?}"
+                    );
+                }
+            }
+        }
+        // The range's ends themselves pass the check (the triangle may still be too large for
+        // the planes: that is the other error, not a range error).
+        let v = [p(far, far), p(-far, far), p(far, -far)];
+        let r = draw_triangle(
+            &mut fb,
+            &mut zb,
+            v,
+            values,
+            LuminanceRamp::GREY,
+            ShadeMode::Flat,
+        );
+        assert!(!matches!(r, Err(DrawError::Fill(_))), "{r:?}");
     }
 
     /// The dispatch decisions, as a table: each row is what the module doc and the span
