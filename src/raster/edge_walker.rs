@@ -112,6 +112,13 @@ impl Edge {
     /// `(num(y) + bias, den)` of the module doc for row `y`, with TIPE's bias for `side`.
     #[inline(always)]
     fn biased_numerator<const S: u32>(&self, y: i32, side: EdgeSide) -> (i64, i64) {
+        // The module's bound: ends within ±MAX_COORD, so |num| < 2^60 below.
+        debug_assert!(
+            [self.x0, self.y0, self.x1, self.y1]
+                .iter()
+                .all(|c| c.unsigned_abs() <= MAX_COORD as u32),
+            "edge ends outside ±MAX_COORD"
+        );
         let dx = self.x1 as i64 - self.x0 as i64;
         let dy = self.y1 as i64 - self.y0 as i64;
         let den = dy << S;

@@ -335,6 +335,12 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     /// Sets up the plane of `values[i]` at vertex `v[i]`.
     #[inline(always)]
     pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Result<Self, PlaneError> {
+        // The raster's range, on which the products below rely (|dx|, |dy| < 2^29).
+        debug_assert!(
+            v.iter()
+                .all(|p| p.x.unsigned_abs() < 1 << 28 && p.y.unsigned_abs() < 1 << 28),
+            "plane vertices outside ±(2^28 − 1)"
+        );
         let (x0, y0) = (v[0].x as i64, v[0].y as i64);
         let (dx1, dy1) = (v[1].x as i64 - x0, v[1].y as i64 - y0);
         let (dx2, dy2) = (v[2].x as i64 - x0, v[2].y as i64 - y0);
@@ -554,7 +560,9 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         }
         let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
         let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
-        let cross = dx1 * dy2 - dy1 * dx2; // |products| < 2^(2K)
+        // |products| < 2^(2K): the box is below 2^K on both axes (`fits`).
+        debug_assert!(dx1.unsigned_abs().max(dy1.unsigned_abs()) < 1 << small_bits(S));
+        let cross = dx1 * dy2 - dy1 * dx2;
         let negative = cross < 0;
         let d = NonZeroU32::new(cross.unsigned_abs())?;
         // Every set-up division is by D: prepared once (a reciprocal where there is no divider).
