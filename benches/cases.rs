@@ -643,6 +643,7 @@ pub mod scene {
                         out.copy_from_slice(row);
                     }
                 }
+                Ok::<(), zscan::render::RenderError>(())
             },
         );
         drawn.map_or(0, |()| stats.0.pixels_covered)

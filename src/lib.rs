@@ -82,6 +82,7 @@
 #![deny(unsafe_code)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub(crate) mod arith;
 pub mod clip;
 mod error;
 pub mod geometry;

@@ -64,9 +64,10 @@
 //! ([`MAX_COORD`]) are [`ProjectError::OutOfRange`]; the frustum's guard band keeps clipped
 //! polygons well inside it.
 
+use crate::arith::wide::{mul_wide, mul_wide_u};
 use crate::clip::frustum::ClipVertex;
 use crate::geometry::camera::Camera;
-use crate::geometry::fixed::{mul_wide, mul_wide_u, shr_round, Coord};
+use crate::geometry::fixed::{shr_round, Coord};
 use crate::geometry::vector::Vec3;
 use crate::raster::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 use crate::raster::SubpixelPoint;

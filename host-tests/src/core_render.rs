@@ -12,7 +12,7 @@ use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{
-    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer,
+    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
 };
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
@@ -245,6 +245,7 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
                     depth[at..at + w as usize].copy_from_slice(zrow);
                 }
             }
+            Ok::<(), RenderError>(())
         },
     )
     .map_err(|e| e.to_string())?;

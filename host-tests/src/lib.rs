@@ -13,3 +13,5 @@ pub mod image;
 pub mod obj;
 pub mod reference;
 pub mod scenes;
+#[path = "../../src/test_rng.rs"]
+pub mod test_rng;

@@ -22,28 +22,7 @@ type Pixels = BTreeSet<(i64, i64)>;
 // Helpers
 // ---------------------------------------------------------------------------------------------
 
-/// xorshift64*: a small deterministic generator (no dependency).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    /// Uniform in `lo..=hi`.
-    fn range(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next() % ((hi - lo + 1) as u64)) as i64
-    }
-    /// Uniform in `[0, 1)`.
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn chance(&mut self, percent: u64) -> bool {
-        self.next() % 100 < percent
-    }
-}
+use zscan_host::test_rng::XorShift as Rng;
 
 fn pts<const S: u32>(v: &[V]) -> Vec<SubpixelPoint<S>> {
     v.iter()
@@ -500,7 +479,7 @@ fn tipe_annex_pixels() {
 
 fn random_polygons<const S: u32>(seed: u64, per_kind: usize) {
     let f = 1i64 << S;
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     for kind in 0..6 {
         for i in 0..per_kind {
             // Small (a few pixels: sub-pixel placement matters) and medium polygons.
@@ -536,7 +515,7 @@ fn random_polygons_subpixel_2_and_8() {
 fn random_triangles_all_paths() {
     fn run<const S: u32>(seed: u64, n: usize) {
         let f = 1i64 << S;
-        let mut rng = Rng(seed);
+        let mut rng = Rng::new(seed);
         for i in 0..n {
             let r = if i % 2 == 0 { 3 * f } else { 15 * f };
             let c = (rng.range(-5 * f, 5 * f), rng.range(-5 * f, 5 * f));
@@ -747,7 +726,7 @@ fn strip(rng: &mut Rng, f: i64) -> Option<(Vec<Tri>, Vec<V>)> {
 
 fn watertight<const S: u32>(seed: u64, n: usize) {
     let f = 1i64 << S;
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let (mut fans, mut strips) = (0, 0);
     for i in 0..n {
         if let Some((t, o)) = fan(&mut rng, f) {
@@ -772,7 +751,7 @@ fn watertight<const S: u32>(seed: u64, n: usize) {
 fn huge_meshes<const S: u32>(seed: u64, n: usize) {
     let m = MAX_COORD as i64;
     let f = 1i64 << S;
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let mut fans = 0;
     for i in 0..n {
         // Points along the boundary of the square [−m, m]², its corners included, in order.
@@ -879,7 +858,7 @@ fn meshes_are_watertight_subpixel() {
 /// the window and the fill in a larger window cut down to it.
 fn extreme<const S: u32>(seed: u64, n: usize) {
     let m = MAX_COORD as i64;
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let pick = |rng: &mut Rng| -> i64 {
         match rng.range(0, 4) {
             0 => m,
@@ -949,7 +928,7 @@ fn extreme_coordinates_in_small_windows() {
 
 #[test]
 fn windows_far_from_the_polygon_and_huge_windows() {
-    let mut rng = Rng(77);
+    let mut rng = Rng::new(77);
     for _ in 0..200 {
         let v = star(&mut rng, (0, 0), 200);
         let far = [

@@ -46,21 +46,7 @@ fn norm(a: F3) -> F3 {
     [a[0] / l, a[1] / l, a[2] / l]
 }
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
+use zscan_host::test_rng::XorShift as Rng;
 
 fn scenes_lens() -> Lens {
     Lens {
@@ -84,10 +70,10 @@ fn scenes_camera() -> Camera {
 
 #[test]
 fn trig_error_bound_random_angles() {
-    let mut r = Rng(0x1234_5678_9ABC_DEF1);
+    let mut r = Rng::new(0x1234_5678_9ABC_DEF1);
     let mut worst = 0.0f64;
     for _ in 0..1_000_000 {
-        let a = r.next() as u32;
+        let a = r.next_u64() as u32;
         let (s, c) = sin_cos_bits(Angle(a));
         let t = a as f64 / 4_294_967_296.0 * std::f64::consts::TAU;
         let k = (1u64 << 30) as f64;
@@ -123,12 +109,12 @@ fn matrix_composition_and_rigid_inverse_vs_f64() {
         .unwrap();
     let inv = m.inverse_rigid().unwrap();
     let (rx, ry) = (f64_rot(0, 20.0), f64_rot(1, 30.0));
-    let mut r = Rng(99);
+    let mut r = Rng::new(99);
     for _ in 0..10_000 {
         let p = [
-            r.range(-50.0, 50.0),
-            r.range(-50.0, 50.0),
-            r.range(-50.0, 50.0),
+            r.uniform(-50.0, 50.0),
+            r.uniform(-50.0, 50.0),
+            r.uniform(-50.0, 50.0),
         ];
         let q = apply(&rx, apply(&ry, p));
         let q = [q[0] + 0.25, q[1] - 1.0, q[2] + 2.5];
@@ -159,15 +145,23 @@ fn matrix_composition_and_rigid_inverse_vs_f64() {
 
 #[test]
 fn camera_basis_is_orthonormal_and_matches_course() {
-    let mut r = Rng(7);
+    let mut r = Rng::new(7);
     for _ in 0..2000 {
         let pos = [
-            r.range(-100.0, 100.0),
-            r.range(-100.0, 100.0),
-            r.range(-100.0, 100.0),
+            r.uniform(-100.0, 100.0),
+            r.uniform(-100.0, 100.0),
+            r.uniform(-100.0, 100.0),
         ];
-        let dir = [r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0)];
-        let up = [r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0)];
+        let dir = [
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+        ];
+        let up = [
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+            r.uniform(-1.0, 1.0),
+        ];
         let cam = match Camera::new(
             v(pos),
             v(dir),
@@ -432,18 +426,18 @@ fn clipping_random_polygons() {
     let cam = scenes_camera();
     let fr = Frustum::new::<4>(&cam, Frustum::DEFAULT_GUARD).unwrap();
     let proj: Projector<4> = Projector::new(&cam).unwrap();
-    let mut r = Rng(4242);
+    let mut r = Rng::new(4242);
     let (mut clipped, mut empty) = (0, 0);
     for _ in 0..20_000 {
-        let n = 3 + (r.next() % 4) as usize;
+        let n = 3 + (r.next_u64() % 4) as usize;
         let poly: Vec<ClipVertex<1>> = (0..n)
             .map(|_| {
                 let p = [
-                    r.range(-30.0, 30.0),
-                    r.range(-30.0, 30.0),
-                    r.range(-5.0, 15.0),
+                    r.uniform(-30.0, 30.0),
+                    r.uniform(-30.0, 30.0),
+                    r.uniform(-5.0, 15.0),
                 ];
-                ClipVertex::new(v(p), [(r.next() % 256) as i32])
+                ClipVertex::new(v(p), [(r.next_u64() % 256) as i32])
             })
             .collect();
         // Random polygons are often self-intersecting: a plane can add more than one vertex.
@@ -473,12 +467,12 @@ fn extreme_inputs_never_panic() {
     let fr = Frustum::new::<4>(&cam, 4).unwrap();
     let proj: Projector<4> = Projector::new(&cam).unwrap();
     let proj16: Projector<16> = Projector::new(&cam).unwrap();
-    let mut r = Rng(1);
+    let mut r = Rng::new(1);
     let pick = |r: &mut Rng| -> i32 {
-        match r.next() % 4 {
-            0 => [i32::MIN, i32::MAX, 0, 1, -1][(r.next() % 5) as usize],
-            1 => (r.next() as i32) >> (r.next() % 31),
-            _ => r.next() as i32,
+        match r.next_u64() % 4 {
+            0 => [i32::MIN, i32::MAX, 0, 1, -1][(r.next_u64() % 5) as usize],
+            1 => (r.next_u64() as i32) >> (r.next_u64() % 31),
+            _ => r.next_u64() as i32,
         }
     };
     for _ in 0..200_000 {
@@ -512,13 +506,13 @@ fn extreme_inputs_never_panic() {
         let lens = Lens {
             fov: Angle(pick(&mut r) as u32),
             axis: [FovAxis::Vertical, FovAxis::Horizontal, FovAxis::Diagonal]
-                [(r.next() % 3) as usize],
+                [(r.next_u64() % 3) as usize],
             near: Coord::from_bits(pick(&mut r)),
             far: Coord::from_bits(pick(&mut r)),
         };
-        let mut vp = Viewport::new(r.next() as u16, r.next() as u16);
-        vp.pixel_width = r.next() as u16;
-        vp.pixel_height = r.next() as u16;
+        let mut vp = Viewport::new(r.next_u64() as u16, r.next_u64() as u16);
+        vp.pixel_width = r.next_u64() as u16;
+        vp.pixel_height = r.next_u64() as u16;
         vp.principal_x = Coord::from_bits(pick(&mut r));
         if let Ok(cam) = Camera::new(p, q, v([0.0, 1.0, 0.0]), lens, vp) {
             let pr = Projector::<4>::new(&cam);
@@ -550,12 +544,14 @@ fn extreme_inputs_never_panic() {
     }
     // Random meshes in range: normals, culling, vertex normals.
     for _ in 0..2_000 {
-        let n = 3 + (r.next() % 20) as usize;
+        let n = 3 + (r.next_u64() % 20) as usize;
         let lim = 1 << 26;
         let vs: Vec<Vec3> = (0..n)
             .map(|_| Vec3::from_bits(pick(&mut r) % lim, pick(&mut r) % lim, pick(&mut r) % lim))
             .collect();
-        let is: Vec<u16> = (0..3 * n).map(|_| (r.next() % n as u64) as u16).collect();
+        let is: Vec<u16> = (0..3 * n)
+            .map(|_| (r.next_u64() % n as u64) as u16)
+            .collect();
         let m = Mesh::triangles(&vs, &is).unwrap();
         let mut vn = vec![Vec3::ZERO; n];
         m.vertex_normals(&mut vn).unwrap();

@@ -10,22 +10,7 @@ use zscan::target::Framebuffer;
 use zscan_host::cli::lines::{draw, pattern, Primitive};
 use zscan_host::reference::bresenham as reference;
 
-/// SplitMix64: a small deterministic generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in `lo..=hi`.
-    fn range(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next() % (hi - lo + 1) as u64) as i64
-    }
-}
+use zscan_host::test_rng::XorShift as Rng;
 
 fn pt(p: (i64, i64)) -> Point {
     Point::new(p.0 as i32, p.1 as i32)
@@ -73,7 +58,7 @@ fn every_short_line_matches_the_definition_both_ways() {
 
 #[test]
 fn random_long_lines_match_the_definition() {
-    let mut rng = Rng(0x5eed1);
+    let mut rng = Rng::new(0x5eed1);
     for i in 0..400 {
         // Long lines (up to 20 000 pixels) placed anywhere in ±2^30.
         let span = if i % 4 == 0 { 20_000 } else { 3_000 };
@@ -100,7 +85,7 @@ fn very_long_lines_sampled_against_the_definition() {
     // Lines of up to 2^31 pixels: check the count and the first pixels from each end (the
     // reversed line's first pixels are the last ones, by symmetry); the clipping tests below
     // check pixels deep inside such lines.
-    let mut rng = Rng(77);
+    let mut rng = Rng::new(77);
     let m = MAX_COORD as i64;
     for _ in 0..300 {
         let p0 = (rng.range(-m, m), rng.range(-m, m));
@@ -186,13 +171,13 @@ fn clipping_is_exactly_filtering_on_small_windows() {
 
 #[test]
 fn clipping_large_coordinates_matches_the_definition() {
-    let mut rng = Rng(0xC11B);
+    let mut rng = Rng::new(0xC11B);
     let m = MAX_COORD as i64;
     let mut visible = 0;
     for i in 0..3000 {
         // End points near ±2^20, ±2^24 or anywhere up to ±2^30 (the extremes included).
         let lim = [1 << 20, 1 << 24, m][i % 3];
-        let end = |rng: &mut Rng| match rng.next() % 8 {
+        let end = |rng: &mut Rng| match rng.next_u64() % 8 {
             0 => (lim, rng.range(-lim, lim)),
             1 => (rng.range(-lim, lim), -lim),
             _ => (rng.range(-lim, lim), rng.range(-lim, lim)),
@@ -233,7 +218,7 @@ fn clipping_large_coordinates_matches_the_definition() {
 fn clipping_medium_lines_matches_filtered_iteration() {
     // Lines up to 2^12 long crossing windows, at coordinates beyond 2^20: the clipped iterator
     // against the unclipped one filtered.
-    let mut rng = Rng(99);
+    let mut rng = Rng::new(99);
     for _ in 0..2000 {
         let c = (
             rng.range(-(1 << 29), 1 << 29),
@@ -357,7 +342,7 @@ fn circles_match_the_midpoint_definition() {
 
 #[test]
 fn clipped_circles_are_the_circle_filtered_to_the_frame() {
-    let mut rng = Rng(4242);
+    let mut rng = Rng::new(4242);
     for i in 0..600 {
         let (w, h) = (rng.range(1, 40) as u16, rng.range(1, 30) as u16);
         let top = rng.range(0, 20) as u16;
@@ -459,7 +444,7 @@ fn pattern_draws_exactly_the_reference_pixels() {
 
 #[test]
 fn draw_line_into_bands_writes_exactly_the_clipped_pixels() {
-    let mut rng = Rng(2024);
+    let mut rng = Rng::new(2024);
     for i in 0..1500 {
         let (w, h, top) = (
             rng.range(1, 48) as u16,

@@ -386,6 +386,7 @@ fn lit_bands_equal_one_pass() {
                             let at = y as usize * W as usize;
                             picture[at..at + row.len()].copy_from_slice(row);
                         }
+                        Ok::<(), RenderError>(())
                     },
                 )
                 .unwrap();

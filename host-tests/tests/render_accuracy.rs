@@ -539,7 +539,7 @@ fn random_scene(seed: u64, n: usize, boxes: usize) -> Scene {
 /// As [`random_scene`], the triangles' `z` clamped to `[−4, z_max]` (`z_max > 2.5` puts
 /// vertices before the near plane, `> 3` behind the eye).
 fn random_scene_up_to(seed: u64, n: usize, boxes: usize, z_max: f64) -> Scene {
-    let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let mut rng = Rng::new(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
     let mut tris = Vec::new();
     let mut lev = Vec::new();
     for _ in 0..n {
@@ -553,7 +553,7 @@ fn random_scene_up_to(seed: u64, n: usize, boxes: usize, z_max: f64) -> Scene {
             std::array::from_fn(|_| std::array::from_fn(|k| centre[k] + rng.uniform(-size, size)));
         let t = t.map(|v| [v[0], v[1], v[2].clamp(-4.0, z_max)]);
         tris.push(t);
-        lev.push(std::array::from_fn(|_| rng.int(1, 255) as u8));
+        lev.push(std::array::from_fn(|_| rng.range(1, 255) as u8));
     }
     for _ in 0..boxes {
         let centre = [
@@ -574,7 +574,7 @@ fn random_scene_up_to(seed: u64, n: usize, boxes: usize, z_max: f64) -> Scene {
             [4, 5, 7, 6],
         ];
         for [a, b, cc, d] in faces {
-            let l = rng.int(1, 255) as u8;
+            let l = rng.range(1, 255) as u8;
             tris.push([corner(a), corner(b), corner(cc)]);
             tris.push([corner(a), corner(cc), corner(d)]);
             lev.push([l; 3]);

@@ -359,7 +359,7 @@ fn slivers() {
     // Long thin triangles (widths 0.001 to 0.5 pixel at the far end) in random directions.
     let cam = Camera::standard();
     let f = cam.focal();
-    let mut rng = Rng(0x0005_eed5_11e5);
+    let mut rng = Rng::new(0x0005_eed5_11e5);
     let mut tris = Vec::new();
     for _ in 0..300 {
         let z = rng.uniform(-2.0, 1.0);
@@ -402,7 +402,7 @@ fn vertices_on_pixel_centres_cover_exactly() {
     // (reference `cover_polygon` on those integer points).
     let cam = Camera::standard();
     let f = cam.focal();
-    let mut rng = Rng(0x01a7_71ce);
+    let mut rng = Rng::new(0x01a7_71ce);
     for round in 0..8 {
         let mut tris = Vec::new();
         let mut lattice = Vec::new();
@@ -410,10 +410,10 @@ fn vertices_on_pixel_centres_cover_exactly() {
             let z = rng.uniform(-2.0, 1.5);
             let d = 3.0 - z;
             let p: [(i64, i64); 3] = std::array::from_fn(|_| {
-                if rng.int(0, 3) == 0 {
-                    (rng.int(-40, 360), rng.int(-40, 280)) // partly off screen
+                if rng.range(0, 3) == 0 {
+                    (rng.range(-40, 360), rng.range(-40, 280)) // partly off screen
                 } else {
-                    (rng.int(0, 60) + 130, rng.int(0, 60) + 90)
+                    (rng.range(0, 60) + 130, rng.range(0, 60) + 90)
                 }
             });
             let area =
@@ -572,7 +572,7 @@ fn extreme_random_triangles() {
     // up to snapping. Far plane 1000 so that most of them are in view.
     let mut cam = Camera::standard();
     cam.far = 1000.0;
-    let mut rng = Rng(0x0ec7_5eed);
+    let mut rng = Rng::new(0x0ec7_5eed);
     let mut totals = (0, 0, 0);
     for round in 0..16 {
         let mut tris = Vec::new();
@@ -591,7 +591,7 @@ fn extreme_random_triangles() {
             tris.push(t);
         }
         let levels: Vec<[u8; 3]> = (0..tris.len())
-            .map(|_| std::array::from_fn(|_| rng.int(0, 255) as u8))
+            .map(|_| std::array::from_fn(|_| rng.range(0, 255) as u8))
             .collect();
         let scene =
             Scene::from_triangles(&format!("extreme-{round}"), cam, &tris, &levels).unwrap();

@@ -377,19 +377,7 @@ fn a_floor_is_clipped_at_the_near_and_far_planes() {
     );
 }
 
-/// A small deterministic generator (xorshift64).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn range(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next() % (hi - lo + 1) as u64) as i64
-    }
-}
+use zscan_host::test_rng::XorShift as Rng;
 
 /// Brute force with exact integers (coordinates in 1/16 pixel): the edge-function test with
 /// the top-left tie rule (a pixel on an edge is in when the edge is a left or a top edge).
@@ -416,7 +404,7 @@ fn brute_force_covered(tri: [(i64, i64); 3], x: i64, y: i64) -> bool {
 fn exact_coverage_matches_brute_force_and_the_core_fill() {
     use zscan::raster::polygon::fill_polygon;
     use zscan::raster::{ScreenPoint, Window};
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let (w, h) = (24u32, 20u32);
     let mut on_edge = 0;
     for _ in 0..3000 {
@@ -470,7 +458,7 @@ fn exact_coverage_matches_brute_force_and_the_core_fill() {
 fn adjacent_triangles_tile_without_gaps_or_overlaps() {
     // Random fans around an interior point with f64 (off-grid) coordinates: the union covers
     // each pixel of the fan's polygon exactly once.
-    let mut rng = Rng(0x1234_5678_9abc_def1);
+    let mut rng = Rng::new(0x1234_5678_9abc_def1);
     for _ in 0..200 {
         let centre = (
             rng.range(0, 1 << 20) as f64 / 65536.0,

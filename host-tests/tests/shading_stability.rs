@@ -17,15 +17,7 @@ use zscan::target::{DepthBuffer, Framebuffer};
 use zscan_host::reference::float_render::{self, Interpolation};
 use zscan_host::scenes::{Camera, Scene};
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self, m: u64) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0 % m
-    }
-}
+use zscan_host::test_rng::XorShift as Rng;
 
 const W: usize = 96;
 const H: usize = 96;
@@ -58,17 +50,17 @@ fn affine(v: [SubpixelPoint<4>; 3], lum: [u32; 3], x: usize, y: usize) -> f64 {
 
 #[test]
 fn exact_gouraud_is_correctly_rounded_and_fast_is_bounded() {
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let (mut pixels, mut mismatches, mut ties) = (0u64, 0u64, 0u64);
     let (mut fast_max, mut fast_sum) = (0i32, 0u64);
     for _ in 0..300 {
         let v = [0; 3].map(|_| {
             SubpixelPoint::<4>::new(
-                rng.next(W as u64 * 16) as i32,
-                rng.next(H as u64 * 16) as i32,
+                rng.below(W as u64 * 16) as i32,
+                rng.below(H as u64 * 16) as i32,
             )
         });
-        let lum = [0; 3].map(|_| rng.next(256) as u32);
+        let lum = [0; 3].map(|_| rng.below(256) as u32);
         let (exact, zs) = draw(v, lum, ShadeMode::GouraudExact);
         let (fast, _) = draw(v, lum, ShadeMode::GouraudFast);
         for y in 0..H {

@@ -39,8 +39,9 @@
 
 use heapless::Vec;
 
+use crate::arith::wide::mul_wide;
 use crate::geometry::camera::Camera;
-use crate::geometry::fixed::{mul_wide, Coord};
+use crate::geometry::fixed::Coord;
 use crate::geometry::vector::Vec3;
 use crate::raster::edge_walker::MAX_COORD;
 
@@ -59,6 +60,14 @@ impl<const A: usize> ClipVertex<A> {
         ClipVertex { pos, attrs }
     }
 }
+
+/// Largest polygon (vertex count) the 3D pipeline clips: the renderer's polygon stage and the
+/// shadow map's pass 1 reject larger ones.
+pub const MAX_POLYGON_VERTICES: usize = 24;
+
+/// Vertices a clipped polygon of at most [`MAX_POLYGON_VERTICES`] may reach: each of the 6
+/// planes adds at most one vertex to a convex polygon.
+pub const CLIP_CAPACITY: usize = MAX_POLYGON_VERTICES + 6;
 
 /// What went wrong clipping.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

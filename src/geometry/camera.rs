@@ -32,10 +32,10 @@
 //! `height·pixel_height`) must be at most 2^20. Everything out of range is a [`CameraError`].
 
 use super::fixed::{Coord, LINEAR_FRAC};
-use super::isqrt::isqrt_u64;
 use super::matrix::Affine3;
 use super::trig::{sin_cos_bits, Angle};
 use super::vector::{unit_bits, Vec3};
+use crate::arith::isqrt::isqrt_u64;
 
 /// What went wrong building a camera.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -23,11 +23,11 @@
 //! - [`mul`](Affine3::mul): entries are sums of three `Q24·Q24` products (`≤ 3·2^60`); results
 //!   outside the ranges above are [`MatrixError::OutOfRange`], never wrapped.
 
-use super::fixed::{
-    mul_wide, saturate_i32, shr_round, Coord, Linear, LINEAR_FRAC, NARROW_MULTIPLY,
-};
+use super::fixed::{saturate_i32, shr_round, Coord, Linear, LINEAR_FRAC};
 use super::trig::{sin_cos_bits, Angle};
 use super::vector::{unit_bits, Vec3};
+use crate::arith::wide::mul_wide;
+use crate::arith::NARROW_MULTIPLY;
 
 /// Largest raw linear entry (`64.0` in I8F24).
 pub const MAX_LINEAR_BITS: i32 = 1 << 30;

@@ -11,13 +11,13 @@
 //!   the sum of three (dot) or the difference of two (cross) of them stays below 2^63 because
 //!   `|a·b| ≤ 2^31·2^31 = 2^62` with equality only at `i32::MIN²`; callers that may feed
 //!   `i32::MIN` components use [`dot`](Vec3::dot), which saturates.
-//! - Lengths come from the exact integer square root ([`isqrt`](super::isqrt)): `length` is
+//! - Lengths come from the exact integer square root (`arith::isqrt`): `length` is
 //!   `floor(√(x² + y² + z²))` in raw units, as `u32` (up to `√3·2^31`).
 //! - [`unit_bits`] turns any `i64` direction into a unit vector with a chosen number of
 //!   fractional bits (`≤ 30`), with about 30 significant bits.
 
 use super::fixed::{saturate_i32, Coord};
-use super::isqrt::isqrt_u64;
+use crate::arith::isqrt::isqrt_u64;
 
 /// A 3-vector of [`Coord`] (I16F16) components.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]

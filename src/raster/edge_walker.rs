@@ -48,11 +48,12 @@
 //! [`IncrementalWalker`] starts a narrow edge (`DY ≥ 1` as well) inline with the same terms made
 //! non-negative by a multiple of the divisor (sum `< 2^31`), so both of its divisions are
 //! unsigned with no sign fix-up; wide edges take an out-of-line start (tested equal). Cores
-//! that divide in software ([`HARDWARE_DIVIDE`] false: Cortex-M0/M0+) take the signed
+//! that divide in software (`arith::HARDWARE_DIVIDE` false: Cortex-M0/M0+) take the signed
 //! [`Edge::divide_narrow`] instead, whose quotients are 13 to 16 bits shorter than the biased
 //! ones, each bit one turn of the division routine's loop (M0 frame_bunny −5.5 %).
 
-use super::euclid::{div_floor_i32, div_floor_i64, HARDWARE_DIVIDE};
+use crate::arith::euclid::{div_floor_i32, div_floor_i64};
+use crate::arith::{HARDWARE_DIVIDE, WIDE_REGISTERS};
 use core::num::NonZeroU32;
 
 /// The largest coordinate magnitude (in sub-pixel units) the raster stage accepts.
@@ -141,7 +142,7 @@ impl Edge {
     /// narrow edge takes [`Edge::divide_narrow`]; both give the same result.
     #[inline(always)]
     fn divide<const S: u32>(&self, y: i32, side: EdgeSide) -> (i32, i32) {
-        if cfg!(not(target_pointer_width = "64")) && self.is_narrow() {
+        if !WIDE_REGISTERS && self.is_narrow() {
             return self.divide_narrow::<S>(y, side);
         }
         let (n, den) = self.biased_numerator::<S>(y, side);
@@ -316,7 +317,7 @@ impl IncrementalWalker {
 impl EdgeWalker for IncrementalWalker {
     #[inline(always)]
     fn start<const S: u32>(edge: &Edge, side: EdgeSide, y: i32) -> Self {
-        if cfg!(not(target_pointer_width = "64")) {
+        if !WIDE_REGISTERS {
             if !HARDWARE_DIVIDE {
                 // Software divisions: the signed narrow form, whose quotients are short (the
                 // biased one adds 13 to 16 bits to each, one loop turn per bit).

@@ -16,9 +16,9 @@
 
 pub mod circle;
 pub mod edge_walker;
-pub mod euclid;
 pub mod line;
 pub mod polygon;
+mod range;
 pub mod triangle;
 
 /// A half-open rectangle of pixels: `x0 ≤ x < x1`, `y0 ≤ y < y1`. Empty when `x1 ≤ x0` or `y1 ≤ y0`.

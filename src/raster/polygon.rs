@@ -50,49 +50,15 @@
 //! unclipped polygon, and polygons far outside cost only their set-up.
 //!
 //! ## Numeric contract
-//! Vertices are [`SubpixelPoint<S>`] with `|x|, |y| ≤ `[`MAX_COORD`]` = 2^28 − 1` and
-//! `S ≤ `[`MAX_SUBPIXEL_BITS`]; other input is rejected with [`FillError::CoordinateOutOfRange`].
+//! Vertices are [`SubpixelPoint<S>`] with `|x|, |y| ≤ `[`MAX_COORD`](super::edge_walker::MAX_COORD)` = 2^28 − 1` and
+//! `S ≤ `[`MAX_SUBPIXEL_BITS`](super::edge_walker::MAX_SUBPIXEL_BITS); other input is rejected with [`FillError::CoordinateOutOfRange`].
 //! See [`edge_walker`](super::edge_walker) for why nothing overflows in that range.
 
-use super::edge_walker::{
-    ceil_shift, Edge, EdgeSide, EdgeWalker, IncrementalWalker, MAX_COORD, MAX_SUBPIXEL_BITS,
-};
-use super::triangle::check_range;
+use super::edge_walker::{ceil_shift, Edge, EdgeSide, EdgeWalker, IncrementalWalker};
+use super::range::check_range;
+pub use super::range::FillError;
 use super::{Span, SubpixelPoint, Window};
 use heapless::Vec;
-
-/// Why a polygon could not be filled. Nothing is drawn when an error is returned.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FillError {
-    /// More non-horizontal edges than the fill's capacity `MAX_EDGES`.
-    TooManyEdges {
-        /// The capacity.
-        capacity: usize,
-    },
-    /// A vertex outside `|x|, |y| ≤ MAX_COORD`, or `S > MAX_SUBPIXEL_BITS`.
-    CoordinateOutOfRange {
-        /// Index of the offending vertex (`usize::MAX` for a bad `S`).
-        vertex: usize,
-    },
-}
-
-impl core::fmt::Display for FillError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            FillError::TooManyEdges { capacity } => {
-                write!(f, "polygon has more than {capacity} non-horizontal edges")
-            }
-            FillError::CoordinateOutOfRange { vertex: usize::MAX } => write!(
-                f,
-                "sub-pixel bits exceed the fill's maximum of {MAX_SUBPIXEL_BITS}"
-            ),
-            FillError::CoordinateOutOfRange { vertex } => write!(
-                f,
-                "vertex {vertex} is outside the fill's range of ±{MAX_COORD} sub-pixel units"
-            ),
-        }
-    }
-}
 
 /// TIPE's `TAG` and `TAD`: the left and right edges of a polygon, low end first.
 #[derive(Debug, Clone)]
@@ -325,7 +291,7 @@ pub fn row_range<const S: u32>(vertices: &[SubpixelPoint<S>]) -> (i32, i32) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raster::edge_walker::DivisionWalker;
+    use crate::raster::edge_walker::{DivisionWalker, MAX_COORD};
 
     type P = SubpixelPoint<0>;
 

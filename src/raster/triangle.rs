@@ -14,10 +14,8 @@
 //! is formed in `i64` (`< 2^60`). Triangles with zero area (collinear or repeated vertices)
 //! cover nothing. Either orientation is filled; callers cull back faces before, if they want to.
 
-use super::edge_walker::{
-    Edge, EdgeSide, EdgeWalker, IncrementalWalker, MAX_COORD, MAX_SUBPIXEL_BITS,
-};
-use super::polygon::FillError;
+use super::edge_walker::{Edge, EdgeSide, EdgeWalker, IncrementalWalker};
+use super::range::{check_range, FillError};
 use super::{Span, SubpixelPoint, Window};
 
 /// The bounding box of `v` in sub-pixel units: `([x_lo, x_hi], [y_lo, y_hi])`.
@@ -56,20 +54,6 @@ fn cross_in_range<const S: u32>(
     let (dx1, dy1) = (b.x.wrapping_sub(a.x), b.y.wrapping_sub(a.y));
     let (dx2, dy2) = (c.x.wrapping_sub(a.x), c.y.wrapping_sub(a.y));
     dx1 as i64 * dy2 as i64 - dy1 as i64 * dx2 as i64
-}
-
-/// Checks the documented coordinate range.
-#[inline]
-pub(crate) fn check_range<const S: u32>(v: &[SubpixelPoint<S>]) -> Result<(), FillError> {
-    if S > MAX_SUBPIXEL_BITS {
-        return Err(FillError::CoordinateOutOfRange { vertex: usize::MAX });
-    }
-    // |t| > MAX_COORD exactly when t + MAX_COORD (wrapping) leaves 0..=2·MAX_COORD.
-    let out = |t: i32| t.wrapping_add(MAX_COORD) as u32 > 2 * MAX_COORD as u32;
-    match v.iter().position(|p| out(p.x) | out(p.y)) {
-        Some(i) => Err(FillError::CoordinateOutOfRange { vertex: i }),
-        None => Ok(()),
-    }
 }
 
 /// Fills a triangle with the default (incremental) walker, emitting its spans inside `window`

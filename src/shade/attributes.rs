@@ -44,7 +44,8 @@
 //!   below `2^31` (`i32`) or `2^32` (`u32`); quotients that only move values are kept mod
 //!   `2^32`, like the values themselves.
 
-use crate::raster::euclid::{div_floor_i64, Divisor, DivisorU32, HARDWARE_DIVIDE};
+use crate::arith::euclid::{div_floor_i64, Divisor, DivisorU32};
+use crate::arith::{HARDWARE_DIVIDE, WIDE_REGISTERS};
 use crate::raster::SubpixelPoint;
 use core::num::NonZeroU32;
 
@@ -229,7 +230,7 @@ impl<'p, const N: usize, const S: u32> RowStarts<'p, N, S> {
     /// previous row. Both give the same values (tested).
     #[inline]
     pub fn at(&mut self, x: i32, y: i32) -> [Exact; N] {
-        if cfg!(target_pointer_width = "64") {
+        if WIDE_REGISTERS {
             self.direct(x, y)
         } else {
             self.carried(x, y)
@@ -722,7 +723,7 @@ fn split_gradient(
     negative: bool,
     d: &DivisorU32,
 ) -> (u32, u32) {
-    if cfg!(target_pointer_width = "64") {
+    if WIDE_REGISTERS {
         // One hardware division of the exact i64 gradient (|g| < 2^(33+K)).
         let g = a1 * c1 as i64 - a2 * c2 as i64;
         let g = if negative { -g } else { g };

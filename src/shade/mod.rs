@@ -10,5 +10,6 @@ pub mod dither;
 pub mod lighting;
 pub mod phong;
 pub mod shadow;
+mod span;
 pub mod span_writer;
 mod tiny_triangle;

@@ -14,7 +14,7 @@
 //! triangle of the standard sphere and bunny is below it, and the 32-bit path measured cheaper
 //! there (Cortex-M4 `frame_bunny` −22 %, `frame_sphere` −18 %; host −0.2 % and −1.5 %).
 //!
-//! On 32-bit cores with a hardware divider ([`TINY_WRITER`]), those small triangles whose
+//! On 32-bit cores with a hardware divider (`arith::TINY_WRITER`), those small triangles whose
 //! columns lie inside the window (rows are clipped), with exact or flat luminance through a
 //! 256-level ramp, go one step further: the tiny-triangle writer (`shade/tiny_triangle.rs`)
 //! sets up edges and both planes at once and draws each span out of line, for the same pixels
@@ -30,192 +30,18 @@ use super::attributes::{
     AttributePlane, Constant, Exact, ExactRun, Interpolant, PlaneError, RowStarts, SmallPlane,
     SpanStarts,
 };
+pub use super::span::{
+    depth_span, depth_span_with, CountWritten, FlatIndex, Gouraud, LuminanceRamp, Quantizer,
+    Shading, SkipWritten, WrittenCount,
+};
+use super::span::{Direct, InRange, Targets};
 use super::tiny_triangle::TinyTriangle;
-use crate::raster::euclid::{Divisor, HARDWARE_DIVIDE};
+use crate::arith::euclid::Divisor;
+use crate::arith::TINY_WRITER;
 use crate::raster::polygon::FillError;
 use crate::raster::triangle::{bounds, fill_triangle};
-use crate::raster::{Span, SubpixelPoint, Window};
+use crate::raster::{SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
-
-/// Luminance (`0..=255`) to a ramp of `levels` palette entries starting at `first`:
-/// `index = first + ⌊lum · levels / 256⌋`. With `first = 0, levels = 256` the index is the
-/// luminance itself (a grey LUT).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct LuminanceRamp {
-    /// First palette index of the ramp.
-    pub first: u8,
-    /// Entries in the ramp (1..=256).
-    pub levels: u16,
-}
-
-impl LuminanceRamp {
-    /// The ramp that maps luminance `l` to index `l`.
-    pub const GREY: LuminanceRamp = LuminanceRamp {
-        first: 0,
-        levels: 256,
-    };
-
-    /// The palette index of luminance `lum`.
-    #[inline(always)]
-    pub fn index(&self, lum: u32) -> u8 {
-        let l = lum.min(255);
-        self.first
-            .wrapping_add(((l * self.levels as u32) >> 8) as u8)
-    }
-}
-
-/// Per-pixel colour of a span: the palette index at the current pixel, stepped right.
-pub trait Shading: Copy {
-    /// True when the index does not change along a span ([`FlatIndex`], flat [`Gouraud`]).
-    const IS_CONSTANT: bool = false;
-    /// The palette index at the current pixel.
-    fn index(&self) -> u8;
-    /// Moves one pixel to the right.
-    fn step(&mut self);
-}
-
-/// One palette index for the whole span (flat shading, or a constant luminance).
-#[derive(Debug, Clone, Copy)]
-pub struct FlatIndex(pub u8);
-
-impl Shading for FlatIndex {
-    const IS_CONSTANT: bool = true;
-
-    #[inline(always)]
-    fn index(&self) -> u8 {
-        self.0
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {}
-}
-
-/// Luminance → palette index at the current pixel, stepping right: the plain
-/// [`LuminanceRamp`] or a dithered one ([`Bayer4`](super::dither::Bayer4)).
-pub trait Quantizer: Copy {
-    /// True for the plain ramp: the mapping does not change along a span.
-    const IS_CONSTANT: bool = false;
-    /// The palette index of luminance `lum` (`0..=255`, larger saturates) at the current pixel.
-    fn index(&self, lum: u32) -> u8;
-    /// [`Quantizer::index`] of a luminance known to be in range (no saturation test).
-    #[inline(always)]
-    fn index_byte(&self, lum: u8) -> u8 {
-        self.index(lum as u32)
-    }
-    /// `Some(first)` when the mapping is `first + lum` (mod 256) at every pixel, as a ramp of
-    /// 256 levels: the triangle writers then interpolate `first + lum` itself and store it.
-    #[inline(always)]
-    fn offset(&self) -> Option<u8> {
-        None
-    }
-    /// Moves one pixel right.
-    fn step(&mut self);
-}
-
-impl Quantizer for LuminanceRamp {
-    const IS_CONSTANT: bool = true;
-
-    #[inline(always)]
-    fn index(&self, lum: u32) -> u8 {
-        LuminanceRamp::index(self, lum)
-    }
-
-    #[inline(always)]
-    fn index_byte(&self, lum: u8) -> u8 {
-        self.first
-            .wrapping_add(((lum as u32 * self.levels as u32) >> 8) as u8)
-    }
-
-    #[inline(always)]
-    fn offset(&self) -> Option<u8> {
-        (self.levels == 256).then_some(self.first)
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {}
-}
-
-/// Gouraud shading: an interpolated luminance through a [`Quantizer`] (by default the plain
-/// ramp). With a [`Constant`] luminance it is flat shading, and with the plain ramp it is
-/// constant along the span, which [`depth_span`] exploits.
-#[derive(Debug, Clone, Copy)]
-pub struct Gouraud<L: Interpolant, Q: Quantizer = LuminanceRamp> {
-    /// The interpolated luminance.
-    pub luminance: L,
-    /// Its mapping to palette indices.
-    pub quantizer: Q,
-}
-
-impl<L: Interpolant, Q: Quantizer> Shading for Gouraud<L, Q> {
-    const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
-
-    #[inline(always)]
-    fn index(&self) -> u8 {
-        self.quantizer.index(self.luminance.value())
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {
-        self.luminance.step();
-        self.quantizer.step();
-    }
-}
-
-/// [`Gouraud`] for a luminance that stays in `0..=255` by construction (interpolated from
-/// vertex values clamped to 255: every covered pixel's value lies between them), mapped
-/// without the saturation test (measured: 3 instructions per written pixel on the Cortex-M4).
-#[derive(Debug, Clone, Copy)]
-struct InRange<L: Interpolant, Q: Quantizer> {
-    luminance: L,
-    quantizer: Q,
-}
-
-impl<L: Interpolant, Q: Quantizer> Shading for InRange<L, Q> {
-    const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
-
-    #[inline(always)]
-    fn index(&self) -> u8 {
-        self.quantizer.index_byte(self.luminance.value() as u8)
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {
-        self.luminance.step();
-        self.quantizer.step();
-    }
-}
-
-/// In-range luminance (`0..=255`, or an index already offset for [`Direct`]) through
-/// `quantizer`.
-#[inline(always)]
-pub(crate) fn in_range<L: Interpolant, Q: Quantizer>(luminance: L, quantizer: Q) -> impl Shading {
-    InRange {
-        luminance,
-        quantizer,
-    }
-}
-
-/// The identity mapping, for luminances already offset to palette indices
-/// ([`Quantizer::offset`]): the index is the value's low byte.
-#[derive(Debug, Clone, Copy)]
-struct Direct;
-
-impl Quantizer for Direct {
-    const IS_CONSTANT: bool = true;
-
-    #[inline(always)]
-    fn index(&self, lum: u32) -> u8 {
-        lum as u8
-    }
-
-    #[inline(always)]
-    fn index_byte(&self, lum: u8) -> u8 {
-        lum
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {}
-}
 
 /// How a triangle's luminance becomes palette indices.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -240,125 +66,6 @@ pub enum DrawError {
     Fill(FillError),
     /// The triangle is too large for exact attribute interpolation.
     TooLarge,
-}
-
-/// Whether the span loops count the pixels they write: [`CountWritten`] (one add per written
-/// pixel and a register in the loop) or [`SkipWritten`] (no counter: the written count is 0).
-/// Measured on the Cortex-M4, the count costs the standard cube 6 %, the sphere 3 % and the
-/// bunny 1.6 % of their frames. A compile-time switch, so that the loop without it has no
-/// trace of it.
-pub trait WrittenCount: Copy + Default {
-    /// True when written pixels are counted.
-    const COUNTS: bool;
-}
-
-/// Span loops count the pixels that pass the depth test ([`WrittenCount`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct CountWritten;
-
-impl WrittenCount for CountWritten {
-    const COUNTS: bool = true;
-}
-
-/// Span loops do not count written pixels and report 0 ([`WrittenCount`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct SkipWritten;
-
-impl WrittenCount for SkipWritten {
-    const COUNTS: bool = false;
-}
-
-/// Writes one span with a depth test: every pixel of `colours`/`depths` (two row slices of
-/// equal length, the span's pixels), with depth `z` and colour `shading` at the first pixel.
-/// Returns the number of pixels written (that passed the test).
-#[inline(always)]
-pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
-    colours: &mut [u8],
-    depths: &mut [D],
-    z: Z,
-    shading: Sh,
-) -> u32 {
-    depth_span_with(colours, depths, z, shading, CountWritten)
-}
-
-/// [`depth_span`], counting written pixels or not as `C` says (returns 0 when it does not).
-#[inline(always)]
-pub fn depth_span_with<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
-    colours: &mut [u8],
-    depths: &mut [D],
-    mut z: Z,
-    mut shading: Sh,
-    _: C,
-) -> u32 {
-    let mut written = 0u32;
-    if Z::IS_CONSTANT && Sh::IS_CONSTANT {
-        return constant_span::<D, C>(colours, depths, D::from_depth32(z.value()), shading.index());
-    }
-    // A shading constant along the span (flat) is mapped to its index once.
-    let constant_index = shading.index();
-    for (c, stored) in colours.iter_mut().zip(depths.iter_mut()) {
-        let d = D::from_depth32(z.value());
-        if d < *stored {
-            *stored = d;
-            *c = if Sh::IS_CONSTANT {
-                constant_index
-            } else {
-                shading.index()
-            };
-            written += C::COUNTS as u32;
-        }
-        z.step();
-        shading.step();
-    }
-    written
-}
-
-/// [`depth_span`] for a constant depth `d` and colour `index`: a branch-free select the
-/// compiler vectorises. Out of line: inlined into a triangle writer, whose other span kinds
-/// keep many values live, its loop lost registers to the surrounding code (measured: the
-/// standard quad, whose two triangles are flat at constant depth, +1 instruction per pixel on
-/// the Cortex-M4).
-#[inline(never)]
-fn constant_span<D: DepthValue, C: WrittenCount>(
-    colours: &mut [u8],
-    depths: &mut [D],
-    d: D,
-    index: u8,
-) -> u32 {
-    let mut written = 0u32;
-    let select = |c: &mut u8, stored: &mut D| {
-        let nearer = d < *stored;
-        *stored = if nearer { d } else { *stored };
-        *c = if nearer { index } else { *c };
-        (nearer & C::COUNTS) as u32
-    };
-    // Blocks of 16 pixels: when the whole block is farther (the common case on a fresh
-    // buffer), two block fills; otherwise the per-pixel select. On 64-bit hosts the
-    // all-farther test has a fixed trip count and no early exit, so it compiles to a few vector
-    // compares; 32-bit cores have no vectors and take the early-exit form (the fixed one
-    // spilled the block to the stack on the Cortex-M4: +1.3 instructions per pixel).
-    let mut cs = colours.chunks_exact_mut(16);
-    let mut zs = depths.chunks_exact_mut(16);
-    for (cb, zb) in (&mut cs).zip(&mut zs) {
-        let all_farther = if cfg!(target_pointer_width = "64") {
-            zb.iter().fold(true, |all, s| all & (d < *s))
-        } else {
-            zb.iter().all(|s| d < *s)
-        };
-        if all_farther {
-            zb.fill(d);
-            cb.fill(index);
-            written += 16 * C::COUNTS as u32;
-        } else {
-            for (c, stored) in cb.iter_mut().zip(zb.iter_mut()) {
-                written += select(c, stored);
-            }
-        }
-    }
-    for (c, stored) in cs.into_remainder().iter_mut().zip(zs.into_remainder()) {
-        written += select(c, stored);
-    }
-    written
 }
 
 /// Draws a depth-tested, shaded triangle into a frame and its depth buffer.
@@ -440,8 +147,88 @@ impl<'t, D: DepthValue, C: WrittenCount> RasterTarget<'t, D, C> {
     }
 }
 
+/// What draws one triangle: the span kind and whether the tiny-triangle writer is tried first.
+/// Decided by [`plan`] once per triangle, before any set-up; the size class (tiny box, small
+/// plane, general plane) follows from the set-up itself, each smaller class falling back to
+/// the next when the triangle does not fit it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct TrianglePlan {
+    /// What each span writes.
+    pub(crate) kind: Kind,
+    /// Whether, and how, small triangles take the tiny-triangle writer.
+    pub(crate) tiny: Tiny,
+}
+
+/// The span kinds of [`draw_triangle_on`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Kind {
+    /// Constant depth and colour: no plane at all (`TriangleSpans::constant`).
+    Constant,
+    /// Flat colour over the exact depth plane (one attribute, `FlatKind`).
+    Flat,
+    /// Exact Gouraud: depth and luminance planes (`ExactKind`).
+    Exact,
+    /// Fast Gouraud: the exact depth, a 16.16 luminance (`FastKind`).
+    Fast,
+}
+
+/// Whether the tiny-triangle writer (`shade/tiny_triangle.rs`) is tried first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Tiny {
+    /// Not for this triangle (or not on this core).
+    No,
+    /// With the ramp's first index added to the luminance and stored as it is (a 256-level
+    /// ramp).
+    Direct,
+    /// With the luminance mapped per pixel by the quantizer (exact Gouraud through any other
+    /// ramp or a dithered one).
+    Mapped,
+}
+
+/// The one decision of how a triangle is drawn, from the shading mode asked for, whether the
+/// depth and the luminance are constant over the triangle (equal vertex values), whether the
+/// quantizer is a 256-level ramp whose index can be interpolated directly
+/// ([`Quantizer::offset`]), and whether the core takes the tiny-triangle writer
+/// ([`TINY_WRITER`]):
+///
+/// - a constant luminance is flat whatever the mode; Phong without normals is exact Gouraud;
+/// - flat at constant depth needs no plane ([`Kind::Constant`]);
+/// - the tiny writer takes exact Gouraud through any quantizer and flat colour through a
+///   256-level ramp (a flat triangle of another ramp maps once per span on the general path,
+///   which measured faster: the lit flat sphere of a 32-level ramp +17 % through the tiny
+///   writer); never fast Gouraud nor constant depth and colour.
+pub(crate) const fn plan(
+    mode: ShadeMode,
+    depth_constant: bool,
+    luminance_constant: bool,
+    direct_ramp: bool,
+    tiny_writer: bool,
+) -> TrianglePlan {
+    let kind = match mode {
+        _ if luminance_constant => {
+            if depth_constant {
+                Kind::Constant
+            } else {
+                Kind::Flat
+            }
+        }
+        ShadeMode::Flat if depth_constant => Kind::Constant,
+        ShadeMode::Flat => Kind::Flat,
+        ShadeMode::GouraudFast => Kind::Fast,
+        ShadeMode::GouraudExact | ShadeMode::Phong => Kind::Exact,
+    };
+    let tiny = match kind {
+        _ if !tiny_writer => Tiny::No,
+        Kind::Exact | Kind::Flat if direct_ramp => Tiny::Direct,
+        Kind::Exact => Tiny::Mapped,
+        _ => Tiny::No,
+    };
+    TrianglePlan { kind, tiny }
+}
+
 /// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
-/// target per object and band).
+/// target per object and band). The one place that decides which path draws a triangle:
+/// [`plan`], then the set-up of that path.
 pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
@@ -462,35 +249,32 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
             (values[0][1] + values[1][1] + values[2][1] + 1) / 3
         }
     };
-    let mode = match mode {
-        _ if constant(1) => ShadeMode::Flat,
-        ShadeMode::Phong => ShadeMode::GouraudExact,
-        m => m,
-    };
-    // Exact or flat luminance over a depth plane: a small triangle within the window's
-    // columns takes the tiny-triangle writer (same pixels, less state), on the cores where it
-    // measured faster ([`TINY_WRITER`]). A 256-level ramp's first index is interpolated with
-    // the luminance and stored as it is ([`Direct`]). Any other mapping is applied per pixel,
-    // for exact Gouraud only: a flat triangle's general path maps once per span instead
-    // (measured: the lit flat sphere of a 32-level ramp +17 % through the tiny writer).
-    let tiny = TINY_WRITER
-        && match mode {
-            ShadeMode::GouraudExact => true,
-            ShadeMode::Flat => !constant(0),
-            _ => false,
-        };
-    if tiny {
-        if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
-            let lum = |l: u32| if mode == ShadeMode::Flat { flat_lum() } else { l } + first as u32;
+    // A 256-level ramp's first index is interpolated with the luminance and stored as it is
+    // ([`Direct`]): exact rounding and the 16.16 start commute with adding an integer, and the
+    // loops hold two fewer values.
+    let first = quantizer_at(v[0].x >> S, v[0].y >> S).offset();
+    let plan = plan(mode, constant(0), constant(1), first.is_some(), TINY_WRITER);
+    let offset = |lum: u32| lum + first.unwrap_or(0) as u32;
+    match plan.tiny {
+        Tiny::Direct => {
+            let lum = |l: u32| {
+                offset(if plan.kind == Kind::Flat {
+                    flat_lum()
+                } else {
+                    l
+                })
+            };
             let values = values.map(|[z, l]| [z, lum(l)]);
             if let Some(t) = TinyTriangle::<S>::new(v, values, &window) {
                 return Ok(t.draw(&mut target.targets, target.count, &|_, _| Direct));
             }
-        } else if mode == ShadeMode::GouraudExact {
+        }
+        Tiny::Mapped => {
             if let Some(drawn) = tiny_mapped(target, v, values, &quantizer_at) {
                 return Ok(drawn);
             }
         }
+        Tiny::No => {}
     }
     // (After the tiny writer, which tests the columns itself and clips the rows.)
     if !bounds_meet(&v, &window) {
@@ -502,31 +286,20 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
         targets: &mut target.targets,
         count: target.count,
     };
-    match mode {
-        ShadeMode::Flat if constant(0) => spans.constant(values[0][0], flat_lum(), quantizer_at),
-        ShadeMode::Flat => spans.planar(
+    let direct = values.map(|[z, l]| [z, offset(l)]);
+    match (plan.kind, first) {
+        (Kind::Constant, _) => spans.constant(values[0][0], flat_lum(), quantizer_at),
+        (Kind::Flat, _) => spans.planar(
             values.map(|a| [a[0]]),
             FlatKind {
                 luminance: Constant(flat_lum()),
                 quantizer_at,
             },
         ),
-        _ => {
-            // A 256-level ramp adds its first index: interpolating `first + lum` gives the
-            // same values shifted (exact rounding and the 16.16 start commute with adding an
-            // integer), and the loops store them as they are, with two fewer live values.
-            if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
-                let values = values.map(|[z, l]| [z, l + first as u32]);
-                return match mode {
-                    ShadeMode::GouraudFast => spans.planar(values, FastKind(|_, _| Direct)),
-                    _ => spans.planar(values, ExactKind(|_, _| Direct)),
-                };
-            }
-            match mode {
-                ShadeMode::GouraudFast => spans.planar(values, FastKind(quantizer_at)),
-                _ => spans.planar(values, ExactKind(quantizer_at)),
-            }
-        }
+        (Kind::Fast, Some(_)) => spans.planar(direct, FastKind(|_, _| Direct)),
+        (Kind::Exact, Some(_)) => spans.planar(direct, ExactKind(|_, _| Direct)),
+        (Kind::Fast, None) => spans.planar(values, FastKind(quantizer_at)),
+        (Kind::Exact, None) => spans.planar(values, ExactKind(quantizer_at)),
     }
 }
 
@@ -544,16 +317,6 @@ fn tiny_mapped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     let t = TinyTriangle::<S>::new(v, values, &target.window)?;
     Some(t.draw(&mut target.targets, target.count, quantizer_at))
 }
-
-/// Whether [`draw_triangle_on`] sends small triangles to the tiny-triangle writer
-/// (`shade/tiny_triangle.rs`): on 32-bit cores with a hardware divider, where its 32-bit
-/// set-up and one division per edge and row replace the general path's spilled state
-/// (Cortex-M4 `frame_bunny` −19 %, `frame_sphere` −11 %, `frame_bunny_bands16` −13 %).
-/// Not on cores that divide in software (Cortex-M0: `frame_sphere` +11 %, each row's
-/// divisions being library calls) nor on 64-bit hosts, whose general path is already 64-bit
-/// arithmetic (x86-64 `frame_sphere` +1.7 %, `frame_bunny_flat` +10.8 %). The pictures are
-/// the same either way (tested).
-pub const TINY_WRITER: bool = HARDWARE_DIVIDE && cfg!(target_pointer_width = "32");
 
 /// Bounding-box width (pixels) from which a triangle's spans use [`ExactRun`].
 const MIN_RUN_WIDTH: u32 = 16;
@@ -680,64 +443,6 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
             quantizer: (self.0)(x, y),
         };
         depth_span_with(colours, depths, z, shading, count)
-    }
-}
-
-/// The colour and depth buffers of one triangle as whole slices, sliced per span without the
-/// per-span row and column checks of [`Framebuffer::span_mut`]: the spans come from
-/// [`fill_triangle`] inside [`drawable_window`], whose rows both buffers hold and whose
-/// columns are `0..width` of both. Each span slice is still a checked `get_mut` (a span outside
-/// the slices is skipped, never a panic).
-#[derive(Debug)]
-pub(crate) struct Targets<'t, D> {
-    colours: &'t mut [u8],
-    colour_stride: usize,
-    colour_top: i32,
-    depths: &'t mut [D],
-    depth_stride: usize,
-    depth_top: i32,
-}
-
-impl<'t, D: DepthValue> Targets<'t, D> {
-    #[inline(always)]
-    fn new(frame: &'t mut Framebuffer<'_>, depth: &'t mut DepthBuffer<'_, D>) -> Self {
-        let (colour_stride, colour_top) = (frame.stride(), frame.top());
-        let (depth_stride, depth_top) = (depth.width() as usize, depth.top());
-        Targets {
-            colours: frame.pixels_mut(),
-            colour_stride,
-            colour_top,
-            depths: depth.samples_mut(),
-            depth_stride,
-            depth_top,
-        }
-    }
-
-    /// The `len` pixels from `(x, y)` in both buffers.
-    #[inline(always)]
-    pub(crate) fn span_at(&mut self, x: i32, y: i32, len: usize) -> Option<(&mut [u8], &mut [D])> {
-        self.span(&Span {
-            y,
-            x0: x,
-            x1: x + len as i32,
-        })
-    }
-
-    /// The pixels of span `s` (inside the drawable window) in both buffers.
-    #[inline(always)]
-    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
-        let len = s.x1.wrapping_sub(s.x0) as usize;
-        let at = |y: i32, top: i32, stride: usize| {
-            (y.wrapping_sub(top) as usize)
-                .wrapping_mul(stride)
-                .wrapping_add(s.x0 as usize)
-        };
-        let c = at(s.y, self.colour_top, self.colour_stride);
-        let z = at(s.y, self.depth_top, self.depth_stride);
-        Some((
-            self.colours.get_mut(c..c.wrapping_add(len))?,
-            self.depths.get_mut(z..z.wrapping_add(len))?,
-        ))
     }
 }
 
@@ -1010,6 +715,63 @@ mod tests {
             drawn += counts.map_or(0, |(covered, _)| (covered > 0) as u32);
         }
         drawn
+    }
+
+    /// The dispatch decisions, as a table: each row is what the module doc and the span
+    /// kinds promise for one combination (mode; constant depth, constant luminance, 256-level
+    /// ramp, tiny writer on the core).
+    #[test]
+    fn plan_decides_as_documented() {
+        use ShadeMode::*;
+        let p = |kind, tiny| TrianglePlan { kind, tiny };
+        let rows = [
+            // A constant luminance is flat whatever the mode; at constant depth, no plane.
+            (
+                (GouraudExact, true, true, true, true),
+                p(Kind::Constant, Tiny::No),
+            ),
+            (
+                (Phong, false, true, true, true),
+                p(Kind::Flat, Tiny::Direct),
+            ),
+            (
+                (GouraudFast, false, true, false, true),
+                p(Kind::Flat, Tiny::No),
+            ),
+            ((Flat, true, false, true, true), p(Kind::Constant, Tiny::No)),
+            (
+                (Flat, false, false, true, true),
+                p(Kind::Flat, Tiny::Direct),
+            ),
+            ((Flat, false, false, false, true), p(Kind::Flat, Tiny::No)),
+            // Phong without normals is exact Gouraud; exact takes the tiny writer through
+            // any quantizer, fast never does.
+            (
+                (Phong, false, false, true, true),
+                p(Kind::Exact, Tiny::Direct),
+            ),
+            (
+                (GouraudExact, true, false, false, true),
+                p(Kind::Exact, Tiny::Mapped),
+            ),
+            (
+                (GouraudFast, false, false, true, true),
+                p(Kind::Fast, Tiny::No),
+            ),
+            // Cores without the tiny writer never try it.
+            (
+                (GouraudExact, false, false, true, false),
+                p(Kind::Exact, Tiny::No),
+            ),
+            ((Flat, false, false, true, false), p(Kind::Flat, Tiny::No)),
+        ];
+        for ((mode, z, l, direct, tiny), expected) in rows {
+            assert_eq!(
+                plan(mode, z, l, direct, tiny),
+                expected,
+                "{mode:?} {z} {l} {direct}"
+            );
+        }
     }
 
     #[test]

@@ -10,7 +10,7 @@
 //! and each span is a call with a fresh register budget. Measured on the Cortex-M4 (QEMU,
 //! instructions): SCENES.md's bunny frame 2.57 M → 2.09 M, the sphere 1.33 M → 1.19 M,
 //! 16-row bands of the bunny 3.47 M → 3.02 M. It is used where that measured faster
-//! ([`TINY_WRITER`](super::span_writer::TINY_WRITER)).
+//! ([`TINY_WRITER`](crate::arith::TINY_WRITER)).
 //!
 //! ## When it applies
 //! Exact Gouraud luminance, or flat luminance over a depth plane that is not constant (flat
@@ -52,8 +52,8 @@
 //! - Both attributes round half up, `A0 + ⌊(2M + D) / 2D⌋`, as [`Exact`] everywhere.
 
 use super::attributes::{small_bits, Exact};
-use super::span_writer::{depth_span_with, in_range, Quantizer, Targets, WrittenCount};
-use crate::raster::euclid::div_floor_i32;
+use super::span::{depth_span_with, in_range, Quantizer, Targets, WrittenCount};
+use crate::arith::euclid::div_floor_i32;
 use crate::raster::triangle::bounds;
 use crate::raster::{SubpixelPoint, Window};
 use crate::target::DepthValue;

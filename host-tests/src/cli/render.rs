@@ -847,7 +847,9 @@ fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, St
     let (path, key, mesh) = if let Some(p) = &o.obj {
         let path = dir.join(p.get_ref());
         let mesh = crate::obj::load_obj(&path).map_err(|e| match &e.kind {
-            crate::obj::ObjErrorKind::Io(msg) => format!("mesh (line {}): cannot read {msg}", at(p)),
+            crate::obj::ObjErrorKind::Io(msg) => {
+                format!("mesh (line {}): cannot read {msg}", at(p))
+            }
             _ => format!("mesh (line {}): {}: {e}", at(p), path.display()),
         })?;
         (path, p, mesh)

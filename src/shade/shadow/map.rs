@@ -21,10 +21,12 @@ use heapless::Vec;
 
 use super::projection::{Orthographic, Projection, SUBPIXEL_BITS};
 use super::{ShadowError, Visibility};
-use crate::clip::frustum::{clip_to_plane, ClipVertex, Frustum, Plane};
+use crate::arith::isqrt::isqrt_u64;
+use crate::clip::frustum::{
+    clip_to_plane, ClipVertex, Frustum, Plane, CLIP_CAPACITY, MAX_POLYGON_VERTICES,
+};
 use crate::geometry::camera::{Camera, CameraError, FovAxis, Lens, Viewport};
 use crate::geometry::fixed::Coord;
-use crate::geometry::isqrt::isqrt_u64;
 use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::trig::{sin_cos_bits, Angle};
@@ -32,13 +34,10 @@ use crate::geometry::vector::{unit_bits, Vec3};
 use crate::project::Projector;
 use crate::raster::triangle::fill_triangle;
 use crate::raster::{SubpixelPoint, Window};
-use crate::render::MAX_POLYGON_VERTICES;
 use crate::shade::attributes::{AttributePlane, Interpolant, PlaneError};
 use crate::shade::lighting::Light;
 use crate::target::DepthValue;
 
-/// Polygon capacity of the clipper: the largest polygon plus one vertex per plane.
-const CLIP_CAPACITY: usize = MAX_POLYGON_VERTICES + 6;
 /// Largest full field of view of a framed point-light map (120°): wider cones waste texels
 /// on their rim, and a light inside its bounding sphere cannot frame it anyway.
 pub const MAX_POINT_FOV_DEGREES: i32 = 120;

@@ -119,7 +119,7 @@
 //! - Pass 2 over a frame: see [`pass`] (integer only: one 32-bit reciprocal, two
 //!   reciprocal-based `i64` divisions, one affine transform and one projection per pixel).
 //! - Memory: the caller's `w·h` samples; nothing allocated; polygons of up to
-//!   [`MAX_POLYGON_VERTICES`](crate::render::MAX_POLYGON_VERTICES) vertices.
+//!   [`MAX_POLYGON_VERTICES`](crate::clip::frustum::MAX_POLYGON_VERTICES) vertices.
 
 mod map;
 pub mod pass;

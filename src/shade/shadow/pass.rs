@@ -23,7 +23,7 @@
 //! 3. `x = (i − i0)·z/f_x`, `y = (j0 − j)·z/f_y` (TIPE's `i = i0 + f_x·x/z`,
 //!    `j = j0 − f_y·y/z` solved for `x`, `y`), raw: `(i·2^16 − i0)·z` with
 //!    `|i·2^16 − i0| < 2^32` (checked at set-up) and `z < 2^31` is below `2^63`, divided by
-//!    `f` (raw Q16) with [`Divisor`] (a reciprocal and at most two corrections on 32-bit
+//!    `f` (raw Q16) with `arith::euclid::Divisor` (a reciprocal and at most two corrections on 32-bit
 //!    cores), rounded to nearest.
 //! 4. Observer → light frame by one [`Affine3`]: the camera's rigid inverse
 //!    ([`Affine3::inverse_rigid`]) composed with the map's light frame at set-up.
@@ -47,13 +47,13 @@
 
 use super::map::ShadowMap;
 use super::{ShadowError, Visibility};
+use crate::arith::euclid::Divisor;
+use crate::arith::isqrt::isqrt_u64;
 use crate::geometry::camera::Camera;
 use crate::geometry::fixed::{saturate_i32, shr_round, Coord};
-use crate::geometry::isqrt::isqrt_u64;
 use crate::geometry::matrix::Affine3;
 use crate::geometry::vector::Vec3;
 use crate::project::{reciprocal, Projector};
-use crate::raster::euclid::Divisor;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// A depth buffer sample the back-projection can read (`u16` and `u32`).

@@ -9,7 +9,8 @@
 //! Numeric contract: `b > 0` (callers guarantee it; `b ≤ 0` would give an unspecified but
 //! non-panicking result for `b < 0`; `b == 0` is never passed). No overflow for any `a`.
 
-use crate::geometry::fixed::mul_wide_u;
+use super::wide::mul_wide_u;
+use super::WIDE_REGISTERS;
 use core::num::NonZeroU32;
 
 /// `(q, r)` with `a = b·q + r` and `0 ≤ r < b`, for `b > 0`.
@@ -20,7 +21,7 @@ use core::num::NonZeroU32;
 /// targets the hardware divides 64 bits directly and the check would only cost.
 #[inline(always)]
 pub fn div_floor_i64(a: i64, b: i64) -> (i64, i64) {
-    if cfg!(not(target_pointer_width = "64")) && a == a as i32 as i64 && b == b as i32 as i64 {
+    if !WIDE_REGISTERS && a == a as i32 as i64 && b == b as i32 as i64 {
         let (q, r) = div_floor_i32(a as i32, b as i32);
         return (q as i64, r as i64);
     }
@@ -31,16 +32,6 @@ pub fn div_floor_i64(a: i64, b: i64) -> (i64, i64) {
         (q, r)
     }
 }
-
-/// True where a 32-bit division is one instruction: x86, x86-64, AArch64, and 32-bit Arm with
-/// 32-bit atomics (Cortex-M3/M4 and richer cores; ARMv6-M, `thumbv6m`, has none), recognised
-/// that way on stable Rust (by `build.rs`, as `cfg(hardware_divide)`). Elsewhere
-/// (Cortex-M0/M0+) a division is a library routine whose loop runs once per quotient bit, so
-/// divisions biased to be unsigned (no sign fix-up, but a quotient 11 to 16 bits longer) take
-/// their signed forms there. The choice changes speed,
-/// never results: a core misjudged by this test (an ARMv6K or ARMv7-A core without a divider)
-/// is slower, not wrong.
-pub const HARDWARE_DIVIDE: bool = cfg!(hardware_divide);
 
 /// `(q, r)` with `a = b·q + r` and `0 ≤ r < b`, for `b > 0`.
 #[inline(always)]
@@ -90,7 +81,7 @@ impl Divisor {
     #[inline(always)]
     pub fn div_floor(&self, a: i64) -> (i64, i64) {
         let d = self.d as i64;
-        if cfg!(target_pointer_width = "64") || (a == a as i32 as i64 && d == d as i32 as i64) {
+        if WIDE_REGISTERS || (a == a as i32 as i64 && d == d as i32 as i64) {
             return div_floor_i64(a, d);
         }
         self.div_floor_wide(a)
@@ -115,7 +106,7 @@ impl Divisor {
 }
 
 /// A non-zero `u32` divisor prepared for many divisions of `u32` dividends: the hardware
-/// division where there is one ([`HARDWARE_DIVIDE`]); elsewhere (Cortex-M0/M0+, whose
+/// division where there is one ([`HARDWARE_DIVIDE`](super::HARDWARE_DIVIDE)); elsewhere (Cortex-M0/M0+, whose
 /// division is a library loop of about 90 instructions) a reciprocal taken once, after which
 /// each division is one 32×32→64-bit product ([`mul_wide_u`]) and at most two corrections.
 ///
@@ -244,7 +235,7 @@ mod tests {
             target_arch = "x86_64",
             target_arch = "aarch64"
         ));
-        assert_eq!(HARDWARE_DIVIDE, host);
+        assert_eq!(crate::arith::HARDWARE_DIVIDE, host);
     }
 
     /// [`DivisorU32`]'s reciprocal path (forced: the host divides in hardware) equals the

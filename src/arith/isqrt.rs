@@ -1,6 +1,6 @@
 //! Integer square root: `floor(√n)` for `n: u64`, exact, without floating point.
 //!
-//! Role in the pipeline: vector lengths and normalisation ([`vector`](super::vector)), the camera's
+//! Role in the pipeline: vector lengths and normalisation (`geometry::vector`), the camera's
 //! diagonal field of view. Set-up and per-normal work, not per pixel.
 //!
 //! Numeric contract: input any `u64`; output `u32` (`√(2^64 − 1) < 2^32`). The method is the

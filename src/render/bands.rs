@@ -1,0 +1,220 @@
+//! Bands: a picture drawn through one band-sized pair of buffers ([`render_in_bands`]), and the
+//! polygon table ([`PolygonRows`], [`Renderer::polygon_rows`]) that decides each polygon's fate
+//! once per frame.
+//!
+//! Numeric contract: band rows are `0..=65535` (a viewport's height is a `u16`); see
+//! `polygon_rows.rs` for the table entries.
+
+use super::cull::front_triangle;
+use super::polygon_rows::triangle_rows;
+use super::polygon_stage::{Path, PolygonStage};
+use super::{
+    render_scene, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
+};
+use crate::geometry::mesh::PolygonSizes;
+use crate::scene::{Object, Scene};
+use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+
+impl<const S: u32> Renderer<S> {
+    /// [`PolygonRows::CLIP`] when it crosses a plane, else the rows its projection touches.
+    /// Counts `polygons_in`, `rejected` and `culled` into `stats`.
+    pub fn polygon_rows(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        out: &mut [PolygonRows],
+        stats: &mut impl StatsSink,
+    ) -> Result<(), RenderError> {
+        let stats = stats.counts();
+        let mesh = &object.mesh;
+        let needed = mesh.vertices().len();
+        let prepared = scratch
+            .get(..needed)
+            .ok_or(RenderError::ScratchTooSmall { needed })?;
+        let out = out
+            .get_mut(..mesh.polygon_count())
+            .ok_or(RenderError::ScratchTooSmall {
+                needed: mesh.polygon_count(),
+            })?;
+        let stage = PolygonStage {
+            renderer: self,
+            object,
+            prepared,
+            rows: (0, 0),
+            banded: false,
+            table: None,
+        };
+        if let PolygonSizes::Uniform(3) = mesh.sizes() {
+            stage.classify_triangles(out, stats)?;
+        } else {
+            for (o, poly) in out.iter_mut().zip(mesh.polygons()) {
+                stats.polygons_in += 1;
+                *o = stage.classify(poly, stats)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<const S: u32> PolygonStage<'_, '_, S> {
+    /// The band pre-pass of one polygon (see [`Renderer::polygon_rows`]); the same decisions
+    /// as [`decide`](Self::decide). The caller counts the polygon in `polygons_in`.
+    #[inline(always)]
+    fn classify(&self, poly: &[u16], stats: &mut RenderStats) -> Result<PolygonRows, RenderError> {
+        Ok(match self.verdict(poly, stats, false)? {
+            Path::Skip => PolygonRows::NEVER,
+            Path::Projected => self.projected_rows(poly),
+            Path::Clip => PolygonRows::CLIP,
+        })
+    }
+
+    /// The band pre-pass of a triangle mesh (see [`Renderer::polygon_rows`]), into `out` (out
+    /// of line, so that its loop does not depend on the caller's code).
+    #[inline(never)]
+    fn classify_triangles(
+        &self,
+        out: &mut [PolygonRows],
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        if self.object.cull_back_faces {
+            self.classify_each::<true>(out, stats)
+        } else {
+            self.classify_each::<false>(out, stats)
+        }
+    }
+
+    /// [`classify_triangles`](Self::classify_triangles) with the object's culling flag
+    /// `CULL`; every triangle is counted in once (on an error, those up to the failing one).
+    #[inline(always)]
+    fn classify_each<const CULL: bool>(
+        &self,
+        out: &mut [PolygonRows],
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        let triangles = self.object.mesh.indices().chunks_exact(3);
+        let n = out.len().min(triangles.len());
+        for (pi, (o, poly)) in out.iter_mut().zip(triangles).enumerate() {
+            match self.classify_triangle::<CULL>(poly, stats) {
+                Ok(r) => *o = r,
+                Err(e) => {
+                    stats.polygons_in += pi as u32 + 1;
+                    return Err(e);
+                }
+            }
+        }
+        stats.polygons_in += n as u32;
+        Ok(())
+    }
+
+    /// [`classify`](Self::classify) for a triangle (`poly`, 3 indices) of an object whose
+    /// culling flag is `CULL`, not counted in `polygons_in`: three vertices in range and
+    /// projected (the common case) are classified from one read of each.
+    #[inline(always)]
+    fn classify_triangle<const CULL: bool>(
+        &self,
+        poly: &[u16],
+        stats: &mut RenderStats,
+    ) -> Result<PolygonRows, RenderError> {
+        match self.prepared_triangle(poly) {
+            Some(v) if v[0].outcode | v[1].outcode | v[2].outcode == 0 => {
+                if CULL && !front_triangle(v[0].screen, v[1].screen, v[2].screen) {
+                    stats.culled += 1;
+                    return Ok(PolygonRows::NEVER);
+                }
+                Ok(triangle_rows(v))
+            }
+            _ => self.classify(poly, stats),
+        }
+    }
+}
+
+/// Caller memory of [`render_in_bands`]; each part is a documented memory/time switch.
+#[derive(Debug)]
+pub struct BandScratch<'a, const S: u32> {
+    /// Prepared vertices (28 bytes each). Holding the vertices of **all** objects together,
+    /// the vertex stage runs once per frame; holding only the largest object's, it runs again
+    /// for every band.
+    pub vertices: &'a mut [PreparedVertex<S>],
+    /// Polygon table (4 bytes per polygon), used when `vertices` holds all objects and this
+    /// holds all objects' polygons: rejection, culling and each polygon's rows are decided
+    /// once per frame ([`Renderer::polygon_rows`]) and a band visits only the polygons that
+    /// reach it. Otherwise (e.g. `&mut []`) every band tests every polygon.
+    pub polygons: &'a mut [PolygonRows],
+}
+
+/// Draws a `width × height` picture band by band through one band-sized pair of buffers:
+/// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band,
+/// then calls `band_done` with the finished band, mutable (draw an overlay into it there, with
+/// embedded-graphics text or shapes, since a [`Framebuffer`] is a `DrawTarget`), and flush it to
+/// the display (e.g. [`flush`](crate::target::flush)). An error returned by `band_done` stops
+/// the frame and is returned; `E` is the caller's error type, which a [`RenderError`] converts
+/// into (`zscan::Error`, `Box<dyn Error>`, or [`RenderError`] itself). The picture is the same
+/// as one pass (the raster stage writes exactly the rows a buffer holds), whatever the scratch
+/// ([`BandScratch`]).
+///
+/// The band's buffers `(pixels, depths)` need `width × band_rows` elements each. Statistics
+/// are added to `stats` (a [`StatsSink`], as for [`render_scene`]) summed over bands: pixel
+/// counts add up to the picture's and `clipped` counts each band's clipper runs. With
+/// the polygon table, `polygons_in`, `rejected` and `culled` are counted once per frame;
+/// without it, once per band pass (`culled` then counts, per band, the back faces that reach
+/// the band's rows: a band skips projected polygons above or below it first).
+pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    (pixels, depths): (&mut [u8], &mut [D]),
+    (width, height, band_rows): (u16, u16, u16),
+    scratch: BandScratch<'_, S>,
+    stats: &mut impl StatsSink,
+    mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
+) -> Result<(), E> {
+    let BandScratch { vertices, polygons } = scratch;
+    let band_rows = band_rows.clamp(1, height.max(1));
+    let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
+    let total_polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
+    let prepare_once = vertices.len() >= total;
+    let table = prepare_once && polygons.len() >= total_polygons;
+    if prepare_once {
+        let (mut at, mut pat) = (0, 0);
+        for object in scene.objects {
+            let (n, np) = (object.mesh.vertices().len(), object.mesh.polygon_count());
+            renderer.prepare(object, &mut vertices[at..at + n])?;
+            if table {
+                let out = &mut polygons[pat..pat + np];
+                renderer.polygon_rows(object, &vertices[at..at + n], out, stats)?;
+            }
+            (at, pat) = (at + n, pat + np);
+        }
+    }
+    let mut top = 0u16;
+    while top < height {
+        let rows = band_rows.min(height - top);
+        let n = width as usize * rows as usize;
+        let too_small = RenderError::BufferTooSmall;
+        let mut frame = Framebuffer::band(pixels.get_mut(..n).ok_or(too_small)?, width, rows, top)
+            .map_err(|_| too_small)?;
+        let mut depth = DepthBuffer::band(depths.get_mut(..n).ok_or(too_small)?, width, rows, top)
+            .map_err(|_| too_small)?;
+        if prepare_once {
+            frame.clear(scene.background);
+            depth.clear();
+            let (mut at, mut pat) = (0, 0);
+            for object in scene.objects {
+                let (n, np) = (object.mesh.vertices().len(), object.mesh.polygon_count());
+                let prepared = &vertices[at..at + n];
+                let (f, z, st) = (&mut frame, &mut depth, &mut *stats);
+                if table {
+                    let t = &polygons[pat..pat + np];
+                    renderer.rasterize_rows(object, prepared, t, f, z, st)?;
+                } else {
+                    renderer.rasterize(object, prepared, f, z, st)?;
+                }
+                (at, pat) = (at + n, pat + np);
+            }
+        } else {
+            render_scene(renderer, scene, &mut frame, &mut depth, vertices, stats)?;
+        }
+        band_done(&mut frame, &depth)?;
+        top += rows;
+    }
+    Ok(())
+}

@@ -1,0 +1,128 @@
+//! The seam after the polygon stage: every culled, clipped, projected triangle of an object
+//! goes to one [`TriangleConsumer`], with its three [`Corner`]s and the index of the polygon it
+//! came from.
+//!
+//! The polygon stage (`polygon_stage.rs`) knows nothing of how a triangle becomes pixels: it
+//! decides rejection, culling and clipping, projects, fans polygons into triangles, and counts.
+//! A consumer decides what a triangle is for. Today's consumers draw at once through the depth
+//! buffer: [`LevelWriter`] (a luminance level per corner: flat, exact or fast Gouraud, plain
+//! or dithered) and [`PhongWriter`] (a normal per corner, lit per pixel). A visibility method
+//! that needs every triangle before drawing any (a depth sort, a scan-line edge table, an area
+//! subdivision) is another consumer: it stores what it is handed (the corners hold the exact
+//! sub-pixel position, the 32-bit depth and the attributes, so a later pass draws the same
+//! pixels), then draws in its own order.
+//!
+//! Numeric contract of a [`Corner`]: `screen` within the projector's `±(2^28 − 1)` sub-pixel
+//! range, `depth` the projection's 32-bit normalised depth, `view` the observer-frame position
+//! (I16F16), `attrs` a level (`0..=255` at prepared vertices, interpolated at clipped ones)
+//! or an observer-frame normal (Q15 components).
+
+use core::marker::PhantomData;
+
+use super::{PreparedVertex, RenderError};
+use crate::geometry::vector::Vec3;
+use crate::raster::SubpixelPoint;
+use crate::scene::Object;
+use crate::shade::dither::Bayer4;
+use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
+use crate::shade::span_writer::{draw_triangle_on, RasterTarget, WrittenCount};
+use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+
+/// One triangle corner handed to a consumer: screen position, depth, observer-frame position
+/// and `N` attributes (a level, or a normal), from the vertex stage or the clipper.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Corner<const S: u32, const N: usize> {
+    /// Sub-pixel screen position.
+    pub(crate) screen: SubpixelPoint<S>,
+    /// 32-bit normalised depth (smaller is nearer).
+    pub(crate) depth: u32,
+    /// Observer-frame position.
+    pub(crate) view: Vec3,
+    /// The corner's attributes.
+    pub(crate) attrs: [i32; N],
+}
+
+impl<const S: u32, const N: usize> Corner<S, N> {
+    /// The corner of a prepared (projected) vertex with attributes `attrs`.
+    #[inline(always)]
+    pub(crate) fn prepared(p: &PreparedVertex<S>, attrs: [i32; N]) -> Self {
+        Corner {
+            screen: p.screen,
+            depth: p.depth,
+            view: p.view,
+            attrs,
+        }
+    }
+}
+
+/// What the polygon stage hands its triangles to.
+pub(crate) trait TriangleConsumer<const S: u32, const N: usize> {
+    /// Takes one triangle of polygon `polygon` (its index in the mesh). Returns `(covered,
+    /// written)`: the pixels it covered inside the buffers and those it wrote (0 where the
+    /// consumer does not count them, or draws later).
+    fn triangle(
+        &mut self,
+        polygon: usize,
+        corners: [Corner<S, N>; 3],
+    ) -> Result<(u32, u32), RenderError>;
+}
+
+/// The z-buffer consumer of luminance triangles (flat or Gouraud, plain or dithered): corners
+/// whose one attribute is a level, clamped to `0..=255` (clipped corners are interpolated),
+/// drawn at once into a [`RasterTarget`] prepared once per object.
+pub(crate) struct LevelWriter<'a, 't, 'o, D, C> {
+    /// The object's frame and depth buffer.
+    pub(crate) target: &'a mut RasterTarget<'t, D, C>,
+    /// The object (its ramp, dither and shading mode).
+    pub(crate) object: &'a Object<'o>,
+}
+
+impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 1>
+    for LevelWriter<'_, '_, '_, D, C>
+{
+    #[inline(always)]
+    fn triangle(&mut self, _: usize, c: [Corner<S, 1>; 3]) -> Result<(u32, u32), RenderError> {
+        let v = c.map(|c| c.screen);
+        let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
+        let (ramp, shade) = (self.object.ramp, self.object.shade);
+        if self.object.dither {
+            draw_triangle_on(self.target, v, values, shade, |x, y| Bayer4::at(ramp, x, y))
+        } else {
+            draw_triangle_on(self.target, v, values, shade, |_, _| ramp)
+        }
+        .map_err(RenderError::Draw)
+    }
+}
+
+/// The z-buffer consumer of Phong triangles: corners whose three attributes are the
+/// observer-frame normal, lit per pixel ([`draw_triangle_phong`]). `C` says whether written
+/// pixels are reported.
+pub(crate) struct PhongWriter<'a, 'f, 'd, D: DepthValue, C> {
+    /// The frame.
+    pub(crate) frame: &'a mut Framebuffer<'f>,
+    /// Its depth buffer.
+    pub(crate) depth: &'a mut DepthBuffer<'d, D>,
+    /// Lights, material, ramp and dither.
+    pub(crate) context: PhongContext<'a>,
+    /// Whether written pixels are reported.
+    pub(crate) count: PhantomData<C>,
+}
+
+impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 3>
+    for PhongWriter<'_, '_, '_, D, C>
+{
+    #[inline(always)]
+    fn triangle(&mut self, _: usize, c: [Corner<S, 3>; 3]) -> Result<(u32, u32), RenderError> {
+        let corner = |c: &Corner<S, 3>| PhongVertex {
+            screen: c.screen,
+            depth: c.depth,
+            position: c.view,
+            normal: Vec3::from_bits(c.attrs[0], c.attrs[1], c.attrs[2]),
+        };
+        let corners = [corner(&c[0]), corner(&c[1]), corner(&c[2])];
+        let (covered, written) =
+            draw_triangle_phong(self.frame, self.depth, corners, &self.context)
+                .map_err(RenderError::Draw)?;
+        Ok((covered, if C::COUNTS { written } else { 0 }))
+    }
+}

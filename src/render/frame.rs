@@ -1,0 +1,42 @@
+//! The frame entry: [`Renderer::draw_object`] (both stages for one object) and
+//! [`render_scene`] (clear, then every object of a scene).
+
+use super::{PreparedVertex, RenderError, Renderer, StatsSink};
+use crate::scene::{Object, Scene};
+use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+
+impl<const S: u32> Renderer<S> {
+    /// Both stages for one object.
+    pub fn draw_object<D: DepthValue, T: StatsSink>(
+        &self,
+        object: &Object<'_>,
+        scratch: &mut [PreparedVertex<S>],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut T,
+    ) -> Result<(), RenderError> {
+        self.prepare(object, scratch)?;
+        self.rasterize(object, scratch, frame, depth, stats)
+    }
+}
+
+/// Clears `frame` to the scene's background and `depth` to far, then draws every object,
+/// adding the frame's counts to `stats`: a [`RenderStats`](super::RenderStats) counts everything, a
+/// [`StatsWithoutWritten`](super::StatsWithoutWritten) everything but the written pixels, whose per-pixel add the span
+/// loops then leave out (the faster choice when the count is not read; see its doc).
+/// `scratch` must hold at least as many vertices as the largest mesh.
+pub fn render_scene<D: DepthValue, const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    scratch: &mut [PreparedVertex<S>],
+    stats: &mut impl StatsSink,
+) -> Result<(), RenderError> {
+    frame.clear(scene.background);
+    depth.clear();
+    for object in scene.objects {
+        renderer.draw_object(object, scratch, frame, depth, stats)?;
+    }
+    Ok(())
+}

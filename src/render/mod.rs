@@ -1,0 +1,62 @@
+//! The frame: geometry → clipping → projection → raster → shading → target, for whole scenes.
+//!
+//! Role in the pipeline: the glue that runs every stage in order. A [`Renderer`] holds what is
+//! fixed for a frame (projector, frustum, view transform, lights). For each
+//! [`Object`](crate::scene::Object):
+//!
+//! 1. **Vertex stage** (`vertex_stage.rs`, [`Renderer::prepare`]), once per vertex: model →
+//!    observer frame, outcode, projection, and the vertex's level, into caller scratch (one
+//!    [`PreparedVertex`] per mesh vertex).
+//! 2. **Polygon stage** (`polygon_stage.rs`, [`Renderer::rasterize`]), once per polygon:
+//!    rejection, culling (`cull.rs`), Sutherland–Hodgman clipping and projection of the
+//!    clipped vertices, fans of triangles. `object.rs` picks what each corner carries (a
+//!    level, or a normal for Phong) and which consumer takes the triangles.
+//! 3. **The seam** (`consumer.rs`): each culled, clipped, projected triangle goes to a
+//!    `TriangleConsumer`. Today's consumers draw through the depth buffer at once
+//!    (`LevelWriter` into [`draw_triangle_on`](crate::shade::span_writer::draw_triangle_on),
+//!    `PhongWriter` into [`draw_triangle_phong`](crate::shade::phong::draw_triangle_phong));
+//!    other visibility methods plug in here.
+//!
+//! `frame.rs` holds the entries ([`Renderer::draw_object`], [`render_scene`]), `bands.rs` the
+//! banded frame ([`render_in_bands`]) with its polygon table (`polygon_rows.rs`), `stats.rs`
+//! the counts, `error.rs` the error.
+//!
+//! ## Bands
+//! Frame and depth buffer may be a band of rows
+//! ([`Framebuffer::band`](crate::target::Framebuffer::band)): the raster stage writes only the
+//! rows the buffers hold, so drawing a picture band by band, flushing each band to the display
+//! before the next, gives the same pixels as one pass (tested). [`render_in_bands`] runs the
+//! vertex stage once per frame when its scratch holds every object's vertices, and with a
+//! polygon table ([`PolygonRows`], [`Renderer::polygon_rows`]) decides rejection, culling and
+//! each polygon's rows once, so that each band visits only the polygons that reach it.
+//!
+//! ## Numeric contract
+//! Mesh coordinates `|c| ≤ 1024`
+//! ([`MAX_MESH_COORD_BITS`](crate::geometry::mesh::MAX_MESH_COORD_BITS)); observer-frame
+//! positions are I16F16 and saturate (see `vertex_stage.rs`). Projected vertices are within
+//! the frustum's guard band (at most 4 screen extents from the principal point, capped by the
+//! raster's `±(2^28 − 1)` sub-pixel range); triangles whose doubled area reaches the attribute
+//! planes' limit (`2·area < 2^30` sub-pixel units², at large viewports) are reported as
+//! [`DrawError::TooLarge`](crate::shade::span_writer::DrawError::TooLarge). Intensities are
+//! `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
+
+mod bands;
+mod consumer;
+mod cull;
+mod error;
+mod frame;
+mod object;
+mod polygon_rows;
+mod polygon_stage;
+mod renderer;
+mod stats;
+mod vertex_stage;
+
+pub use crate::clip::frustum::MAX_POLYGON_VERTICES;
+pub use bands::{render_in_bands, BandScratch};
+pub use error::RenderError;
+pub use frame::render_scene;
+pub use polygon_rows::PolygonRows;
+pub use renderer::Renderer;
+pub use stats::{RenderStats, StatsSink, StatsWithoutWritten};
+pub use vertex_stage::PreparedVertex;

@@ -1,0 +1,163 @@
+//! One object's polygon pass: which attributes its corners carry (a level given, lit per
+//! vertex or per polygon, or a normal for Phong) and which consumer draws its triangles.
+
+use core::cell::Cell;
+use core::marker::PhantomData;
+
+use super::consumer::{LevelWriter, PhongWriter};
+use super::polygon_stage::PolygonStage;
+use super::{PolygonRows, PreparedVertex, RenderError, Renderer, StatsSink};
+use crate::geometry::vector::Vec3;
+use crate::scene::{Intensities, Object};
+use crate::shade::lighting::light_polygon;
+use crate::shade::phong::PhongContext;
+use crate::shade::span_writer::{RasterTarget, ShadeMode};
+use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+
+impl<const S: u32> Renderer<S> {
+    /// The polygon stage and raster for `object`, whose vertices `prepare` put in `scratch`.
+    ///
+    /// Lit objects ([`Intensities::Lit`]) get their levels here: flat ones per polygon
+    /// ([`light_polygon`]), Gouraud ones from the vertex stage; Phong ones carry their
+    /// observer-frame normals through clipping as three attributes and are lit per pixel
+    /// ([`draw_triangle_phong`](crate::shade::phong::draw_triangle_phong)).
+    pub fn rasterize<D: DepthValue, T: StatsSink>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut T,
+    ) -> Result<(), RenderError> {
+        self.rasterize_with(object, scratch, None, frame, depth, stats)
+    }
+
+    /// [`rasterize`](Self::rasterize) for one band, with the object's polygon table from
+    /// [`polygon_rows`](Self::polygon_rows) (as long as its polygon table): a polygon is
+    /// visited only when its rows meet the band, and rejection and culling are not repeated.
+    /// `polygons_in`, `rejected` and `culled` were counted by `polygon_rows`.
+    pub fn rasterize_rows<D: DepthValue, T: StatsSink>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        rows: &[PolygonRows],
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut T,
+    ) -> Result<(), RenderError> {
+        if rows.len() < object.mesh.polygon_count() {
+            return Err(RenderError::ScratchTooSmall {
+                needed: object.mesh.polygon_count(),
+            });
+        }
+        self.rasterize_with(object, scratch, Some(rows), frame, depth, stats)
+    }
+
+    /// The polygon stage of `object` with its corner attributes and its consumer: Phong
+    /// objects carry their normals to a [`PhongWriter`], every other object a level to a
+    /// [`LevelWriter`] (lit per polygon for flat lit objects, read from the prepared vertex for
+    /// Gouraud-lit or given per-vertex levels, else given per polygon or uniform).
+    fn rasterize_with<D: DepthValue, T: StatsSink>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        table: Option<&[PolygonRows]>,
+        frame: &mut Framebuffer<'_>,
+        depth: &mut DepthBuffer<'_, D>,
+        stats: &mut T,
+    ) -> Result<(), RenderError> {
+        let stats = stats.counts();
+        let mesh = &object.mesh;
+        let prepared =
+            scratch
+                .get(..mesh.vertices().len())
+                .ok_or(RenderError::ScratchTooSmall {
+                    needed: mesh.vertices().len(),
+                })?;
+        match object.intensities {
+            Intensities::PerVertex(t) if t.len() < prepared.len() => {
+                return Err(RenderError::IntensitiesTooShort)
+            }
+            Intensities::PerPolygon(t) if t.len() < mesh.polygon_count() => {
+                return Err(RenderError::IntensitiesTooShort)
+            }
+            Intensities::Lit { normals, .. }
+                if object.shade != ShadeMode::Flat && normals.len() < prepared.len() =>
+            {
+                return Err(RenderError::IntensitiesTooShort)
+            }
+            _ => {}
+        }
+        let rows = (frame.top().max(depth.top()), {
+            let f = frame.top() + frame.height() as i32;
+            f.min(depth.top() + depth.height() as i32)
+        });
+        let stage = PolygonStage {
+            renderer: self,
+            object,
+            prepared,
+            rows,
+            banded: rows.0 > 0 || rows.1 < self.camera.viewport().height as i32,
+            table,
+        };
+        if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
+            (object.intensities, object.shade)
+        {
+            let model_view = self.model_view(object)?;
+            let context = PhongContext {
+                illumination: &self.illumination,
+                material,
+                ramp: object.ramp,
+                dither: object.dither,
+            };
+            let normal = |i: u16| {
+                let n = normals.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+                model_view.transform_vector(n).bits()
+            };
+            let writer = PhongWriter::<D, T::Count> {
+                frame,
+                depth,
+                context,
+                count: PhantomData,
+            };
+            return stage.run(stats, |_, poly, k, _| normal(poly[k]), writer);
+        }
+        // Luminance triangles: the buffers prepared once for the object.
+        let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
+        let writer = LevelWriter {
+            target: &mut target,
+            object,
+        };
+        match object.intensities {
+            Intensities::Lit { material, .. } if object.shade == ShadeMode::Flat => {
+                // One level per polygon, computed for its first corner and reused.
+                let model_view = self.model_view(object)?;
+                let last = Cell::new((usize::MAX, 0u8));
+                let level = |pi: usize, poly: &[u16]| {
+                    if last.get().0 != pi {
+                        let l =
+                            light_polygon(mesh, poly, &model_view, &self.illumination, &material);
+                        last.set((pi, l));
+                    }
+                    last.get().1
+                };
+                return stage.run(stats, |pi, poly, _, _| [level(pi, poly) as i32], writer);
+            }
+            Intensities::Lit { .. } | Intensities::PerVertex(_) => {
+                // Gouraud-lit or given per vertex: the level the vertex stage stored in the
+                // prepared vertex, read with it.
+                return stage.run(
+                    stats,
+                    |_, _, _, p| [p.map_or(0, |p| p.level as i32)],
+                    writer,
+                );
+            }
+            _ => {}
+        }
+        stage.run(
+            stats,
+            |pi, poly, k, _| [object.intensity(pi, poly[k]) as i32],
+            writer,
+        )
+    }
+}
