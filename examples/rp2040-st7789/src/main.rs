@@ -1,7 +1,8 @@
 //! zscan on a Raspberry Pi Pico (RP2040, Cortex-M0+ at 125 MHz) driving a 240 × 240 ST7789
 //! display over SPI with mipidsi: a lit torus turning around a lit sphere, drawn by
 //! `render_in_bands` in bands of 16 rows (3.75 KB of frame, 7.5 KB of depth), each band
-//! flushed to the display with the text overlay drawn over it.
+//! getting the text overlay (drawn into the band's palette indices) and then flushed to the
+//! display.
 //!
 //! Wiring (SPI0): SCK GP18, MOSI GP19, CS GP17, DC GP16, RST GP20, backlight GP21.
 //!
@@ -15,8 +16,7 @@ use core::convert::Infallible;
 use core::fmt::Write as _;
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics::prelude::{DrawTarget, DrawTargetExt, Point, RgbColor, Size};
-use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::prelude::{DrawTarget, Point, RgbColor};
 use embedded_graphics::text::Text;
 use embedded_graphics::Drawable;
 use embedded_hal::digital::OutputPin;
@@ -30,6 +30,7 @@ use mipidsi::Builder;
 use panic_halt as _;
 use rp2040_hal as hal;
 use zscan::prelude::*;
+use zscan::target::PaletteIndex;
 
 /// The second-stage bootloader for the Pico's W25Q080 flash.
 #[link_section = ".boot2"]
@@ -139,6 +140,7 @@ fn palette() -> Result<Lut<Rgb565>, zscan::Error> {
     let bases = [Rgb888::new(255, 150, 40), Rgb888::new(60, 170, 255)];
     let mut lut = Lut::shaded(&bases, LEVELS, 1)?;
     lut.set(0, Rgb565::new(2, 5, 6));
+    lut.set(TEXT, Rgb565::WHITE);
     Ok(lut)
 }
 
@@ -150,17 +152,13 @@ fn ramp(m: u8) -> LuminanceRamp {
     }
 }
 
-/// Draws `text` over the part of the display that `band` covers (after the band's flush).
-fn overlay<D: DrawTarget<Color = Rgb565>>(
-    band: &Framebuffer<'_>,
-    display: &mut D,
-    text: &str,
-) -> Result<(), D::Error> {
-    let w = band.window();
-    let size = Size::new((w.x1 - w.x0) as u32, (w.y1 - w.y0) as u32);
-    let area = Rectangle::new(Point::new(w.x0, w.y0), size);
-    let style = MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE);
-    Text::new(text, Point::new(6, 14), style).draw(&mut display.clipped(&area))?;
+/// Palette index of the overlay's text.
+const TEXT: u8 = 255;
+
+/// Draws `text` into the band (a `DrawTarget` of palette indices; it keeps the rows it holds).
+fn overlay(band: &mut Framebuffer<'_>, text: &str) -> Result<(), zscan::Error> {
+    let style = MonoTextStyle::new(&FONT_6X10, PaletteIndex(TEXT));
+    Text::new(text, Point::new(6, 14), style).draw(band)?;
     Ok(())
 }
 
@@ -241,8 +239,6 @@ fn run<D: DrawTarget<Color = Rgb565>>(
             last.triangles_drawn, last.pixels_covered
         );
         let mut stats = RenderStats::default();
-        // The band callback returns nothing: keep the first display error, report it after.
-        let mut sent = Ok(());
         render_in_bands(
             &renderer,
             &scene,
@@ -256,13 +252,11 @@ fn run<D: DrawTarget<Color = Rgb565>>(
             },
             &mut stats,
             |band, _depth| {
-                if sent.is_ok() {
-                    sent = flush(band, &lut, display, None)
-                        .and_then(|()| overlay(band, display, &text));
-                }
+                // The overlay goes into the band, then the band to the display.
+                overlay(band, &text)?;
+                flush(band, &lut, display, None).map_err(|_| zscan::Error::Display)
             },
         )?;
-        sent.map_err(|_| zscan::Error::Display)?;
         last = stats;
     }
     unreachable!("the frame counter does not end")

@@ -1,6 +1,6 @@
 //! zscan on the embedded-graphics simulator: a lit torus around a lit sphere, 320 × 240,
 //! rendered band by band (16 rows: 5 KB of frame and 10 KB of depth) through a shaded
-//! palette, each band flushed to the display and the text overlay drawn over it.
+//! palette; the text overlay is drawn into each band (palette indices) before its flush.
 //!
 //! ```text
 //! cargo run --release -- out/simulator.png            # writes the PNG (no SDL needed)
@@ -8,13 +8,13 @@
 //! ```
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics::prelude::{DrawTarget, DrawTargetExt, Point, RgbColor, Size};
-use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::prelude::{Point, RgbColor, Size};
 use embedded_graphics::text::Text;
 use embedded_graphics::Drawable;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use std::fmt::Write as _;
 use zscan::prelude::*;
+use zscan::target::PaletteIndex;
 
 const W: u16 = 320;
 const H: u16 = 240;
@@ -31,6 +31,7 @@ fn palette() -> Result<Lut<Rgb565>, zscan::Error> {
     let bases = [Rgb888::new(255, 150, 40), Rgb888::new(60, 170, 255)];
     let mut lut = Lut::shaded(&bases, LEVELS, 1)?;
     lut.set(0, Rgb565::new(2, 5, 6));
+    lut.set(TEXT, Rgb565::WHITE);
     Ok(lut)
 }
 
@@ -42,17 +43,13 @@ fn ramp(m: u8) -> LuminanceRamp {
     }
 }
 
-/// Draws `text` over the part of the display that `band` covers (after the band's flush).
-fn overlay<D: DrawTarget<Color = Rgb565>>(
-    band: &Framebuffer<'_>,
-    display: &mut D,
-    text: &str,
-) -> Result<(), D::Error> {
-    let w = band.window();
-    let size = Size::new((w.x1 - w.x0) as u32, (w.y1 - w.y0) as u32);
-    let area = Rectangle::new(Point::new(w.x0, w.y0), size);
-    let style = MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE);
-    Text::new(text, Point::new(6, 14), style).draw(&mut display.clipped(&area))?;
+/// Palette index of the overlay's text.
+const TEXT: u8 = 255;
+
+/// Draws `text` into the band (a `DrawTarget` of palette indices; it keeps the rows it holds).
+fn overlay(band: &mut Framebuffer<'_>, text: &str) -> Result<(), zscan::Error> {
+    let style = MonoTextStyle::new(&FONT_6X10, PaletteIndex(TEXT));
+    Text::new(text, Point::new(6, 14), style).draw(band)?;
     Ok(())
 }
 
@@ -142,8 +139,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut text = String::new();
     write!(text, "zscan {W}x{H}, bands of {BAND} rows")?;
     let mut stats = RenderStats::default();
-    // The band callback returns nothing: keep the first display error and report it after.
-    let mut sent = Ok(());
     render_in_bands(
         &renderer,
         &scene,
@@ -152,13 +147,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         scratch,
         &mut stats,
         |band, _depth| {
-            if sent.is_ok() {
-                sent = flush(band, &lut, &mut display, None)
-                    .and_then(|()| overlay(band, &mut display, &text));
-            }
+            // The overlay goes into the band, then the band to the display.
+            overlay(band, &text)?;
+            flush(band, &lut, &mut display, None).map_err(|_| zscan::Error::Display)
         },
     )?;
-    sent?;
 
     let settings = OutputSettingsBuilder::new().scale(2).build();
     if let Some(dir) = std::path::Path::new(&path).parent() {
