@@ -44,12 +44,12 @@ impl core::fmt::Display for RenderError {
             RenderError::PolygonTooLarge => {
                 write!(f, "polygon with more than {MAX_POLYGON_VERTICES} vertices")
             }
-            RenderError::Transform(e) => write!(f, "transform: {e:?}"),
-            RenderError::Projection(e) => write!(f, "projection: {e:?}"),
-            RenderError::Clip(e) => write!(f, "clipping: {e:?}"),
-            RenderError::Draw(e) => write!(f, "raster: {e:?}"),
+            RenderError::Transform(e) => write!(f, "transform: {e}"),
+            RenderError::Projection(e) => write!(f, "projection: {e}"),
+            RenderError::Clip(e) => write!(f, "clipping: {e}"),
+            RenderError::Draw(e) => write!(f, "raster: {e}"),
             RenderError::BufferTooSmall => write!(f, "band buffers smaller than width × rows"),
-            RenderError::Lighting(e) => write!(f, "lighting: {e:?}"),
+            RenderError::Lighting(e) => write!(f, "lighting: {e}"),
         }
     }
 }

@@ -229,7 +229,7 @@ pub(crate) const fn plan(
 
 /// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
 /// target per object and band). The one place that decides which path draws a triangle:
-/// [`plan`], then the set-up of that path.
+/// `plan`, then the set-up of that path.
 ///
 /// Vertices outside the raster's range (`|x|, |y| ≤ 2^28 − 1` sub-pixel units, `S ≤ 16`) are
 /// [`DrawError::Fill`] with [`FillError::CoordinateOutOfRange`], checked before any

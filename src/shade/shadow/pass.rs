@@ -31,7 +31,7 @@
 //!
 //! ## Conventions
 //! - Pixels whose depth is still [`DepthValue::FAR`] (background after the clear; a drawn
-//!   surface stores at most `FAR − 1`, see [`target::depth`](crate::target::depth)) are left
+//!   surface stores at most `FAR − 1`, see `target::depth`) are left
 //!   alone: `remap` is not called for them.
 //! - Pixels are visited row by row from the band's top, left to right; the result depends
 //!   only on the pixel's position, depth and index, so a picture processed band by band is
