@@ -148,10 +148,12 @@ impl<'t, D: DepthValue, C: WrittenCount> RasterTarget<'t, D, C> {
     }
 }
 
-/// What draws one triangle: the span kind and whether the tiny-triangle writer is tried first.
-/// Decided by [`plan`] once per triangle, before any set-up; the size class (tiny box, small
+/// What draws one triangle: the span kind ([`span_kind`]) and whether the tiny-triangle writer
+/// is tried first ([`tiny_kind`]), composed by `plan` for the tests. Decided once per
+/// triangle, before any set-up; the size class (tiny box, small
 /// plane, general plane) follows from the set-up itself, each smaller class falling back to
 /// the next when the triangle does not fit it.
+#[cfg(test)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct TrianglePlan {
     /// What each span writes.
@@ -186,18 +188,13 @@ pub(crate) enum Tiny {
     Mapped,
 }
 
-/// The one decision of how a triangle is drawn, from the shading mode asked for, whether the
-/// depth and the luminance are constant over the triangle (equal vertex values), whether the
-/// quantizer is a 256-level ramp whose index can be interpolated directly
-/// ([`Quantizer::offset`]), and whether the core takes the tiny-triangle writer
-/// ([`TINY_WRITER`]):
-///
-/// - a constant luminance is flat whatever the mode; Phong without normals is exact Gouraud;
-/// - flat at constant depth needs no plane ([`Kind::Constant`]);
-/// - the tiny writer takes exact Gouraud through any quantizer and flat colour through a
-///   256-level ramp (a flat triangle of another ramp maps once per span on the general path,
-///   which measured faster: the lit flat sphere of a 32-level ramp +17 % through the tiny
-///   writer); never fast Gouraud nor constant depth and colour.
+/// The one decision of how a triangle is drawn (the two halves below, composed): from the
+/// shading mode asked for, whether the depth and the luminance are constant over the triangle
+/// (equal vertex values), whether the quantizer is a 256-level ramp whose index can be
+/// interpolated directly ([`Quantizer::offset`]), and whether the core takes the tiny-triangle
+/// writer (`arith::TINY_WRITER`). [`draw_triangle_on`] asks the halves in turn, so that the
+/// quantizer is consulted only for triangles that may take the tiny writer.
+#[cfg(test)]
 pub(crate) const fn plan(
     mode: ShadeMode,
     depth_constant: bool,
@@ -205,7 +202,24 @@ pub(crate) const fn plan(
     direct_ramp: bool,
     tiny_writer: bool,
 ) -> TrianglePlan {
-    let kind = match mode {
+    let kind = span_kind(mode, depth_constant, luminance_constant);
+    let tiny = if tiny_writer && kind.may_take_tiny() {
+        tiny_kind(kind, direct_ramp)
+    } else {
+        Tiny::No
+    };
+    TrianglePlan { kind, tiny }
+}
+
+/// The span kind: a constant luminance is flat whatever the mode, and flat at constant depth
+/// needs no plane ([`Kind::Constant`]); Phong without normals is exact Gouraud.
+#[inline(always)]
+pub(crate) const fn span_kind(
+    mode: ShadeMode,
+    depth_constant: bool,
+    luminance_constant: bool,
+) -> Kind {
+    match mode {
         _ if luminance_constant => {
             if depth_constant {
                 Kind::Constant
@@ -217,14 +231,29 @@ pub(crate) const fn plan(
         ShadeMode::Flat => Kind::Flat,
         ShadeMode::GouraudFast => Kind::Fast,
         ShadeMode::GouraudExact | ShadeMode::Phong => Kind::Exact,
-    };
-    let tiny = match kind {
-        _ if !tiny_writer => Tiny::No,
-        Kind::Exact | Kind::Flat if direct_ramp => Tiny::Direct,
+    }
+}
+
+impl Kind {
+    /// True for the kinds the tiny-triangle writer draws: exact Gouraud and flat colour over a
+    /// depth plane (never fast Gouraud, nor constant depth and colour).
+    #[inline(always)]
+    pub(crate) const fn may_take_tiny(self) -> bool {
+        matches!(self, Kind::Exact | Kind::Flat)
+    }
+}
+
+/// How a kind that [`may take the tiny writer`](Kind::may_take_tiny) takes it: exact Gouraud
+/// through any quantizer, flat colour only through a 256-level ramp (a flat triangle of
+/// another ramp maps once per span on the general path, which measured faster: the lit flat
+/// sphere of a 32-level ramp +17 % through the tiny writer).
+#[inline(always)]
+pub(crate) const fn tiny_kind(kind: Kind, direct_ramp: bool) -> Tiny {
+    match kind {
+        _ if direct_ramp => Tiny::Direct,
         Kind::Exact => Tiny::Mapped,
         _ => Tiny::No,
-    };
-    TrianglePlan { kind, tiny }
+    }
 }
 
 /// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
@@ -273,32 +302,25 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
             (values[0][1] + values[1][1] + values[2][1] + 1) / 3
         }
     };
-    // A 256-level ramp's first index is interpolated with the luminance and stored as it is
-    // ([`Direct`]): exact rounding and the 16.16 start commute with adding an integer, and the
-    // loops hold two fewer values.
-    let first = quantizer_at(v[0].x >> S, v[0].y >> S).offset();
-    let plan = plan(mode, constant(0), constant(1), first.is_some(), TINY_WRITER);
-    let offset = |lum: u32| lum + first.unwrap_or(0) as u32;
-    match plan.tiny {
-        Tiny::Direct => {
-            let lum = |l: u32| {
-                offset(if plan.kind == Kind::Flat {
-                    flat_lum()
-                } else {
-                    l
-                })
-            };
-            let values = values.map(|[z, l]| [z, lum(l)]);
-            if let Some(t) = TinyTriangle::<S>::new(v, values, &window) {
-                return Ok(t.draw(&mut target.targets, target.count, &|_, _| Direct));
+    let kind = span_kind(mode, constant(0), constant(1));
+    if TINY_WRITER && kind.may_take_tiny() {
+        let first = quantizer_at(v[0].x >> S, v[0].y >> S).offset();
+        match tiny_kind(kind, first.is_some()) {
+            Tiny::Direct => {
+                let first = first.unwrap_or(0) as u32;
+                let lum = |l: u32| if kind == Kind::Flat { flat_lum() } else { l } + first;
+                let values = values.map(|[z, l]| [z, lum(l)]);
+                if let Some(t) = TinyTriangle::<S>::new(v, values, &window) {
+                    return Ok(t.draw(&mut target.targets, target.count, &|_, _| Direct));
+                }
             }
-        }
-        Tiny::Mapped => {
-            if let Some(drawn) = tiny_mapped(target, v, values, &quantizer_at) {
-                return Ok(drawn);
+            Tiny::Mapped => {
+                if let Some(drawn) = tiny_mapped(target, v, values, &quantizer_at) {
+                    return Ok(drawn);
+                }
             }
+            Tiny::No => {}
         }
-        Tiny::No => {}
     }
     // (After the tiny writer, which tests the columns itself and clips the rows.)
     if !bounds_meet(&v, &window) {
@@ -310,20 +332,31 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
         targets: &mut target.targets,
         count: target.count,
     };
-    let direct = values.map(|[z, l]| [z, offset(l)]);
-    match (plan.kind, first) {
-        (Kind::Constant, _) => spans.constant(values[0][0], flat_lum(), quantizer_at),
-        (Kind::Flat, _) => spans.planar(
+    match kind {
+        Kind::Constant => spans.constant(values[0][0], flat_lum(), quantizer_at),
+        Kind::Flat => spans.planar(
             values.map(|a| [a[0]]),
             FlatKind {
                 luminance: Constant(flat_lum()),
                 quantizer_at,
             },
         ),
-        (Kind::Fast, Some(_)) => spans.planar(direct, FastKind(|_, _| Direct)),
-        (Kind::Exact, Some(_)) => spans.planar(direct, ExactKind(|_, _| Direct)),
-        (Kind::Fast, None) => spans.planar(values, FastKind(quantizer_at)),
-        (Kind::Exact, None) => spans.planar(values, ExactKind(quantizer_at)),
+        Kind::Exact | Kind::Fast => {
+            // A 256-level ramp adds its first index: interpolating `first + lum` gives the
+            // same values shifted (exact rounding and the 16.16 start commute with adding an
+            // integer), and the loops store them as they are, with two fewer live values.
+            if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
+                let values = values.map(|[z, l]| [z, l + first as u32]);
+                return match kind {
+                    Kind::Fast => spans.planar(values, FastKind(|_, _| Direct)),
+                    _ => spans.planar(values, ExactKind(|_, _| Direct)),
+                };
+            }
+            match kind {
+                Kind::Fast => spans.planar(values, FastKind(quantizer_at)),
+                _ => spans.planar(values, ExactKind(quantizer_at)),
+            }
+        }
     }
 }
 
