@@ -9,6 +9,7 @@
 
 pub mod cli;
 pub mod core_render;
+pub mod fuzz;
 pub mod image;
 pub mod obj;
 pub mod reference;

@@ -307,3 +307,51 @@ fn non_convex_polygon_through_the_near_plane_draws() {
     let f = load(&text).unwrap().render::<u16>(None).unwrap();
     assert!(f.stats.pixels_covered > 1000, "{:?}", f.stats);
 }
+
+/// #2 in the shadow map's pass 1 (src/shade/shadow/map.rs, which clips like the renderer):
+/// the non-convex comb through the map's near plane was `PolygonTooLarge`; its fan triangles
+/// are now clipped one by one and drawn.
+#[test]
+fn non_convex_occluder_through_the_map_near_plane_is_drawn() {
+    use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
+    use zscan::geometry::fixed::Coord;
+    use zscan::geometry::matrix::Affine3;
+    use zscan::geometry::mesh::{Mesh, PolygonSizes};
+    use zscan::geometry::trig::Angle;
+    use zscan::geometry::vector::Vec3;
+    use zscan::shade::shadow::ShadowMap;
+    let c = |v: f64| Coord::from_num(v);
+    let lens = Lens {
+        fov: Angle::from_degrees(60),
+        axis: FovAxis::Vertical,
+        near: c(0.5),
+        far: c(10.0),
+    };
+    let cam = Camera::new(
+        Vec3::ZERO,
+        Vec3::new(c(0.0), c(0.0), c(1.0)),
+        Vec3::new(c(0.0), c(1.0), c(0.0)),
+        lens,
+        Viewport::new(64, 48),
+    )
+    .unwrap();
+    let mut vs = vec![
+        Vec3::new(c(-0.4), c(0.1), c(2.0)),
+        Vec3::new(c(0.4), c(0.1), c(2.0)),
+    ];
+    for k in 0..22 {
+        let x = 0.4 - 0.8 * (k as f64 + 0.5) / 22.0;
+        let z = if k % 2 == 0 { 0.2 } else { 1.0 };
+        vs.push(Vec3::new(c(x), c(0.1), c(z)));
+    }
+    let is: Vec<u16> = (0..24).collect();
+    let mesh = Mesh::new(&vs, &is, PolygonSizes::Uniform(24)).unwrap();
+    let mut samples = vec![0u16; 64 * 48];
+    let mut map = ShadowMap::from_camera(&mut samples, &cam).unwrap();
+    map.render(&mesh, &Affine3::IDENTITY).unwrap();
+    let drawn = (0..48u16)
+        .flat_map(|y| (0..64u16).map(move |x| (x, y)))
+        .filter(|&(x, y)| map.sample(x, y) != Some(u16::MAX))
+        .count();
+    assert!(drawn > 20, "{drawn} texels");
+}

@@ -593,7 +593,7 @@ impl PreparedObject {
             None => PolygonSizes::PerPolygon(&self.sizes),
         };
         let mesh = Mesh::new(&self.vertices, &self.indices, sizes)
-            .map_err(|e| format!("mesh: {e:?} (world coordinates must stay within ±1024)"))?;
+            .map_err(|e| format!("mesh: {}", mesh_error_words(e)))?;
         let mut o = Object::new(mesh);
         o.intensities = match self.lit {
             Some(material) => Intensities::Lit {
@@ -681,6 +681,25 @@ fn positive(name: &str, v: f64) -> Result<zscan::geometry::fixed::Coord, String>
     Ok(coord(v))
 }
 
+/// Words for the core's mesh errors (the core's enum has no `Display` in this tree).
+fn mesh_error_words(e: zscan::geometry::mesh::MeshError) -> String {
+    use zscan::geometry::mesh::MeshError as E;
+    match e {
+        E::BadPolygonSize => "a polygon has fewer than 3 vertices".into(),
+        E::IndexCountMismatch => "the polygon sizes do not add up to the index count".into(),
+        E::IndexOutOfRange => "a polygon's vertex index is not below the vertex count".into(),
+        E::CoordinateOutOfRange => {
+            "a coordinate is beyond ±1024 (world coordinates must stay within ±1024)".into()
+        }
+        E::OutputTooSmall => "an output table is shorter than the mesh needs".into(),
+        E::BadParameters => "invalid generator parameters (too few segments, radii out of \
+             order, or more than 65536 vertices)"
+            .into(),
+        #[allow(unreachable_patterns)]
+        other => format!("{other:?}"),
+    }
+}
+
 /// Builds the generator's mesh (buffers sized by the core's `*_sizes`).
 fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
     let allowed: &[&str] = match name {
@@ -712,7 +731,7 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
             return Err(format!("key `{key}` does not apply to generator {name:?}"));
         }
     }
-    let bad = |e| format!("generator {name:?}: {e:?} (check its parameters)");
+    let bad = |e| format!("generator {name:?}: {}", mesh_error_words(e));
     match name {
         "cube" => Ok(from_core(generators::unit_cube())),
         "sphere" => {
@@ -999,7 +1018,7 @@ fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
         };
         Mesh::new(&o.vertices, &o.indices, sizes)
             .and_then(|m| m.vertex_normals(&mut normals))
-            .map_err(|e| format!("vertex normals: {e:?}"))?;
+            .map_err(|e| format!("vertex normals: {}", mesh_error_words(e)))?;
         o.normals = normals;
     }
     Ok(o)
@@ -1437,7 +1456,7 @@ fn finish<D: DepthValue + Into<u64>>(
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
     let mut pixels = frame.pixels.clone();
-    let fb = Framebuffer::new(&mut pixels, w, h).map_err(|e| format!("frame: {e:?}"))?;
+    let fb = Framebuffer::new(&mut pixels, w, h).map_err(|e| format!("frame: {e}"))?;
     crate::image::write_image(&args.output, &fb, &scene.lut).map_err(|e| e.0)?;
     if let Some(p) = &args.depth_out {
         write_grey_png(p, w, h, &depth_to_grey(&frame.depth))?;

@@ -423,38 +423,65 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
             if all != 0 {
                 continue; // wholly outside one plane
             }
-            if any != 0 {
-                let mut other: Vec<ClipVertex<0>, CLIP_CAPACITY> = Vec::new();
-                for (k, plane) in self.planes.iter().enumerate() {
-                    if any & (1 << k) != 0 {
-                        clip_to_plane(plane, &pts, &mut other)
-                            .map_err(|_| ShadowError::PolygonTooLarge)?;
-                        core::mem::swap(&mut pts, &mut other);
-                        if pts.len() < 3 {
-                            break;
-                        }
+            // Kept for the fan fallback only when clipping can happen (`any ≠ 0`).
+            let whole = if any != 0 { pts.clone() } else { Vec::new() };
+            if !self.clip_and_draw(pts, any)? {
+                // A non-convex polygon whose clip exceeds the capacity (clip::frustum, "How
+                // many vertices clipping can add"): its fan triangles, clipped one by one,
+                // cover the same region (at most 9 vertices each).
+                for k in 1..whole.len() - 1 {
+                    let tri = [whole[0], whole[k], whole[k + 1]];
+                    let codes = tri.map(|v| self.outcode(v.pos));
+                    if codes[0] & codes[1] & codes[2] != 0 {
+                        continue;
+                    }
+                    let tri: Vec<ClipVertex<0>, CLIP_CAPACITY> = tri.into_iter().collect();
+                    if !self.clip_and_draw(tri, codes[0] | codes[1] | codes[2])? {
+                        return Err(ShadowError::PolygonTooLarge);
                     }
                 }
-                if pts.len() < 3 {
-                    continue;
-                }
-            }
-            let mut screen: Vec<(SubpixelPoint<SUBPIXEL_BITS>, u32), CLIP_CAPACITY> = Vec::new();
-            let lim = crate::raster::edge_walker::MAX_COORD as i64;
-            for v in &pts {
-                let (sx, sy, d) = self.projection.project(v.pos).ok_or(ShadowError::Raster)?;
-                if sx.abs() > lim || sy.abs() > lim {
-                    return Err(ShadowError::Raster);
-                }
-                screen
-                    .push((SubpixelPoint::new(sx as i32, sy as i32), d))
-                    .map_err(|_| ShadowError::PolygonTooLarge)?;
-            }
-            for k in 1..screen.len() - 1 {
-                self.draw_triangle([screen[0], screen[k], screen[k + 1]])?;
             }
         }
         Ok(())
+    }
+
+    /// Clips the polygon `pts` against the planes in `any`, projects it and draws its fan.
+    /// `Ok(false)` (nothing drawn) when a clipped polygon would exceed `CLIP_CAPACITY`.
+    fn clip_and_draw(
+        &mut self,
+        mut pts: Vec<ClipVertex<0>, CLIP_CAPACITY>,
+        any: u8,
+    ) -> Result<bool, ShadowError> {
+        if any != 0 {
+            let planes = self.planes;
+            let mut other: Vec<ClipVertex<0>, CLIP_CAPACITY> = Vec::new();
+            for (k, plane) in planes.iter().enumerate() {
+                if any & (1 << k) != 0 {
+                    if clip_to_plane(plane, &pts, &mut other).is_err() {
+                        return Ok(false);
+                    }
+                    core::mem::swap(&mut pts, &mut other);
+                    if pts.len() < 3 {
+                        return Ok(true);
+                    }
+                }
+            }
+        }
+        let mut screen: Vec<(SubpixelPoint<SUBPIXEL_BITS>, u32), CLIP_CAPACITY> = Vec::new();
+        let lim = crate::raster::edge_walker::MAX_COORD as i64;
+        for v in &pts {
+            let (sx, sy, d) = self.projection.project(v.pos).ok_or(ShadowError::Raster)?;
+            if sx.abs() > lim || sy.abs() > lim {
+                return Err(ShadowError::Raster);
+            }
+            screen
+                .push((SubpixelPoint::new(sx as i32, sy as i32), d))
+                .map_err(|_| ShadowError::PolygonTooLarge)?;
+        }
+        for k in 1..screen.len() - 1 {
+            self.draw_triangle([screen[0], screen[k], screen[k + 1]])?;
+        }
+        Ok(true)
     }
 
     /// Bit `k` set when light-frame point `p` is outside clip plane `k`.
