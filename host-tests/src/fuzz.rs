@@ -5,8 +5,8 @@
 //! it was given (guard bytes around them and the padding between rows stay untouched), and
 //! deterministic output (the case run twice gives the same result).
 //!
-//! The generator is [`Rng`](crate::reference::compare::Rng) (xorshift64*), the host's test
-//! PRNG; a case is fully described by its target and its input text ([`Case`]), which is what
+//! The generator is the workspace's test PRNG ([`XorShift`](crate::test_rng::XorShift)); a
+//! case is fully described by its target and its input text ([`Case`]), which is what
 //! the campaign prints and what the corpus (`host-tests/fuzz-corpus/*.case`) stores:
 //! the first line names the target, the rest is the input. `tests/fuzz.rs` runs a bounded
 //! campaign and replays the corpus; `scripts/fuzz.sh COUNT [SEED]` runs a long one.
@@ -23,7 +23,7 @@ use zscan::raster::polygon::fill_polygon;
 use zscan::raster::{circle, line, SubpixelPoint};
 use zscan::target::{flush, Framebuffer, Lut};
 
-use crate::reference::compare::Rng;
+use crate::test_rng::XorShift as Rng;
 
 /// What a case exercises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -227,21 +227,21 @@ const PAD_BYTE: u8 = 0x5A;
 
 /// A coordinate: mostly near the buffer, sometimes far or extreme.
 fn coord(rng: &mut Rng, extent: i64) -> i32 {
-    match rng.int(0, 9) {
-        0 => [i32::MIN, i32::MAX, -(1 << 30), 1 << 30, (1 << 30) + 1, 0][rng.int(0, 5) as usize],
-        1 => rng.int(-(1 << 20), 1 << 20) as i32,
-        _ => rng.int(-8, extent + 8) as i32,
+    match rng.range(0, 9) {
+        0 => [i32::MIN, i32::MAX, -(1 << 30), 1 << 30, (1 << 30) + 1, 0][rng.range(0, 5) as usize],
+        1 => rng.range(-(1 << 20), 1 << 20) as i32,
+        _ => rng.range(-8, extent + 8) as i32,
     }
 }
 
 /// Random core operations on a guarded buffer; returns the buffer's fingerprint.
 fn run_core(seed: u64) -> Result<Vec<u64>, String> {
-    let mut rng = Rng(seed | 1);
-    let w = rng.int(1, 48) as u16;
-    let h = rng.int(1, 32) as u16;
-    let stride = w as usize + rng.int(0, 3) as usize * rng.int(0, 5) as usize;
-    let top = if rng.int(0, 2) == 0 {
-        rng.int(0, 200) as u16
+    let mut rng = Rng::new(seed);
+    let w = rng.range(1, 48) as u16;
+    let h = rng.range(1, 32) as u16;
+    let stride = w as usize + rng.range(0, 3) as usize * rng.range(0, 5) as usize;
+    let top = if rng.range(0, 2) == 0 {
+        rng.range(0, 200) as u16
     } else {
         0
     };
@@ -262,9 +262,9 @@ fn run_core(seed: u64) -> Result<Vec<u64>, String> {
             Framebuffer::with_stride(pixels, w, h, stride).map_err(|e| e.to_string())?
         };
         let (ext_x, ext_y) = (w as i64, h as i64 + top as i64);
-        for _ in 0..rng.int(1, 12) {
-            let index = rng.int(1, 255) as u8;
-            match rng.int(0, 5) {
+        for _ in 0..rng.range(1, 12) {
+            let index = rng.range(1, 255) as u8;
+            match rng.range(0, 5) {
                 0 => {
                     let p0 = Point::new(coord(&mut rng, ext_x), coord(&mut rng, ext_y));
                     let p1 = Point::new(coord(&mut rng, ext_x), coord(&mut rng, ext_y));
@@ -274,14 +274,14 @@ fn run_core(seed: u64) -> Result<Vec<u64>, String> {
                 1 => {
                     // Unclipped lines straight into the buffer (short ones: ±64 px).
                     let p0 = Point::new(
-                        rng.int(-64, 64) as i32,
-                        rng.int(-64, 64) as i32 + top as i32,
+                        rng.range(-64, 64) as i32,
+                        rng.range(-64, 64) as i32 + top as i32,
                     );
                     let p1 = Point::new(
-                        rng.int(-64, 64) as i32,
-                        rng.int(-64, 64) as i32 + top as i32,
+                        rng.range(-64, 64) as i32,
+                        rng.range(-64, 64) as i32 + top as i32,
                     );
-                    let ends = if rng.int(0, 1) == 0 {
+                    let ends = if rng.range(0, 1) == 0 {
                         Ends::Closed
                     } else {
                         Ends::HalfOpen
@@ -290,21 +290,21 @@ fn run_core(seed: u64) -> Result<Vec<u64>, String> {
                 }
                 2 => {
                     let c = Point::new(coord(&mut rng, ext_x), coord(&mut rng, ext_y));
-                    let r = match rng.int(0, 3) {
+                    let r = match rng.range(0, 3) {
                         0 => rng.next_u64() as u32,
-                        _ => rng.int(0, 80) as u32,
+                        _ => rng.range(0, 80) as u32,
                     };
                     let res = circle::draw_circle(&mut fb, c, r, index);
                     log.push(res.is_ok() as u64);
                 }
                 3 => {
-                    let n = rng.int(0, 12) as usize;
+                    let n = rng.range(0, 12) as usize;
                     let pts: Vec<SubpixelPoint<4>> = (0..n)
                         .map(|_| {
                             let x = coord(&mut rng, ext_x * 16);
                             let y = coord(&mut rng, ext_y * 16);
                             // Keep most polygons small enough to fill fast.
-                            if rng.int(0, 3) == 0 {
+                            if rng.range(0, 3) == 0 {
                                 SubpixelPoint::new(x, y)
                             } else {
                                 SubpixelPoint::new(x.clamp(-4096, 4096), y.clamp(-4096, 4096))
@@ -329,10 +329,10 @@ fn run_core(seed: u64) -> Result<Vec<u64>, String> {
                         sent: Vec::new(),
                         mismatch: false,
                     };
-                    let dirty = (rng.int(0, 4) != 0).then(|| {
-                        let size = |rng: &mut Rng| match rng.int(0, 2) {
+                    let dirty = (rng.range(0, 4) != 0).then(|| {
+                        let size = |rng: &mut Rng| match rng.range(0, 2) {
                             0 => rng.next_u64() as u32,
-                            _ => rng.int(0, 60) as u32,
+                            _ => rng.range(0, 60) as u32,
                         };
                         let p = Point::new(coord(&mut rng, ext_x), coord(&mut rng, ext_y));
                         Rectangle::new(p, Size::new(size(&mut rng), size(&mut rng)))
@@ -368,18 +368,18 @@ fn run_core(seed: u64) -> Result<Vec<u64>, String> {
 
 /// A random number as TOML text, from a pool of ordinary and hostile values.
 fn number(rng: &mut Rng, lo: f64, hi: f64) -> String {
-    match rng.int(0, 15) {
+    match rng.range(0, 15) {
         0 => [
             "nan", "inf", "-inf", "1e9", "-1e9", "32768", "-32769", "1e-6", "0", "-0.0",
-        ][rng.int(0, 9) as usize]
+        ][rng.range(0, 9) as usize]
             .into(),
-        1 => format!("{}", rng.int(i64::MIN / 2, i64::MAX / 2)),
+        1 => format!("{}", rng.range(i64::MIN / 2, i64::MAX / 2)),
         _ => format!("{:.3}", rng.uniform(lo, hi)),
     }
 }
 
 fn integer(rng: &mut Rng, lo: i64, hi: i64) -> String {
-    match rng.int(0, 12) {
+    match rng.range(0, 12) {
         0 => [
             "-1",
             "256",
@@ -389,9 +389,9 @@ fn integer(rng: &mut Rng, lo: i64, hi: i64) -> String {
             "4097",
             "0",
             "9223372036854775807",
-        ][rng.int(0, 7) as usize]
+        ][rng.range(0, 7) as usize]
             .into(),
-        _ => rng.int(lo, hi).to_string(),
+        _ => rng.range(lo, hi).to_string(),
     }
 }
 
@@ -407,31 +407,31 @@ fn vec3(rng: &mut Rng, lo: f64, hi: f64) -> String {
 /// A random scene file, mostly well-formed, with hostile values.
 pub fn random_scene(rng: &mut Rng) -> String {
     let mut s = String::new();
-    if rng.int(0, 1) == 0 {
+    if rng.range(0, 1) == 0 {
         let _ = writeln!(s, "[camera]");
-        if rng.int(0, 1) == 0 {
+        if rng.range(0, 1) == 0 {
             let _ = writeln!(s, "eye = {}", vec3(rng, -6.0, 6.0));
         }
-        if rng.int(0, 3) == 0 {
+        if rng.range(0, 3) == 0 {
             let _ = writeln!(s, "target = {}", vec3(rng, -1.0, 1.0));
         }
-        if rng.int(0, 4) == 0 {
+        if rng.range(0, 4) == 0 {
             let _ = writeln!(s, "up = {}", vec3(rng, -1.0, 1.0));
         }
-        if rng.int(0, 3) == 0 {
+        if rng.range(0, 3) == 0 {
             let _ = writeln!(s, "fov_deg = {}", number(rng, 1.0, 179.0));
         }
-        if rng.int(0, 3) == 0 {
+        if rng.range(0, 3) == 0 {
             let _ = writeln!(s, "near = {}", number(rng, 0.001, 2.0));
         }
-        if rng.int(0, 3) == 0 {
+        if rng.range(0, 3) == 0 {
             let _ = writeln!(s, "far = {}", number(rng, 2.0, 100.0));
         }
     }
     let _ = writeln!(s, "[viewport]");
     let _ = writeln!(s, "width = {}", integer(rng, 1, 48));
     let _ = writeln!(s, "height = {}", integer(rng, 1, 40));
-    if rng.int(0, 4) == 0 {
+    if rng.range(0, 4) == 0 {
         let _ = writeln!(
             s,
             "principal = [{}, {}]",
@@ -439,7 +439,7 @@ pub fn random_scene(rng: &mut Rng) -> String {
             number(rng, -10.0, 50.0)
         );
     }
-    if rng.int(0, 6) == 0 {
+    if rng.range(0, 6) == 0 {
         let _ = writeln!(
             s,
             "pixel_aspect = [{}, {}]",
@@ -451,17 +451,17 @@ pub fn random_scene(rng: &mut Rng) -> String {
     let _ = writeln!(
         s,
         "depth_bits = {}",
-        ["16", "32", "16", "24"][rng.int(0, 3) as usize]
+        ["16", "32", "16", "24"][rng.range(0, 3) as usize]
     );
     let shades = ["\"flat\"", "\"gouraud\"", "\"gouraud-fast\"", "\"phong\""];
-    let _ = writeln!(s, "shade = {}", shades[rng.int(0, 3) as usize]);
-    let _ = writeln!(s, "cull = {}", rng.int(0, 1) == 0);
-    let _ = writeln!(s, "dither = {}", rng.int(0, 3) == 0);
-    let lit = rng.int(0, 1) == 0;
+    let _ = writeln!(s, "shade = {}", shades[rng.range(0, 3) as usize]);
+    let _ = writeln!(s, "cull = {}", rng.range(0, 1) == 0);
+    let _ = writeln!(s, "dither = {}", rng.range(0, 3) == 0);
+    let lit = rng.range(0, 1) == 0;
     if lit {
         let _ = writeln!(s, "[lighting]\nambient = {}", integer(rng, 0, 255));
-        for _ in 0..rng.int(0, 5) {
-            let kind = if rng.int(0, 1) == 0 {
+        for _ in 0..rng.range(0, 5) {
+            let kind = if rng.range(0, 1) == 0 {
                 "point"
             } else {
                 "toward"
@@ -474,9 +474,9 @@ pub fn random_scene(rng: &mut Rng) -> String {
             );
         }
     }
-    for _ in 0..rng.int(0, 3) {
+    for _ in 0..rng.range(0, 3) {
         let _ = writeln!(s, "[[object]]");
-        match rng.int(0, 6) {
+        match rng.range(0, 6) {
             0 => {
                 let _ = writeln!(
                     s,
@@ -515,19 +515,19 @@ pub fn random_scene(rng: &mut Rng) -> String {
                 let _ = writeln!(s, "generator = \"blob\"");
             }
             _ => {
-                let _ = writeln!(s, "generator = \"cube\"\ncenter = {}", rng.int(0, 1) == 0);
+                let _ = writeln!(s, "generator = \"cube\"\ncenter = {}", rng.range(0, 1) == 0);
             }
         }
-        if rng.int(0, 2) == 0 {
+        if rng.range(0, 2) == 0 {
             let _ = writeln!(s, "scale = {}", number(rng, 0.1, 3.0));
         }
-        if rng.int(0, 1) == 0 {
+        if rng.range(0, 1) == 0 {
             let _ = writeln!(s, "rotate_deg = {}", vec3(rng, -180.0, 180.0));
         }
-        if rng.int(0, 2) == 0 {
+        if rng.range(0, 2) == 0 {
             let _ = writeln!(s, "translate = {}", vec3(rng, -3.0, 3.0));
         }
-        if lit && rng.int(0, 1) == 0 {
+        if lit && rng.range(0, 1) == 0 {
             let _ = writeln!(
                 s,
                 "material = {{ ka = {}, kd = {}, n = {} }}",
@@ -535,7 +535,7 @@ pub fn random_scene(rng: &mut Rng) -> String {
                 number(rng, 0.0, 1.5),
                 integer(rng, 1, 200)
             );
-        } else if rng.int(0, 3) == 0 {
+        } else if rng.range(0, 3) == 0 {
             let _ = writeln!(s, "material = {}", integer(rng, 0, 3));
         }
     }
@@ -546,8 +546,8 @@ pub fn random_scene(rng: &mut Rng) -> String {
 pub fn random_obj(rng: &mut Rng) -> String {
     let mut s = String::new();
     let mut defined = 0i64;
-    for _ in 0..rng.int(0, 40) {
-        match rng.int(0, 9) {
+    for _ in 0..rng.range(0, 40) {
+        match rng.range(0, 9) {
             0..=3 => {
                 let _ = writeln!(
                     s,
@@ -560,13 +560,13 @@ pub fn random_obj(rng: &mut Rng) -> String {
             }
             4..=7 => {
                 let _ = write!(s, "f");
-                for _ in 0..rng.int(0, 6) {
-                    let i = match rng.int(0, 7) {
-                        0 => [i64::MIN, i64::MAX, 0, -1, i64::MIN + 1][rng.int(0, 4) as usize],
-                        1 => -rng.int(1, defined.max(1) + 2),
-                        _ => rng.int(1, defined.max(1) + 1),
+                for _ in 0..rng.range(0, 6) {
+                    let i = match rng.range(0, 7) {
+                        0 => [i64::MIN, i64::MAX, 0, -1, i64::MIN + 1][rng.range(0, 4) as usize],
+                        1 => -rng.range(1, defined.max(1) + 2),
+                        _ => rng.range(1, defined.max(1) + 1),
                     };
-                    let form = ["", "/1", "//2", "/3/4"][rng.int(0, 3) as usize];
+                    let form = ["", "/1", "//2", "/3/4"][rng.range(0, 3) as usize];
                     let _ = write!(s, " {i}{form}");
                 }
                 let _ = writeln!(s);
@@ -584,11 +584,11 @@ pub fn random_obj(rng: &mut Rng) -> String {
 
 /// Random `zscan spans` input: first line the sub-pixel bits, then polygons.
 pub fn random_spans(rng: &mut Rng) -> String {
-    let bits = [0, 1, 4, 4, 4, 8, 16, 17][rng.int(0, 7) as usize];
+    let bits = [0, 1, 4, 4, 4, 8, 16, 17][rng.range(0, 7) as usize];
     let mut s = format!("{bits}\n");
-    for _ in 0..rng.int(0, 3) {
-        for _ in 0..rng.int(0, 9) {
-            let c = |rng: &mut Rng| match rng.int(0, 20) {
+    for _ in 0..rng.range(0, 3) {
+        for _ in 0..rng.range(0, 9) {
+            let c = |rng: &mut Rng| match rng.range(0, 20) {
                 // Out-of-range or malformed (in-range extremes such as −16777215.9375 are
                 // valid but make polygons 2^24 rows tall: seconds per case).
                 0 => [
@@ -599,24 +599,28 @@ pub fn random_spans(rng: &mut Rng) -> String {
                     "x",
                     "99999999999999999999",
                     ".",
-                ][rng.int(0, 6) as usize]
+                ][rng.range(0, 6) as usize]
                     .to_string(),
-                1 => format!("{}", rng.int(-5000, 5000)),
+                1 => format!("{}", rng.range(-5000, 5000)),
                 _ => format!(
                     "{}",
-                    rng.int(-64, 64) as f64 + [0.0, 0.5, 0.25, 0.0625][rng.int(0, 3) as usize]
+                    rng.range(-64, 64) as f64 + [0.0, 0.5, 0.25, 0.0625][rng.range(0, 3) as usize]
                 ),
             };
             let _ = writeln!(s, "{} {}", c(rng), c(rng));
         }
-        let _ = writeln!(s, "{}", ["", "# gap", "", "1 2 3"][rng.int(0, 3) as usize]);
+        let _ = writeln!(
+            s,
+            "{}",
+            ["", "# gap", "", "1 2 3"][rng.range(0, 3) as usize]
+        );
     }
     s
 }
 
 /// The `k`-th case of the campaign seeded with `seed` (targets in turn).
 pub fn generate(seed: u64, k: u64) -> Case {
-    let mut rng = Rng(seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut rng = Rng::new(seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     for _ in 0..4 {
         rng.next_u64();
     }
