@@ -53,3 +53,9 @@ impl core::fmt::Display for RenderError {
         }
     }
 }
+
+impl From<ClipError> for RenderError {
+    fn from(e: ClipError) -> Self {
+        RenderError::Clip(e)
+    }
+}

@@ -436,26 +436,26 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
             let _ = input.push(ClipVertex::new(view, attrs(pi, poly, k, p)));
         }
-        let clipped = self
-            .renderer
-            .frustum
-            .clip::<N, CLIP_CAPACITY>(&input)
-            .map_err(RenderError::Clip)?;
-        let mut corners: Vec<Corner<S, N>, CLIP_CAPACITY> = Vec::new();
-        for c in clipped.iter() {
-            let (screen, depth) = self
-                .renderer
-                .projector
-                .project_point(c.pos)
-                .map_err(RenderError::Projection)?;
-            let _ = corners.push(Corner {
-                screen,
-                depth,
-                view: c.pos,
-                attrs: c.attrs,
-            });
-        }
-        fan(pi, corners.len(), |k| corners[k], draw, stats)
+        // A non-convex polygon whose clip would exceed the capacity is clipped fan triangle by
+        // fan triangle instead (the same region as its unclipped fan), so it draws.
+        let frustum = &self.renderer.frustum;
+        frustum.clip_fan::<N, CLIP_CAPACITY, RenderError>(&input, |clipped| {
+            let mut corners: Vec<Corner<S, N>, CLIP_CAPACITY> = Vec::new();
+            for c in clipped.iter() {
+                let (screen, depth) = self
+                    .renderer
+                    .projector
+                    .project_point(c.pos)
+                    .map_err(RenderError::Projection)?;
+                let _ = corners.push(Corner {
+                    screen,
+                    depth,
+                    view: c.pos,
+                    attrs: c.attrs,
+                });
+            }
+            fan(pi, corners.len(), |k| corners[k], draw, stats)
+        })
     }
 }
 
