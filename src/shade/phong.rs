@@ -130,7 +130,13 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     let v = corners.map(|c| c.screen);
     crate::raster::range::check_range(&v).map_err(DrawError::Fill)?;
     let window = super::span_writer::drawable_window(frame, depth);
-    let plane = match AttributePlane::<7, S>::new(v, corners.map(|c| corner_values(&c))) {
+    // Depths clamp to the deepest value that stores below FAR (target::depth's module doc).
+    let values = corners.map(|c| {
+        let mut a = corner_values(&c);
+        a[0] = a[0].min(D::MAX_DEPTH32);
+        a
+    });
+    let plane = match AttributePlane::<7, S>::new(v, values) {
         Ok(p) => p,
         Err(PlaneError::Degenerate) => return Ok((0, 0)),
         Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),

@@ -291,8 +291,10 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
     );
     let window = target.window;
     // Luminances above 255 saturate at the vertices: every interpolated value then lies in
-    // 0..=255, which the span loops rely on ([`InRange`]).
-    let values = values.map(|[z, l]| [z, l.min(255)]);
+    // 0..=255, which the span loops rely on ([`InRange`]). Depths clamp to the deepest value
+    // that stores below FAR, so a surface just before `far` still wins against the clear
+    // (target::depth's module doc).
+    let values = values.map(|[z, l]| [z.min(D::MAX_DEPTH32), l.min(255)]);
     // A plane is flat exactly when its vertex values are equal (the triangle has area).
     let constant = |i: usize| values[0][i] == values[1][i] && values[0][i] == values[2][i];
     let flat_lum = || {
