@@ -277,7 +277,6 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
 /// [`draw_triangle_on`] for vertices already within the raster's range: the renderer's
 /// consumers call it with projected vertices, which the projector keeps within
 /// `±(2^28 − 1)` (checked there once per vertex, asserted here in checked builds).
-#[inline(always)]
 pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
