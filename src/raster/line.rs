@@ -182,6 +182,8 @@ pub struct Bresenham {
     steps_left: u32,
     /// True when every pixel has been yielded.
     done: bool,
+    /// The last pixel the iterator yields (fixed at construction; meaningless when `done`).
+    last: Point,
 }
 
 impl Bresenham {
@@ -198,9 +200,19 @@ impl Bresenham {
     /// The line from `p0` to `p1` with the given treatment of `p1`. Any `i32` end points.
     pub fn with_ends(p0: Point, p1: Point, ends: Ends) -> Bresenham {
         let s = Setup::new(p0, p1);
-        let (steps_left, done) = match ends {
-            Ends::Closed => (s.n, false),
-            Ends::HalfOpen => (s.n.saturating_sub(1), s.n == 0),
+        let (steps_left, done, last) = match ends {
+            Ends::Closed => (s.n, false, p1),
+            Ends::HalfOpen if s.n == 0 => (0, true, p0),
+            // The pixel before p1 (step n − 1, on the segment: no overflow). The last move
+            // is a minor one when o(n − 1) = a − 1: o(n) = a + ⌊c / 2n⌋ = a (c < 2n), and
+            // o(n − 1) = a + ⌊(c − 2a) / 2n⌋ is a − 1 exactly when c < 2a.
+            Ends::HalfOpen => {
+                let mut q = p1 - s.major_step;
+                if s.bias() < 2 * s.a as u64 {
+                    q -= s.minor_step;
+                }
+                (s.n - 1, false, q)
+            }
         };
         Bresenham {
             point: p0,
@@ -212,6 +224,7 @@ impl Bresenham {
             error_step_minor: 2 * s.n as i64,
             steps_left,
             done,
+            last,
         }
     }
 
@@ -226,13 +239,14 @@ impl Bresenham {
             error_step_minor: 0,
             steps_left: 0,
             done: true,
+            last: Point::zero(),
         }
     }
 
     /// The part of the line from `p0` to `p1` inside `window`: exactly the pixels of
     /// [`Bresenham::with_ends`]`(p0, p1, ends)` that `window` contains, in the same order.
     ///
-    /// O(1) set-up (outcodes, then at most three `u64` divisions and one remainder).
+    /// O(1) set-up (outcodes, then at most four `u64` divisions and one remainder).
     /// Errors when a coordinate of `p0` or `p1` is beyond `±`[`MAX_COORD`].
     pub fn clipped(
         p0: Point,
@@ -316,10 +330,20 @@ impl Bresenham {
         // The pixel is on the segment, so both coordinates fit i32.
         let major = major0 as i64 + major_sign as i64 * t_first;
         let minor = minor0 as i64 + minor_sign as i64 * o as i64;
-        let point = if s.major_step.x != 0 {
-            Point::new(major as i32, minor as i32)
+        // The last pixel, at t_last: o(t_last) ≤ a ≤ 2^31 (same bound on the numerator).
+        let o_last = (2 * t_last as u64 * a + c) / two_n;
+        let major_last = major0 as i64 + major_sign as i64 * t_last;
+        let minor_last = minor0 as i64 + minor_sign as i64 * o_last as i64;
+        let (point, last) = if s.major_step.x != 0 {
+            (
+                Point::new(major as i32, minor as i32),
+                Point::new(major_last as i32, minor_last as i32),
+            )
         } else {
-            Point::new(minor as i32, major as i32)
+            (
+                Point::new(minor as i32, major as i32),
+                Point::new(minor_last as i32, major_last as i32),
+            )
         };
         Some(Bresenham {
             point,
@@ -331,30 +355,15 @@ impl Bresenham {
             // t_last − t_first ≤ n ≤ 2^31.
             steps_left: (t_last - t_first) as u32,
             done: false,
+            last,
         })
     }
 
-    /// The last pixel the iterator will yield (the current one when a single pixel remains).
-    ///
-    /// After `L = steps_left` major moves from `point`, the error has received `L·2a`; with
-    /// `r = error + 2n ∈ [0, 2n)`, the minor moves taken are `⌊(r + L·2a) / 2n⌋` (at most one
-    /// per step, since `2a ≤ 2n`). `r < 2^33`, `L < 2^32`, `2a ≤ 2^33`: the sum is below
-    /// `2^66`, so it is formed in `u128`; the result is on the segment, so it fits `i32`.
+    /// The last pixel the iterator will yield (the current one when a single pixel remains),
+    /// kept from construction: `p1` for a closed line, the pixel before it for a half-open
+    /// one, the last inside pixel for a clipped one. Meaningless once `done`.
     fn last_point(&self) -> Point {
-        let l = self.steps_left as i64;
-        if l == 0 || self.error_step_minor == 0 {
-            return self.point;
-        }
-        let r = (self.error + self.error_step_minor) as u128;
-        let minor_moves = ((r + l as u128 * self.error_step_major as u128)
-            / self.error_step_minor as u128) as i64;
-        let at = |p: i32, major: i32, minor: i32| {
-            (p as i64 + major as i64 * l + minor as i64 * minor_moves) as i32
-        };
-        Point::new(
-            at(self.point.x, self.major_step.x, self.minor_step.x),
-            at(self.point.y, self.major_step.y, self.minor_step.y),
-        )
+        self.last
     }
 
     /// Pixels not yet yielded (up to `2^32` for a closed line across the whole `i32` range).
@@ -791,27 +800,64 @@ mod tests {
     #[test]
     fn last_point_is_the_last_pixel_yielded() {
         let mut rng = crate::test_rng::XorShift(0x1A57_9017_7000_0001);
-        for i in 0..5000 {
+        for i in 0..6000 {
             let shift = [1, 20, 25][i % 3];
+            let ends = if i % 6 < 3 {
+                Ends::Closed
+            } else {
+                Ends::HalfOpen
+            };
             let mut r = || (rng.next_u64() as i32) >> shift;
             let (p0, p1) = (Point::new(r(), r()), Point::new(r(), r()));
-            let line = if shift == 1 {
+            let mut line = if shift == 1 {
                 // Long lines (up to 2^31 pixels): clipped to a small window around p1, so the
                 // state starts mid-line and few pixels remain.
                 let (p0, p1) = (p0 / 2, p1 / 2); // within ±2^29: clipping's range
                 let w = Window::new(p1.x - 20, p1.y - 20, p1.x + 20, p1.y + 20);
                 assert_eq!(Bresenham::new(p0, p1).last_point(), p1);
-                Bresenham::clipped(p0, p1, Ends::Closed, &w).unwrap()
+                Bresenham::clipped(p0, p1, ends, &w).unwrap()
             } else {
-                Bresenham::new(p0, p1)
+                Bresenham::with_ends(p0, p1, ends)
             };
-            assert_eq!(
-                Some(line.last_point()),
-                line.clone().last(),
-                "{p0:?} {p1:?}"
-            );
+            // The last pixel does not move as the iterator advances.
+            for _ in 0..i % 3 {
+                if line.remaining() > 1 {
+                    line.next();
+                }
+            }
+            if line.remaining() > 0 {
+                assert_eq!(
+                    Some(line.last_point()),
+                    line.clone().last(),
+                    "{p0:?} {p1:?} {ends:?}"
+                );
+            }
+        }
+        // Short lines in every direction, both end treatments, clipped to windows that cut
+        // them anywhere.
+        for dx in -6..=6 {
+            for dy in -6..=6 {
+                let (p0, p1) = (Point::new(3, 2), Point::new(3 + dx, 2 + dy));
+                for ends in [Ends::Closed, Ends::HalfOpen] {
+                    let w = Window::new(0, 0, 7, 6);
+                    for line in [
+                        Bresenham::with_ends(p0, p1, ends),
+                        Bresenham::clipped(p0, p1, ends, &w).unwrap(),
+                    ] {
+                        if line.remaining() > 0 {
+                            assert_eq!(Some(line.last_point()), line.clone().last());
+                        }
+                    }
+                }
+            }
         }
         let far = Bresenham::new(Point::new(i32::MIN, i32::MIN), Point::new(i32::MAX, 5));
         assert_eq!(far.last_point(), Point::new(i32::MAX, 5));
+        // Half open across the whole range: the pixel before p1, found independently as the
+        // second pixel of the reversed line (same pixels by symmetry).
+        let (p0, p1) = (Point::new(i32::MAX, i32::MIN), Point::new(i32::MIN, 5));
+        let far = Bresenham::half_open(p0, p1);
+        assert_eq!(Some(far.last_point()), Bresenham::new(p1, p0).nth(1));
+        assert_eq!(far.last_point(), Point::new(i32::MIN + 1, 4));
     }
 }
