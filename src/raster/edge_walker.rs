@@ -96,17 +96,28 @@ pub const fn ceil_shift(v: i32, s: u32) -> i32 {
     (v >> s) + ((v & mask) != 0) as i32
 }
 
+/// `⌈v / 2^s⌉` for `v > i32::MIN` (the raster's coordinates, within `±MAX_COORD`), in the
+/// shorter form `−(−v >> s)`; at `i32::MIN` the negation wraps and the result is wrong (no
+/// panic). [`ceil_shift`] is exact for every `i32`; in the edges' rows, run for every
+/// triangle, its longer form cost the Cortex-M4 `fill_bunny` +3.0 % (1,476,259 against
+/// 1,433,633 with this one).
+#[inline(always)]
+const fn ceil_shift_in_range(v: i32, s: u32) -> i32 {
+    (v.wrapping_neg() >> s).wrapping_neg()
+}
+
 impl Edge {
-    /// The first pixel row the edge covers: `⌈y0 / 2^S⌉`.
+    /// The first pixel row the edge covers: `⌈y0 / 2^S⌉` (ends within the module's range).
     #[inline(always)]
     pub const fn first_row<const S: u32>(&self) -> i32 {
-        ceil_shift(self.y0, S)
+        ceil_shift_in_range(self.y0, S)
     }
 
-    /// One past the last pixel row the edge covers: `⌈y1 / 2^S⌉`.
+    /// One past the last pixel row the edge covers: `⌈y1 / 2^S⌉` (ends within the module's
+    /// range).
     #[inline(always)]
     pub const fn end_row<const S: u32>(&self) -> i32 {
-        ceil_shift(self.y1, S)
+        ceil_shift_in_range(self.y1, S)
     }
 
     /// `(num(y) + bias, den)` of the module doc for row `y`, with TIPE's bias for `side`.

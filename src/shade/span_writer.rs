@@ -274,6 +274,21 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
     draw_in_range(target, v, values, mode, quantizer_at)
 }
 
+/// [`draw_in_range`] for a triangle with a vertex depth above [`DepthValue::MAX_DEPTH32`]: the
+/// depths clamped to it, then drawn as any other.
+#[cold]
+#[inline(never)]
+fn draw_clamped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
+    target: &mut RasterTarget<'_, D, C>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    mode: ShadeMode,
+    quantizer_at: impl Fn(i32, i32) -> Q,
+) -> Result<(u32, u32), DrawError> {
+    let values = values.map(|[z, l]| [z.min(D::MAX_DEPTH32), l]);
+    draw_in_range(target, v, values, mode, quantizer_at)
+}
+
 /// [`draw_triangle_on`] for vertices already within the raster's range: the renderer's
 /// consumers call it with projected vertices, which the projector keeps within
 /// `±(2^28 − 1)` (checked there once per vertex, asserted here in checked builds).
@@ -288,12 +303,17 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
         check_range(&v).is_ok(),
         "vertices outside the raster's range"
     );
+    // Depths clamp to the deepest value that stores below FAR, so a surface just before `far`
+    // still wins against the clear (target::depth's module doc). Rare, so out of line: three
+    // clamped values kept in this writer took registers from its span loops (Cortex-M4
+    // frame_sphere_fast +2.9 %).
+    if values.iter().any(|[z, _]| *z > D::MAX_DEPTH32) {
+        return draw_clamped(target, v, values, mode, quantizer_at);
+    }
     let window = target.window;
     // Luminances above 255 saturate at the vertices: every interpolated value then lies in
-    // 0..=255, which the span loops rely on ([`InRange`]). Depths clamp to the deepest value
-    // that stores below FAR, so a surface just before `far` still wins against the clear
-    // (target::depth's module doc).
-    let values = values.map(|[z, l]| [z.min(D::MAX_DEPTH32), l.min(255)]);
+    // 0..=255, which the span loops rely on ([`InRange`]).
+    let values = values.map(|[z, l]| [z, l.min(255)]);
     // A plane is flat exactly when its vertex values are equal (the triangle has area).
     let constant = |i: usize| values[0][i] == values[1][i] && values[0][i] == values[2][i];
     let flat_lum = || {
@@ -303,7 +323,11 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
             (values[0][1] + values[1][1] + values[2][1] + 1) / 3
         }
     };
-    let kind = span_kind(mode, constant(0), constant(1));
+    // The depth plane's flatness matters only for a flat luminance (`span_kind`): tested
+    // there alone, as before the plan, so that Gouraud triangles do not pay its four compares.
+    let luminance_constant = constant(1);
+    let depth_constant = (luminance_constant || mode == ShadeMode::Flat) && constant(0);
+    let kind = span_kind(mode, depth_constant, luminance_constant);
     if TINY_WRITER && kind.may_take_tiny() {
         let first = quantizer_at(v[0].x >> S, v[0].y >> S).offset();
         match tiny_kind(kind, first.is_some()) {
