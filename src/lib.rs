@@ -90,6 +90,7 @@ pub mod prelude;
 pub mod project;
 pub mod raster;
 pub mod render;
+pub mod visibility;
 pub mod scene;
 pub mod shade;
 pub mod target;

@@ -16,7 +16,11 @@ use zscan::render::{
 };
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::DepthValue;
+use zscan::target::{DepthValue, Framebuffer};
+use zscan::visibility::{
+    render_back_faces, render_painter, render_scan_lines, PainterMemory, ScanLineMemory,
+    SplitPolicy, StoredTriangle, Visibility,
+};
 
 use crate::scenes::Scene;
 
@@ -250,4 +254,79 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
         },
     )?;
     Ok((pixels, depth, stats))
+}
+
+/// Renders `scene` into a whole `w × h` picture by the hidden-surface method `visibility`
+/// ([`zscan::visibility`]), with caller memory sized for the scene on the host: the painter
+/// with a split budget of `splits` (`None`: no test 6), the scan-line and z-buffer in bands of
+/// `band_rows` rows (the z-buffer 32-bit, the reference the other methods are compared with).
+pub fn render_visible<const SB: u32>(
+    renderer: &Renderer<SB>,
+    scene: &CoreScene<'_>,
+    (w, h): (u16, u16),
+    visibility: Visibility,
+    splits: Option<usize>,
+    band_rows: u16,
+) -> Result<(Vec<u8>, RenderStats), RenderError> {
+    let vertices: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
+    let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
+    let mut scratch = vec![PreparedVertex::default(); vertices.max(1)];
+    let mut stats = RenderStats::default();
+    // Front triangles: at most the fans of every polygon (triangles here), plus pieces.
+    let capacity = 2 * polygons * 4 + 64;
+    let total = w as usize * h as usize;
+    match visibility {
+        Visibility::BackFace => {
+            let mut pixels = vec![0u8; total];
+            let mut frame = Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            render_back_faces(renderer, scene, &mut frame, &mut scratch, &mut stats)?;
+            Ok((pixels, stats))
+        }
+        Visibility::Painter => {
+            let mut pixels = vec![0u8; total];
+            let mut frame = Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            let mut triangles = vec![StoredTriangle::default(); capacity];
+            let mut order = vec![0u32; capacity];
+            let memory = PainterMemory {
+                triangles: &mut triangles,
+                order: &mut order,
+            };
+            let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
+            render_painter(renderer, scene, &mut frame, &mut scratch, memory, policy, &mut stats)?;
+            Ok((pixels, stats))
+        }
+        Visibility::ScanLine => {
+            let band = band_rows.clamp(1, h.max(1));
+            let n = w as usize * band as usize;
+            let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![0u32; n]);
+            let mut triangles = vec![StoredTriangle::default(); capacity];
+            let (mut order, mut active) = (vec![0u32; capacity], vec![0u32; capacity]);
+            let memory = ScanLineMemory {
+                triangles: &mut triangles,
+                order: &mut order,
+                active: &mut active,
+                pixels: &mut band_pixels,
+                depths: &mut band_depths,
+            };
+            let mut pixels = vec![scene.background; total];
+            render_scan_lines(renderer, scene, (w, h, band), &mut scratch, memory, &mut stats, |frame, _| {
+                for (y, row) in frame.rows() {
+                    let at = y as usize * w as usize;
+                    pixels[at..at + w as usize].copy_from_slice(row);
+                }
+                Ok::<(), RenderError>(())
+            })?;
+            Ok((pixels, stats))
+        }
+        Visibility::ZBuffer => {
+            let mut table = vec![PolygonRows::default(); polygons];
+            let band_scratch = BandScratch {
+                vertices: &mut scratch,
+                polygons: &mut table,
+            };
+            let (pixels, _, stats) =
+                render_picture::<u32, SB>(renderer, scene, (w, h), Some(band_rows), band_scratch)?;
+            Ok((pixels, stats))
+        }
+    }
 }

@@ -67,6 +67,17 @@ pub(crate) trait TriangleConsumer<const S: u32, const N: usize> {
     ) -> Result<(u32, u32), RenderError>;
 }
 
+impl<T: TriangleConsumer<S, N>, const S: u32, const N: usize> TriangleConsumer<S, N> for &mut T {
+    #[inline(always)]
+    fn triangle(
+        &mut self,
+        polygon: usize,
+        corners: [Corner<S, N>; 3],
+    ) -> Result<(u32, u32), RenderError> {
+        (**self).triangle(polygon, corners)
+    }
+}
+
 /// The z-buffer consumer of luminance triangles (flat or Gouraud, plain or dithered): corners
 /// whose one attribute is a level, clamped to `0..=255` (clipped corners are interpolated),
 /// drawn at once into a [`RasterTarget`] prepared once per object.

@@ -30,6 +30,42 @@ pub enum RenderError {
     BufferTooSmall,
     /// The lights could not be set up (too many, a zero direction).
     Lighting(LightingError),
+    /// A visibility method that stores triangles before drawing them (painter, scan-line,
+    /// Warnock) was given more front triangles than its caller memory holds.
+    TriangleStoreFull {
+        /// Triangles the store holds.
+        capacity: usize,
+    },
+    /// The painter's overlap resolution needed more splits (Newell's test 6) than its budget.
+    SplitBudgetExhausted {
+        /// Splits the caller's budget allows.
+        budget: usize,
+    },
+    /// A piece of the painter's would need more than [`MAX_CUTS`](crate::visibility::MAX_CUTS)
+    /// cuts.
+    PieceCutTooOften {
+        /// Cuts a piece may carry.
+        cuts: usize,
+    },
+    /// The painter's tests could not order a group of triangles that no split separates
+    /// (its tests judge a piece by its whole triangle, so some cycles of pieces stay): the
+    /// frame is refused rather than drawn in a wrong order.
+    PainterCycle,
+    /// Warnock's subdivision needed more windows on its stack than the caller's memory holds.
+    SubdivisionStackFull {
+        /// Windows the stack holds.
+        capacity: usize,
+    },
+    /// The scan-line method's active table holds fewer triangles than reach one band.
+    ActiveTableFull {
+        /// Triangles the active table holds.
+        capacity: usize,
+    },
+    /// The visibility methods that store triangles keep a level per corner; a Phong object
+    /// carries normals (draw it with the z-buffer or back-face only).
+    PhongUnsupported,
+    /// A scene with more objects than a stored triangle can name (256).
+    TooManyObjects,
 }
 
 impl core::fmt::Display for RenderError {
@@ -50,6 +86,35 @@ impl core::fmt::Display for RenderError {
             RenderError::Draw(e) => write!(f, "raster: {e}"),
             RenderError::BufferTooSmall => write!(f, "band buffers smaller than width × rows"),
             RenderError::Lighting(e) => write!(f, "lighting: {e}"),
+            RenderError::TriangleStoreFull { capacity } => write!(
+                f,
+                "more front triangles than the triangle store's {capacity}"
+            ),
+            RenderError::SplitBudgetExhausted { budget } => write!(
+                f,
+                "the painter's overlaps need more than its budget of {budget} splits"
+            ),
+            RenderError::PieceCutTooOften { cuts } => write!(
+                f,
+                "a painter's piece would need more than {cuts} cuts"
+            ),
+            RenderError::PainterCycle => write!(
+                f,
+                "the painter's tests cannot order a cycle of pieces (use the scan-line or z-buffer)"
+            ),
+            RenderError::SubdivisionStackFull { capacity } => write!(
+                f,
+                "Warnock's subdivision needs more than its stack of {capacity} windows"
+            ),
+            RenderError::ActiveTableFull { capacity } => write!(
+                f,
+                "more triangles reach one band than the active table's {capacity}"
+            ),
+            RenderError::PhongUnsupported => write!(
+                f,
+                "a Phong object cannot be stored by this visibility method (use the z-buffer)"
+            ),
+            RenderError::TooManyObjects => write!(f, "more than 256 objects in the scene"),
         }
     }
 }

@@ -41,7 +41,7 @@
 //! `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
 
 mod bands;
-mod consumer;
+pub(crate) mod consumer;
 mod cull;
 mod error;
 mod frame;

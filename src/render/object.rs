@@ -4,9 +4,9 @@
 use core::cell::Cell;
 use core::marker::PhantomData;
 
-use super::consumer::{LevelWriter, PhongWriter};
+use super::consumer::{LevelWriter, PhongWriter, TriangleConsumer};
 use super::polygon_stage::PolygonStage;
-use super::{PolygonRows, PreparedVertex, RenderError, Renderer, StatsSink};
+use super::{PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
 use crate::geometry::vector::Vec3;
 use crate::scene::{Intensities, Object};
 use crate::shade::lighting::light_polygon;
@@ -55,8 +55,7 @@ impl<const S: u32> Renderer<S> {
 
     /// The polygon stage of `object` with its corner attributes and its consumer: Phong
     /// objects carry their normals to a [`PhongWriter`], every other object a level to a
-    /// [`LevelWriter`] (lit per polygon for flat lit objects, read from the prepared vertex for
-    /// Gouraud-lit or given per-vertex levels, else given per polygon or uniform).
+    /// [`LevelWriter`] ([`Self::run_levels`]).
     fn rasterize_with<D: DepthValue, T: StatsSink>(
         &self,
         object: &Object<'_>,
@@ -67,39 +66,12 @@ impl<const S: u32> Renderer<S> {
         stats: &mut T,
     ) -> Result<(), RenderError> {
         let stats = stats.counts();
-        let mesh = &object.mesh;
-        let prepared =
-            scratch
-                .get(..mesh.vertices().len())
-                .ok_or(RenderError::ScratchTooSmall {
-                    needed: mesh.vertices().len(),
-                })?;
-        match object.intensities {
-            Intensities::PerVertex(t) if t.len() < prepared.len() => {
-                return Err(RenderError::IntensitiesTooShort)
-            }
-            Intensities::PerPolygon(t) if t.len() < mesh.polygon_count() => {
-                return Err(RenderError::IntensitiesTooShort)
-            }
-            Intensities::Lit { normals, .. }
-                if object.shade != ShadeMode::Flat && normals.len() < prepared.len() =>
-            {
-                return Err(RenderError::IntensitiesTooShort)
-            }
-            _ => {}
-        }
+        let prepared = checked_scratch(object, scratch)?;
         let rows = (frame.top().max(depth.top()), {
             let f = frame.top() + frame.height() as i32;
             f.min(depth.top() + depth.height() as i32)
         });
-        let stage = PolygonStage {
-            renderer: self,
-            object,
-            prepared,
-            rows,
-            banded: rows.0 > 0 || rows.1 < self.camera.viewport().height as i32,
-            table,
-        };
+        let stage = self.stage(object, prepared, rows, table);
         if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
             (object.intensities, object.shade)
         {
@@ -128,6 +100,59 @@ impl<const S: u32> Renderer<S> {
             target: &mut target,
             object,
         };
+        self.run_levels(&stage, stats, writer)
+    }
+
+    /// The polygon stage of `object` handing every triangle, with a level per corner, to
+    /// `consumer` (the visibility methods that store triangles before drawing them). Phong
+    /// objects carry normals, not levels: [`RenderError::PhongUnsupported`].
+    pub(crate) fn collect_levels(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        stats: &mut RenderStats,
+        consumer: impl TriangleConsumer<S, 1>,
+    ) -> Result<(), RenderError> {
+        if object.shade == ShadeMode::Phong && matches!(object.intensities, Intensities::Lit { .. })
+        {
+            return Err(RenderError::PhongUnsupported);
+        }
+        let prepared = checked_scratch(object, scratch)?;
+        let rows = (0, self.camera.viewport().height as i32);
+        let stage = self.stage(object, prepared, rows, None);
+        self.run_levels(&stage, stats, consumer)
+    }
+
+    /// The polygon stage of `object` over the rows `rows.0 .. rows.1` (with its band table,
+    /// if any).
+    fn stage<'r, 'o>(
+        &'r self,
+        object: &'r Object<'o>,
+        prepared: &'r [PreparedVertex<S>],
+        rows: (i32, i32),
+        table: Option<&'r [PolygonRows]>,
+    ) -> PolygonStage<'r, 'o, S> {
+        PolygonStage {
+            renderer: self,
+            object,
+            prepared,
+            rows,
+            banded: rows.0 > 0 || rows.1 < self.camera.viewport().height as i32,
+            table,
+        }
+    }
+
+    /// Runs `stage` with a level per corner: lit per polygon for flat lit objects, read from
+    /// the prepared vertex for Gouraud-lit or given per-vertex levels, else given per polygon
+    /// or uniform.
+    fn run_levels(
+        &self,
+        stage: &PolygonStage<'_, '_, S>,
+        stats: &mut RenderStats,
+        consumer: impl TriangleConsumer<S, 1>,
+    ) -> Result<(), RenderError> {
+        let object = stage.object;
+        let mesh = &object.mesh;
         match object.intensities {
             Intensities::Lit { material, .. } if object.shade == ShadeMode::Flat => {
                 // One level per polygon, computed for its first corner and reused.
@@ -141,23 +166,49 @@ impl<const S: u32> Renderer<S> {
                     }
                     last.get().1
                 };
-                return stage.run(stats, |pi, poly, _, _| [level(pi, poly) as i32], writer);
+                stage.run(stats, |pi, poly, _, _| [level(pi, poly) as i32], consumer)
             }
             Intensities::Lit { .. } | Intensities::PerVertex(_) => {
                 // Gouraud-lit or given per vertex: the level the vertex stage stored in the
                 // prepared vertex, read with it.
-                return stage.run(
+                stage.run(
                     stats,
                     |_, _, _, p| [p.map_or(0, |p| p.level as i32)],
-                    writer,
-                );
+                    consumer,
+                )
             }
-            _ => {}
+            _ => stage.run(
+                stats,
+                |pi, poly, k, _| [object.intensity(pi, poly[k]) as i32],
+                consumer,
+            ),
         }
-        stage.run(
-            stats,
-            |pi, poly, k, _| [object.intensity(pi, poly[k]) as i32],
-            writer,
-        )
+    }
+}
+
+/// The prepared vertices of `object` in `scratch`, once its tables are checked long enough.
+fn checked_scratch<'s, const S: u32>(
+    object: &Object<'_>,
+    scratch: &'s [PreparedVertex<S>],
+) -> Result<&'s [PreparedVertex<S>], RenderError> {
+    let mesh = &object.mesh;
+    let prepared = scratch
+        .get(..mesh.vertices().len())
+        .ok_or(RenderError::ScratchTooSmall {
+            needed: mesh.vertices().len(),
+        })?;
+    match object.intensities {
+        Intensities::PerVertex(t) if t.len() < prepared.len() => {
+            Err(RenderError::IntensitiesTooShort)
+        }
+        Intensities::PerPolygon(t) if t.len() < mesh.polygon_count() => {
+            Err(RenderError::IntensitiesTooShort)
+        }
+        Intensities::Lit { normals, .. }
+            if object.shade != ShadeMode::Flat && normals.len() < prepared.len() =>
+        {
+            Err(RenderError::IntensitiesTooShort)
+        }
+        _ => Ok(prepared),
     }
 }

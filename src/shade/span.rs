@@ -255,7 +255,7 @@ pub fn depth_span_with<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCou
     let constant_index = shading.index();
     for (c, stored) in colours.iter_mut().zip(depths.iter_mut()) {
         let d = D::from_depth32(z.value());
-        if d < *stored {
+        if d.nearer(*stored) {
             *stored = d;
             *c = if Sh::IS_CONSTANT {
                 constant_index
@@ -284,7 +284,7 @@ fn constant_span<D: DepthValue, C: WrittenCount>(
 ) -> u32 {
     let mut written = 0u32;
     let select = |c: &mut u8, stored: &mut D| {
-        let nearer = d < *stored;
+        let nearer = d.nearer(*stored);
         *stored = if nearer { d } else { *stored };
         *c = if nearer { index } else { *c };
         (nearer & C::COUNTS) as u32
@@ -298,9 +298,9 @@ fn constant_span<D: DepthValue, C: WrittenCount>(
     let mut zs = depths.chunks_exact_mut(16);
     for (cb, zb) in (&mut cs).zip(&mut zs) {
         let all_farther = if WIDE_REGISTERS {
-            zb.iter().fold(true, |all, s| all & (d < *s))
+            zb.iter().fold(true, |all, s| all & d.nearer(*s))
         } else {
-            zb.iter().all(|s| d < *s)
+            zb.iter().all(|s| d.nearer(*s))
         };
         if all_farther {
             zb.fill(d);

@@ -121,7 +121,10 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
 /// `C` says whether triangles drawn into it count their written pixels ([`WrittenCount`]).
 #[derive(Debug)]
 pub struct RasterTarget<'t, D, C = CountWritten> {
+    /// Where triangles are drawn: the buffers' window, or part of it ([`Self::restrict`]).
     window: Window,
+    /// The window both buffers hold.
+    buffers: Window,
     targets: Targets<'t, D>,
     count: C,
 }
@@ -140,11 +143,31 @@ impl<'t, D: DepthValue, C: WrittenCount> RasterTarget<'t, D, C> {
         depth: &'t mut DepthBuffer<'_, D>,
         count: C,
     ) -> Self {
+        let buffers = drawable_window(frame, depth);
         RasterTarget {
-            window: drawable_window(frame, depth),
+            window: buffers,
+            buffers,
             targets: Targets::new(frame, depth),
             count,
         }
+    }
+}
+
+impl<D, C> RasterTarget<'_, D, C> {
+    /// Draws from now on only inside `window` ∩ the buffers' window: the pixels a triangle
+    /// then writes are exactly those of the whole triangle inside it (the fill clips spans to
+    /// the window, the tiny writer declines a triangle whose columns leave it). The visibility
+    /// methods draw parts of triangles this way (a band of rows, one side of a split, an area
+    /// of Warnock's subdivision).
+    #[inline]
+    pub(crate) fn restrict(&mut self, window: Window) {
+        self.window = self.buffers.intersect(&window);
+    }
+
+    /// The window both buffers hold (what [`Self::restrict`] intersects with).
+    #[inline]
+    pub(crate) fn buffers(&self) -> Window {
+        self.buffers
     }
 }
 

@@ -32,6 +32,12 @@ pub trait DepthValue: Copy + Ord + core::fmt::Debug + 'static {
     const MAX_DEPTH32: u32;
     /// Keeps the top [`Self::BITS`] bits of a 32-bit depth (smaller is nearer).
     fn from_depth32(d: u32) -> Self;
+    /// The depth test: whether a surface at `self` replaces the stored `stored` (strict, nearer
+    /// wins). [`NoDepth`] passes every test.
+    #[inline(always)]
+    fn nearer(self, stored: Self) -> bool {
+        self < stored
+    }
     /// Sets every sample of `dst` to [`Self::FAR`] ([`DepthBuffer::clear`]). `u16` and `u32`
     /// write 32 bytes per loop iteration as runs of word stores.
     #[inline]
@@ -66,6 +72,39 @@ impl DepthValue for u32 {
     fn fill_far(dst: &mut [Self]) {
         super::fill_u32(dst, Self::FAR);
     }
+}
+
+/// No depth at all: a zero-sized sample whose test always passes, so a
+/// `DepthBuffer<NoDepth>` takes no memory and the span loops compile without a depth
+/// interpolant, compare or store. Drawing through one paints triangles in the order given:
+/// what the visibility methods that need no depth buffer use (back-face only, the painter;
+/// [`visibility`](crate::visibility)). An array of them is zero bytes at any length:
+///
+/// ```
+/// use zscan::target::{DepthBuffer, NoDepth};
+///
+/// let mut samples = [NoDepth; 320 * 240]; // zero bytes
+/// assert_eq!(core::mem::size_of_val(&samples), 0);
+/// let depth = DepthBuffer::new(&mut samples, 320, 240)?;
+/// # Ok::<(), zscan::target::TargetError>(())
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
+pub struct NoDepth;
+
+impl DepthValue for NoDepth {
+    const FAR: Self = NoDepth;
+    const BITS: u32 = 0;
+    const MAX_DEPTH32: u32 = u32::MAX;
+    #[inline(always)]
+    fn from_depth32(_: u32) -> Self {
+        NoDepth
+    }
+    #[inline(always)]
+    fn nearer(self, _: Self) -> bool {
+        true
+    }
+    #[inline(always)]
+    fn fill_far(_: &mut [Self]) {}
 }
 
 /// A depth buffer of `D` samples (possibly a band of a taller picture, like the framebuffer).

@@ -20,7 +20,7 @@ mod framebuffer;
 mod lut;
 mod palette_index;
 
-pub use depth::{DepthBuffer, DepthValue};
+pub use depth::{DepthBuffer, DepthValue, NoDepth};
 pub use flush::flush;
 pub use framebuffer::Framebuffer;
 pub use lut::{shaded_index, Lut, LutError};

@@ -1,0 +1,39 @@
+//! Back-face culling alone (course ch. 3 §2; the survey's "élimination des faces arrière"):
+//! every front-facing triangle drawn in scene order, with no depth buffer.
+//!
+//! Correct when no two front faces overlap on screen: one closed convex mesh (its front faces
+//! tile its silhouette), or objects drawn back to front that a plane between them separates
+//! (Schumacker's clusters in the survey: the order depends only on which side of the plane the
+//! eye is). Elsewhere the last face drawn shows, which `tests/visibility.rs` counts against the
+//! z-buffer (the bunny, a non-convex mesh).
+//!
+//! Memory: none beside the frame and the vertex scratch; the span loops run with the
+//! zero-sized [`NoDepth`] sample, which compiles away the depth interpolant, test and store.
+
+use crate::render::{PreparedVertex, RenderError, Renderer, StatsSink};
+use crate::scene::Scene;
+use crate::target::{DepthBuffer, Framebuffer, NoDepth};
+
+/// Clears `frame` to the scene's background and draws every object in order, back faces
+/// culled, front faces painted as they come (no depth test). `scratch` holds at least the
+/// largest mesh's vertices. The picture equals the z-buffer's when the scene qualifies
+/// ([module doc](self)).
+pub fn render_back_faces<const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    frame: &mut Framebuffer<'_>,
+    scratch: &mut [PreparedVertex<S>],
+    stats: &mut impl StatsSink,
+) -> Result<(), RenderError> {
+    frame.clear(scene.background);
+    let (width, height) = (frame.width(), frame.height());
+    // Zero bytes at any length (a frame has at most 2^24 pixels).
+    let mut samples = [NoDepth; 1 << 24];
+    let n = width as usize * height as usize;
+    let mut depth = DepthBuffer::band(&mut samples[..n], width, height, frame.top() as u16)
+        .map_err(|_| RenderError::BufferTooSmall)?;
+    for object in scene.objects {
+        renderer.draw_object(object, scratch, frame, &mut depth, stats)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,82 @@
+//! Hidden-surface methods after the polygon stage: which surface shows at each pixel, decided
+//! by the cheapest method a scene allows.
+//!
+//! Role in the pipeline: the frame stage's choice of visibility. The z-buffer
+//! ([`render_scene`](crate::render::render_scene), [`render_in_bands`](crate::render::render_in_bands))
+//! resolves any scene at the cost of a depth sample per pixel. The survey of hidden-surface
+//! algorithms (seed 003) and the course (seed 000, ch. 3 §2) describe cheaper methods with
+//! narrower claims; each is here a consumer of the polygon stage's culled, clipped, projected
+//! triangles (the seam, `render/consumer.rs`), drawn by the same triangle writer, so that
+//! where a method is correct it gives the z-buffer's pixels:
+//!
+//! | [`Visibility`] | memory beside the frame | correct for |
+//! |---|---|---|
+//! | [`BackFace`](Visibility::BackFace) (`backface.rs`) | none | one closed convex mesh; objects drawn back to front that a plane separates |
+//! | [`Painter`](Visibility::Painter) (`painter.rs`) | a stored triangle and an index per front triangle, plus pieces | any scene (Newell's tests, splitting where they fail) |
+//! | [`ScanLine`](Visibility::ScanLine) (`scanline.rs`) | a stored triangle and an index per front triangle, a band of rows and its depth | any scene (exact depth per row) |
+//! | [`ZBuffer`](Visibility::ZBuffer) (`render/`) | a depth sample per pixel (or per band pixel) | any scene |
+//!
+//! Shared conventions: triangles are collected in scene order; a stored triangle keeps its
+//! corners exactly as the polygon stage handed them (sub-pixel position, 32-bit depth, level),
+//! so drawing it later writes the pixels it would have written at once. The z-buffer keeps the
+//! first of two surfaces at equal stored depth; the painter draws the nearer one last, so the
+//! two agree wherever the exact depths differ (at 32-bit depth: everywhere but samples where two
+//! surfaces are within one unit of `2^-32` of the depth range).
+//!
+//! Numeric contract: positions within the projector's `±(2^28 − 1)` sub-pixel range, depths
+//! `u32`, levels `0..=255`; the painter's plane tests use `i64` normals and `i128` (or exact
+//! 192-bit) products, bounded in `painter.rs`.
+
+mod backface;
+mod painter;
+mod scanline;
+mod store;
+
+pub use backface::render_back_faces;
+pub use painter::{render_painter, PainterMemory, SplitPolicy, MAX_CUTS};
+pub use scanline::{render_scan_lines, ScanLineMemory};
+pub use store::StoredTriangle;
+
+/// A hidden-surface method ([module doc](self)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Visibility {
+    /// Back faces culled, front faces drawn in scene order with no depth buffer.
+    BackFace,
+    /// Depth-sort painter (Newell, Newell and Sancha 1972) with the survey's six tests.
+    Painter,
+    /// Scan-line: a triangle table by first row, an active list, a band of depth rows.
+    ScanLine,
+    /// Full-frame (or banded) depth buffer.
+    ZBuffer,
+}
+
+impl Visibility {
+    /// Every method, cheapest first.
+    pub const ALL: [Visibility; 4] = [
+        Visibility::BackFace,
+        Visibility::Painter,
+        Visibility::ScanLine,
+        Visibility::ZBuffer,
+    ];
+
+    /// The method's name as the command line spells it.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Visibility::BackFace => "backface",
+            Visibility::Painter => "painter",
+            Visibility::ScanLine => "scanline",
+            Visibility::ZBuffer => "zbuffer",
+        }
+    }
+
+    /// The method named `name` ([`Self::name`]).
+    pub fn from_name(name: &str) -> Option<Visibility> {
+        Visibility::ALL.into_iter().find(|v| v.name() == name)
+    }
+}
+
+impl core::fmt::Display for Visibility {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}

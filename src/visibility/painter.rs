@@ -1,0 +1,471 @@
+//! The depth-sort painter (Newell, Newell and Sancha 1972; the survey's "priorité
+//! dynamique", course ch. 3 §2.1): front triangles sorted by their farthest depth, overlaps
+//! resolved by the survey's tests, drawn back to front with no depth buffer.
+//!
+//! Space: the tests work on the projected triangles, `(X, Y, D)` with `X, Y` the sub-pixel
+//! screen position and `D` the 32-bit depth. The projection's depth is affine in screen
+//! position over a triangle (the z-buffer interpolates it linearly), so a triangle is a plane
+//! there too, and "behind" means a larger `D` at the same `(X, Y)`: exactly what the z-buffer
+//! compares at each pixel. `P` may be painted before `Q` (Q then wins where they overlap) when
+//! one of these holds, tried in the survey's order:
+//!
+//! 1. their depth ranges do not overlap (`P`'s nearest corner is at least as far as `Q`'s
+//!    farthest);
+//! 2. their screen boxes are disjoint in `x`, or in `y`;
+//! 3. `P` lies wholly behind (or on) `Q`'s plane;
+//! 4. `Q` lies wholly in front of (or on) `P`'s plane;
+//! 5. their projections are disjoint (an edge of one has the other strictly outside).
+//!
+//! When every test fails, `Q` is moved before `P` and marked; a marked `Q` failing again is a
+//! cycle (or interpenetration), and test 6 **splits** `P` by `Q`'s plane into the piece behind
+//! it and the piece in front. A piece keeps `P`'s corners (so its pixels get `P`'s exact depth
+//! and level) and a list of cuts; drawn row by row, each row restricted to the columns whose
+//! samples lie on its side of the cut planes, so the pieces of `P` write exactly `P`'s pixels.
+//! The tests on a piece use its base triangle's corners (conservative: what holds for the
+//! whole holds for the piece) and its cuts (a piece behind `Q`'s plane passes test 3 against
+//! `Q`). With [`SplitPolicy::Never`] a cycle draws `P` in the tests' order instead: the
+//! painter without test 6, whose wrong pixels `tests/visibility.rs` counts.
+//!
+//! Numeric contract: corners within `±(2^28 − 1)` sub-pixel units, depths `u32`. A plane's
+//! normal `(n_x, n_y, n_d)` has `|n_x|, |n_y| < 2^62` (products of a `< 2^29` and a `< 2^32`
+//! difference, two of them) and `n_d` = twice the screen area, `|n_d| < 2^59`: `i64`. A point's
+//! side of a plane is `n·(p − p0) < 2^62·2^29·2 + 2^59·2^32 < 2^93`: `i128`. A sample's side of
+//! a cut plane is exact in `i128` too (`sample_side`). Memory: a stored triangle (56 bytes)
+//! and a `u32` of order per front triangle and per piece; a piece has at most [`MAX_CUTS`] cuts.
+
+use core::cmp::Reverse;
+
+use super::store::{collect, StoredTriangle, CUT_FRONT, NO_CUT};
+use crate::raster::Window;
+use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
+use crate::scene::Scene;
+use crate::shade::span_writer::RasterTarget;
+use crate::target::{DepthBuffer, Framebuffer, NoDepth};
+
+/// Cuts a piece may carry (a piece cut more often is an error).
+pub const MAX_CUTS: usize = 3;
+
+/// The order entry's mark: the triangle was moved before another once (Newell's loop).
+const MOVED: u32 = 1 << 31;
+
+/// What the painter does when Newell's tests 1–5 cannot order a cycle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SplitPolicy {
+    /// Test 6: split, at most this many times per frame (then
+    /// [`RenderError::SplitBudgetExhausted`]).
+    Budget(usize),
+    /// No test 6: the blocked triangle is drawn in the sorted order (wrong where a cycle or
+    /// interpenetration overlaps; for measuring what test 6 buys).
+    Never,
+}
+
+/// Caller memory of [`render_painter`].
+#[derive(Debug)]
+pub struct PainterMemory<'a, const S: u32 = 4> {
+    /// The front triangles, then the pieces the splits make.
+    pub triangles: &'a mut [StoredTriangle<S>],
+    /// The drawing order, one entry per stored triangle (as long as `triangles`).
+    pub order: &'a mut [u32],
+}
+
+/// Clears `frame`, stores every object's front triangles, orders them by Newell's tests
+/// (module doc) and paints them back to front with no depth buffer.
+pub fn render_painter<T: StatsSink, const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    frame: &mut Framebuffer<'_>,
+    scratch: &mut [PreparedVertex<S>],
+    memory: PainterMemory<'_, S>,
+    policy: SplitPolicy,
+    stats: &mut T,
+) -> Result<(), RenderError> {
+    let counts = stats.counts();
+    let PainterMemory { triangles, order } = memory;
+    let capacity = triangles.len().min(order.len());
+    let triangles = &mut triangles[..capacity];
+    let order = &mut order[..capacity];
+    let n = collect(renderer, scene, scratch, triangles, counts)?;
+    frame.clear(scene.background);
+    let (width, height) = (frame.width(), frame.height());
+    let mut samples = [NoDepth; 1 << 24];
+    let cells = width as usize * height as usize;
+    let mut depth = DepthBuffer::band(&mut samples[..cells], width, height, frame.top() as u16)
+        .map_err(|_| RenderError::BufferTooSmall)?;
+    let mut target = RasterTarget::with_count(frame, &mut depth, T::Count::default());
+    for (i, o) in order[..n].iter_mut().enumerate() {
+        *o = i as u32;
+    }
+    order[..n].sort_unstable_by_key(|&i| (Reverse(triangles[i as usize].depth_range().1), i));
+    let mut painter = Painter {
+        triangles,
+        order,
+        count: n,
+        stored: n,
+        splits: 0,
+        moves: 0,
+        moved: 0,
+    };
+    while let Some(t) = painter.next(policy)? {
+        draw_piece(scene, &painter.triangles[t], painter.triangles, &mut target, counts)?;
+    }
+    Ok(())
+}
+
+/// Newell's ordering loop over the stored triangles.
+struct Painter<'m, const S: u32> {
+    triangles: &'m mut [StoredTriangle<S>],
+    /// `order[..count]`: the triangles not painted yet; `order[..moved]` were moved to the
+    /// front (Newell's marks), `order[moved..count]` are sorted by farthest depth, descending.
+    order: &'m mut [u32],
+    moved: usize,
+    count: usize,
+    /// Triangles and pieces in `triangles`.
+    stored: usize,
+    splits: usize,
+    /// Entries moved to the front since the last paint or split.
+    moves: usize,
+}
+
+impl<const S: u32> Painter<'_, S> {
+    /// The next triangle to paint (its index in the store), or `None` when all are.
+    ///
+    /// Invariant: `order[moved..count]` stays sorted by farthest depth, descending (moving an
+    /// entry to the front grows the moved part, pieces are inserted at their place), so the
+    /// scan for triangles whose depth range overlaps the first one's stops at the first sorted
+    /// entry that does not.
+    fn next(&mut self, policy: SplitPolicy) -> Result<Option<usize>, RenderError> {
+        loop {
+            if self.count == 0 {
+                return Ok(None);
+            }
+            let p = (self.order[0] & !MOVED) as usize;
+            let Some(k) = self.blocker(p) else {
+                self.paint_first();
+                return Ok(Some(p));
+            };
+            let q = (self.order[k] & !MOVED) as usize;
+            // Q first, marked: when it was not moved yet, or when the tests show that Q may
+            // be painted before P (a cut piece meets the triangle that cut it), as long as
+            // moves since the last paint stay below the entries left (beyond, the marked
+            // entries go round a cycle of the tests).
+            let reorder = self.order[k] & MOVED == 0
+                || (self.moves < self.count && may_precede(self.triangles, q, p));
+            if reorder {
+                self.order[..=k].rotate_right(1);
+                self.order[0] |= MOVED;
+                if k >= self.moved {
+                    self.moved += 1;
+                }
+                self.moves += 1;
+                continue;
+            }
+            match policy {
+                SplitPolicy::Never => {
+                    self.paint_first();
+                    return Ok(Some(p));
+                }
+                SplitPolicy::Budget(budget) => {
+                    // Split the one that crosses the other's plane (P first, as Newell);
+                    // when neither does, one lies wholly in front of the other's plane and
+                    // only the marks stood in the way: Q goes first.
+                    let cut = if straddles(self.triangles, p, q) {
+                        Some((0, q))
+                    } else if straddles(self.triangles, q, p) {
+                        Some((k, p))
+                    } else {
+                        None
+                    };
+                    match cut {
+                        Some((at, by)) => {
+                            if self.splits >= budget {
+                                return Err(RenderError::SplitBudgetExhausted { budget });
+                            }
+                            self.splits += 1;
+                            self.moves = 0;
+                            self.split(at, by)?;
+                        }
+                        None if self.moves <= 2 * self.count => {
+                            self.order[..=k].rotate_right(1);
+                            if k >= self.moved {
+                                self.moved += 1;
+                            }
+                            self.moves += 1;
+                        }
+                        None => return Err(RenderError::PainterCycle),
+                    }
+                }
+            }
+        }
+    }
+
+    /// The first entry after the first whose triangle `p` may not be painted before, if any:
+    /// every moved entry, then the sorted ones while their farthest depth is beyond `p`'s
+    /// nearest (test 1 holds for the rest).
+    fn blocker(&self, p: usize) -> Option<usize> {
+        let (p_near, _) = self.triangles[p].depth_range();
+        let entry = |k: usize| (self.order[k] & !MOVED) as usize;
+        if let Some(k) = (1..self.moved).find(|&k| !may_precede(self.triangles, p, entry(k))) {
+            return Some(k);
+        }
+        for k in self.moved.max(1)..self.count {
+            let q = entry(k);
+            if self.triangles[q].depth_range().1 <= p_near {
+                return None;
+            }
+            if !may_precede(self.triangles, p, q) {
+                return Some(k);
+            }
+        }
+        None
+    }
+
+    /// Removes the first entry (painted).
+    fn paint_first(&mut self) {
+        self.order.copy_within(1..self.count, 0);
+        self.count -= 1;
+        self.moved = self.moved.saturating_sub(1);
+        self.moves = 0;
+    }
+
+    /// Test 6: replaces the entry `order[at]` by its piece behind `q`'s plane and inserts its
+    /// piece in front at its place in the sorted part of the order.
+    fn split(&mut self, at: usize, q: usize) -> Result<(), RenderError> {
+        let capacity = self.triangles.len();
+        if self.stored + 2 > capacity || self.count + 1 > self.order.len() {
+            return Err(RenderError::TriangleStoreFull { capacity });
+        }
+        let p = (self.order[at] & !MOVED) as usize;
+        let plane = self.triangles[q].base;
+        let whole = self.triangles[p];
+        let free = whole.cuts.iter().position(|&c| c == NO_CUT);
+        let Some(slot) = free else {
+            return Err(RenderError::PieceCutTooOften { cuts: MAX_CUTS });
+        };
+        let (mut behind, mut front) = (whole, whole);
+        behind.cuts[slot] = plane;
+        front.cuts[slot] = plane | CUT_FRONT;
+        let (b, f) = (self.stored, self.stored + 1);
+        self.triangles[b] = behind;
+        self.triangles[f] = front;
+        self.stored += 2;
+        self.order[at] = b as u32 | (self.order[at] & MOVED);
+        // The front piece at its place among the rest (farthest depth descending).
+        let key = whole.depth_range().1;
+        let from = self.moved.max(1);
+        let rest = &self.order[from..self.count];
+        let at = from + rest.partition_point(|&e| {
+            self.triangles[(e & !MOVED) as usize].depth_range().1 >= key
+        });
+        self.order.copy_within(at..self.count, at + 1);
+        self.order[at] = f as u32;
+        self.count += 1;
+        Ok(())
+    }
+}
+
+/// Whether painting `a` before `b` is right wherever they overlap (tests 1–5, module doc).
+fn may_precede<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> bool {
+    let (ta, tb) = (&t[a], &t[b]);
+    let (a_near, _) = ta.depth_range();
+    let (_, b_far) = tb.depth_range();
+    // 1. Depth ranges.
+    if a_near >= b_far {
+        return true;
+    }
+    // 2. Screen boxes, x then y.
+    let (ax, ay) = boxes(ta);
+    let (bx, by) = boxes(tb);
+    if ax.1 < bx.0 || bx.1 < ax.0 || ay.1 < by.0 || by.1 < ay.0 {
+        return true;
+    }
+    // 3. A behind B's plane (its corners, or a cut that says so).
+    let b_plane = Plane::of(&t[tb.base as usize]);
+    if ta.cuts.contains(&tb.base) || (0..3).all(|k| b_plane.behind(ta, k) >= 0) {
+        return true;
+    }
+    // 4. B in front of A's plane.
+    let a_plane = Plane::of(&t[ta.base as usize]);
+    if tb.cuts.contains(&(ta.base | CUT_FRONT)) || (0..3).all(|k| a_plane.behind(tb, k) <= 0) {
+        return true;
+    }
+    // 5. Projections disjoint.
+    separated(ta, tb) || separated(tb, ta)
+}
+
+/// Whether `a`'s corners lie strictly on both sides of `b`'s plane, and `a` is not cut by it
+/// already.
+fn straddles<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> bool {
+    let (ta, tb) = (&t[a], &t[b]);
+    if ta.cuts.iter().any(|&c| c & !CUT_FRONT == tb.base) {
+        return false;
+    }
+    let plane = Plane::of(&t[tb.base as usize]);
+    let sides = [0, 1, 2].map(|k| plane.behind(ta, k));
+    sides.contains(&1) && sides.contains(&-1)
+}
+
+/// The sub-pixel bounding box: `((x_lo, x_hi), (y_lo, y_hi))`.
+fn boxes<const S: u32>(t: &StoredTriangle<S>) -> ((i32, i32), (i32, i32)) {
+    let xs = t.v.map(|p| p.x);
+    let ys = t.v.map(|p| p.y);
+    (
+        (xs.into_iter().min().unwrap_or(0), xs.into_iter().max().unwrap_or(0)),
+        (ys.into_iter().min().unwrap_or(0), ys.into_iter().max().unwrap_or(0)),
+    )
+}
+
+/// True when an edge of `a` has every corner of `b` strictly outside `a` (`i64`: edge
+/// functions of `< 2^29` differences, `< 2^59`).
+fn separated<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> bool {
+    let orient = a.twice_area().signum();
+    (0..3).any(|k| {
+        let (p, q) = (a.v[k], a.v[(k + 1) % 3]);
+        let (ex, ey) = (q.x as i64 - p.x as i64, q.y as i64 - p.y as i64);
+        b.v.iter().all(|r| {
+            let e = ex * (r.y as i64 - p.y as i64) - ey * (r.x as i64 - p.x as i64);
+            e * orient < 0
+        })
+    })
+}
+
+/// A stored triangle's plane in `(X, Y, D)` (module doc), oriented so that
+/// [`behind`](Self::behind) is positive behind it.
+#[derive(Debug, Clone, Copy)]
+struct Plane {
+    n: [i64; 3],
+    origin: [i64; 3],
+    /// `sign(n_d)`: +1 or −1 (stored triangles have area).
+    facing: i128,
+}
+
+impl Plane {
+    fn of<const S: u32>(t: &StoredTriangle<S>) -> Plane {
+        let p = |k: usize| [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
+        let (o, b, c) = (p(0), p(1), p(2));
+        let e1 = [b[0] - o[0], b[1] - o[1], b[2] - o[2]];
+        let e2 = [c[0] - o[0], c[1] - o[1], c[2] - o[2]];
+        let n = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        Plane {
+            n,
+            origin: o,
+            facing: if n[2] < 0 { -1 } else { 1 },
+        }
+    }
+
+    /// Positive when corner `k` of `t` is behind the plane, zero on it, negative in front.
+    fn behind<const S: u32>(&self, t: &StoredTriangle<S>, k: usize) -> i128 {
+        let p = [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
+        let side: i128 = (0..3)
+            .map(|i| self.n[i] as i128 * (p[i] - self.origin[i]) as i128)
+            .sum();
+        side.signum() * self.facing
+    }
+
+    /// Whether the sample at pixel `(x, y)` of plane `on` lies behind this plane (`> 0`),
+    /// exactly: `D_on(X, Y) = q + r/|n_d|` by Euclidean division, the side is
+    /// `B + n_d'·r/|n_d|` with `B` an integer, decided by `B` alone when `|B| ≥ |n_d'|` and
+    /// otherwise by `B·|n_d| + n_d'·r` (both `< 2^118`). The sample lies within `on`'s
+    /// bounding box, where `|q| < 2^35`, so `B < 2^95`.
+    fn sample_behind(&self, on: &Plane, x: i64, y: i64) -> bool {
+        let [ox, oy, od] = on.origin;
+        let (dx, dy) = (x - ox, y - oy);
+        // D_on = od − (n_x dx + n_y dy)/n_d.
+        let num = -(on.n[0] as i128 * dx as i128 + on.n[1] as i128 * dy as i128);
+        let den = on.n[2] as i128;
+        let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
+        let (q, r) = (num.div_euclid(den) + od as i128, num.rem_euclid(den));
+        let [cx, cy, cd] = self.origin;
+        let b = self.n[0] as i128 * (x - cx) as i128
+            + self.n[1] as i128 * (y - cy) as i128
+            + self.n[2] as i128 * (q - cd as i128);
+        let nd = self.n[2] as i128;
+        let side = if b.abs() >= nd.abs() {
+            b.signum()
+        } else {
+            (b * den + nd * r).signum()
+        };
+        side * self.facing > 0
+    }
+}
+
+/// Paints `t` (a whole triangle at once; a piece row by row, each row's columns restricted to
+/// the samples on its side of every cut, found by bisection: the side is affine along a row).
+fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
+    scene: &Scene<'_>,
+    t: &StoredTriangle<S>,
+    all: &[StoredTriangle<S>],
+    target: &mut RasterTarget<'_, NoDepth, C>,
+    stats: &mut RenderStats,
+) -> Result<(), RenderError> {
+    let add = |(covered, written): (u32, u32), stats: &mut RenderStats| {
+        if covered > 0 || written > 0 {
+            stats.triangles_drawn += 1;
+        }
+        stats.pixels_covered += covered;
+        stats.pixels_written += written;
+    };
+    if t.cuts[0] == NO_CUT {
+        let r = t.draw(scene, target)?;
+        add(r, stats);
+        return Ok(());
+    }
+    let full = target.buffers();
+    let own = Plane::of(&all[t.base as usize]);
+    let ((x_lo, x_hi), _) = boxes(t);
+    let (row_lo, row_hi) = t.rows();
+    let cols = ((-((-x_lo) >> S)).max(full.x0), (x_hi >> S).min(full.x1 - 1));
+    let mut sum = (0, 0);
+    for y in row_lo.max(full.y0)..=row_hi.min(full.y1 - 1) {
+        let (mut a, mut b) = (cols.0, cols.1 + 1);
+        for &cut in t.cuts.iter().filter(|&&c| c != NO_CUT) {
+            let plane = Plane::of(&all[(cut & !CUT_FRONT) as usize]);
+            let keep_behind = cut & CUT_FRONT == 0;
+            let keep = |x: i32| {
+                plane.sample_behind(&own, (x as i64) << S, (y as i64) << S) == keep_behind
+            };
+            (a, b) = kept_columns(a, b, keep);
+        }
+        if a < b {
+            target.restrict(Window::new(a, y, b, y + 1));
+            let (c, w) = t.draw(scene, target)?;
+            sum = (sum.0 + c, sum.1 + w);
+        }
+    }
+    target.restrict(full);
+    add(sum, stats);
+    Ok(())
+}
+
+/// The columns of `a..b` where `keep` holds, given that `keep` changes at most once along
+/// the row: `a..b` itself, a prefix or suffix of it, or nothing.
+fn kept_columns(a: i32, b: i32, keep: impl Fn(i32) -> bool) -> (i32, i32) {
+    if a >= b {
+        return (a, a);
+    }
+    let (first, last) = (keep(a), keep(b - 1));
+    match (first, last) {
+        (true, true) => (a, b),
+        (false, false) => (a, a),
+        // The first column where the answer flips, by bisection: keep(lo) == first.
+        _ => {
+            let (mut lo, mut hi) = (a, b - 1);
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if keep(mid) == first {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            if first {
+                (a, hi)
+            } else {
+                (hi, b)
+            }
+        }
+    }
+}

@@ -1,0 +1,132 @@
+//! Scan-line visibility (the survey's "rendu scan-line"; TIPE's edge tables, `TAG`/`TAD`,
+//! per row): a triangle table bucketed by first row, an active table updated band by band,
+//! and spans drawn through a depth buffer of one band of rows only.
+//!
+//! The frame needs the triangle table and one band of depth (one row at `band_rows = 1`)
+//! instead of a frame of depth. Each band draws its active triangles through the z-buffer's
+//! writer into the band's buffers, which write exactly the rows they hold, in the order the
+//! polygon stage produced them (the active table is kept in that order), so every pixel, ties
+//! included, is the z-buffer's. A triangle's set-up runs once per band it reaches: the cost of
+//! thin bands, measured in `docs/BENCHMARKS.md`.
+//!
+//! Memory: a stored triangle (56 bytes) and a `u32` of order per front triangle, a `u32` per
+//! active triangle, and the band's pixels and depth samples (`width × band_rows` each).
+
+use super::store::{collect, StoredTriangle};
+use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
+use crate::scene::Scene;
+use crate::shade::span_writer::RasterTarget;
+use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+
+/// Caller memory of [`render_scan_lines`].
+#[derive(Debug)]
+pub struct ScanLineMemory<'a, D, const S: u32 = 4> {
+    /// The front triangles.
+    pub triangles: &'a mut [StoredTriangle<S>],
+    /// The triangle table: indices by first row (as long as `triangles`).
+    pub order: &'a mut [u32],
+    /// The active table: triangles reaching the current band.
+    pub active: &'a mut [u32],
+    /// The band's pixels (`width × band_rows`).
+    pub pixels: &'a mut [u8],
+    /// The band's depth samples (`width × band_rows`).
+    pub depths: &'a mut [D],
+}
+
+/// Draws a `width × height` picture band by band (`band_rows` rows each, the last may be
+/// shorter) from the scene's front triangles, calling `band_done` with each finished band
+/// as [`render_in_bands`](crate::render::render_in_bands) does. The pixels are the
+/// z-buffer's (module doc).
+#[allow(clippy::too_many_arguments)]
+pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    (width, height, band_rows): (u16, u16, u16),
+    scratch: &mut [PreparedVertex<S>],
+    memory: ScanLineMemory<'_, D, S>,
+    stats: &mut T,
+    mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
+) -> Result<(), E> {
+    let ScanLineMemory {
+        triangles,
+        order,
+        active,
+        pixels,
+        depths,
+    } = memory;
+    let counts = stats.counts();
+    let capacity = triangles.len().min(order.len());
+    let n = collect(renderer, scene, scratch, &mut triangles[..capacity], counts)?;
+    let (triangles, order) = (&triangles[..n], &mut order[..n]);
+    for (i, o) in order.iter_mut().enumerate() {
+        *o = i as u32;
+    }
+    order.sort_unstable_by_key(|&i| (triangles[i as usize].rows().0, i));
+    let band_rows = band_rows.clamp(1, height.max(1));
+    let (mut next, mut live) = (0usize, 0usize);
+    let mut top = 0u16;
+    while top < height {
+        let rows = band_rows.min(height - top);
+        let end = top as i32 + rows as i32;
+        // Triangles starting above the band's end join the active table, in stored order.
+        while next < n && triangles[order[next] as usize].rows().0 < end {
+            let t = order[next];
+            next += 1;
+            if triangles[t as usize].rows().1 < top as i32 {
+                continue; // wholly above the frame's first band
+            }
+            let capacity = active.len();
+            if live == capacity {
+                return Err(RenderError::ActiveTableFull { capacity }.into());
+            }
+            let at = active[..live].partition_point(|&a| a < t);
+            active.copy_within(at..live, at + 1);
+            active[at] = t;
+            live += 1;
+        }
+        let cells = width as usize * rows as usize;
+        let too_small = RenderError::BufferTooSmall;
+        let mut frame = Framebuffer::band(pixels.get_mut(..cells).ok_or(too_small)?, width, rows, top)
+            .map_err(|_| too_small)?;
+        let mut depth = DepthBuffer::band(depths.get_mut(..cells).ok_or(too_small)?, width, rows, top)
+            .map_err(|_| too_small)?;
+        frame.clear(scene.background);
+        depth.clear();
+        {
+            let mut target = RasterTarget::with_count(&mut frame, &mut depth, T::Count::default());
+            draw_active(scene, triangles, &active[..live], &mut target, counts)?;
+        }
+        band_done(&mut frame, &depth)?;
+        // Triangles ending in this band leave the table.
+        let mut kept = 0;
+        for i in 0..live {
+            let t = active[i];
+            if triangles[t as usize].rows().1 >= end {
+                active[kept] = t;
+                kept += 1;
+            }
+        }
+        live = kept;
+        top += rows;
+    }
+    Ok(())
+}
+
+/// Draws the active triangles into the band's target, counting.
+fn draw_active<D: DepthValue, C: crate::shade::span_writer::WrittenCount, const S: u32>(
+    scene: &Scene<'_>,
+    triangles: &[StoredTriangle<S>],
+    active: &[u32],
+    target: &mut RasterTarget<'_, D, C>,
+    stats: &mut RenderStats,
+) -> Result<(), RenderError> {
+    for &t in active {
+        let (covered, written) = triangles[t as usize].draw(scene, target)?;
+        if covered > 0 || written > 0 {
+            stats.triangles_drawn += 1;
+        }
+        stats.pixels_covered += covered;
+        stats.pixels_written += written;
+    }
+    Ok(())
+}

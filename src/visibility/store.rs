@@ -1,0 +1,170 @@
+//! The triangle store: the methods that see every triangle before drawing any (painter,
+//! scan-line) keep the polygon stage's triangles here, in caller memory.
+//!
+//! A [`StoredTriangle`] is exactly what the z-buffer's level writer would have drawn at once
+//! (three sub-pixel corners, their 32-bit depths and levels, and the object they belong to, for
+//! its ramp, dither and shading mode), so [`StoredTriangle::draw`] writes the same pixels
+//! later, into whatever part of the frame ([`RasterTarget::restrict`]) the method asks.
+//!
+//! Numeric contract: corners within the projector's `±(2^28 − 1)` sub-pixel range (what the
+//! polygon stage hands on), depths `u32` clamped by the writer as on the z-buffer path,
+//! levels `0..=255` (clipped corners' interpolated levels are clamped here, as the level
+//! writer clamps them), objects `0..=255`.
+
+use crate::raster::SubpixelPoint;
+use crate::render::consumer::{Corner, LevelWriter, TriangleConsumer};
+use crate::render::RenderError;
+use crate::scene::Scene;
+use crate::shade::span_writer::{RasterTarget, WrittenCount};
+use crate::target::DepthValue;
+use crate::geometry::vector::Vec3;
+
+/// No cut: see [`StoredTriangle::cuts`].
+pub(crate) const NO_CUT: u32 = u32::MAX;
+/// A cut's side bit: the piece keeps the samples in front of (not behind) the plane.
+pub(crate) const CUT_FRONT: u32 = 1 << 31;
+
+/// The most triangles (with the painter's pieces) a store may hold: indices and cut
+/// references are 31-bit.
+pub(crate) const MAX_STORED: usize = (1 << 31) - 1;
+
+/// One front triangle kept for later drawing (24 + 12 + 4 + 12 + 4 = 56 bytes at any `S`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StoredTriangle<const S: u32 = 4> {
+    /// Sub-pixel corners, as the polygon stage handed them.
+    pub(crate) v: [SubpixelPoint<S>; 3],
+    /// The corners' 32-bit depths.
+    pub(crate) depth: [u32; 3],
+    /// The corners' levels.
+    pub(crate) level: [u8; 3],
+    /// Index of the object in the scene.
+    pub(crate) object: u8,
+    /// The painter's pieces (Newell's test 6): the planes this piece is cut by, each the
+    /// index of a stored triangle with [`CUT_FRONT`] set when the piece keeps the samples in
+    /// front of that plane (else those behind it), [`NO_CUT`] when unused. A whole triangle
+    /// has no cut.
+    pub(crate) cuts: [u32; super::MAX_CUTS],
+    /// The stored triangle this is a piece of (its own index when whole): pieces share their
+    /// base's corners and plane, so cuts name bases.
+    pub(crate) base: u32,
+}
+
+impl<const S: u32> Default for StoredTriangle<S> {
+    fn default() -> Self {
+        StoredTriangle {
+            v: [SubpixelPoint::new(0, 0); 3],
+            depth: [0; 3],
+            level: [0; 3],
+            object: 0,
+            cuts: [NO_CUT; super::MAX_CUTS],
+            base: 0,
+        }
+    }
+}
+
+impl<const S: u32> StoredTriangle<S> {
+    /// Draws the triangle into `target` (its window as restricted) with its object's ramp,
+    /// dither and shading, through the z-buffer's level writer; returns `(covered, written)`.
+    #[inline]
+    pub(crate) fn draw<D: DepthValue, C: WrittenCount>(
+        &self,
+        scene: &Scene<'_>,
+        target: &mut RasterTarget<'_, D, C>,
+    ) -> Result<(u32, u32), RenderError> {
+        let Some(object) = scene.objects.get(self.object as usize) else {
+            return Ok((0, 0));
+        };
+        let corner = |k: usize| Corner {
+            screen: self.v[k],
+            depth: self.depth[k],
+            view: Vec3::ZERO,
+            attrs: [self.level[k] as i32],
+        };
+        LevelWriter { target, object }.triangle(0, [corner(0), corner(1), corner(2)])
+    }
+
+    /// Twice the signed screen area (sub-pixel units², `|·| < 2^59`): its sign is the
+    /// orientation, zero for a triangle that covers no pixel.
+    pub(crate) fn twice_area(&self) -> i64 {
+        let [a, b, c] = self.v;
+        let (abx, aby) = (b.x as i64 - a.x as i64, b.y as i64 - a.y as i64);
+        let (acx, acy) = (c.x as i64 - a.x as i64, c.y as i64 - a.y as i64);
+        abx * acy - aby * acx
+    }
+
+    /// Smallest and largest corner depth.
+    pub(crate) fn depth_range(&self) -> (u32, u32) {
+        let [a, b, c] = self.depth;
+        (a.min(b).min(c), a.max(b).max(c))
+    }
+
+    /// Rows whose pixels the triangle may cover: `⌈min y⌉ ..= ⌊max y⌋` in pixels.
+    pub(crate) fn rows(&self) -> (i32, i32) {
+        let (lo, hi) = (
+            self.v[0].y.min(self.v[1].y).min(self.v[2].y),
+            self.v[0].y.max(self.v[1].y).max(self.v[2].y),
+        );
+        (-((-lo) >> S), hi >> S)
+    }
+}
+
+/// The consumer that stores each triangle of one object, in order, into `store[len..]`.
+pub(crate) struct Collector<'a, const S: u32> {
+    pub(crate) store: &'a mut [StoredTriangle<S>],
+    pub(crate) len: usize,
+    pub(crate) object: u8,
+}
+
+impl<const S: u32> TriangleConsumer<S, 1> for Collector<'_, S> {
+    #[inline]
+    fn triangle(&mut self, _: usize, c: [Corner<S, 1>; 3]) -> Result<(u32, u32), RenderError> {
+        let t = StoredTriangle {
+            v: c.map(|c| c.screen),
+            depth: c.map(|c| c.depth),
+            level: c.map(|c| c.attrs[0].clamp(0, 255) as u8),
+            object: self.object,
+            cuts: [NO_CUT; super::MAX_CUTS],
+            base: self.len as u32,
+        };
+        // A triangle of no area covers no pixel (the fill draws none): not kept.
+        if t.twice_area() == 0 {
+            return Ok((0, 0));
+        }
+        let capacity = self.store.len().min(MAX_STORED);
+        let slot = self
+            .store
+            .get_mut(..capacity)
+            .and_then(|s| s.get_mut(self.len))
+            .ok_or(RenderError::TriangleStoreFull { capacity })?;
+        *slot = t;
+        self.len += 1;
+        Ok((0, 0))
+    }
+}
+
+/// Runs the vertex and polygon stages of every object of `scene`, storing its front
+/// triangles into `store`; returns how many.
+pub(crate) fn collect<const S: u32>(
+    renderer: &crate::render::Renderer<S>,
+    scene: &Scene<'_>,
+    scratch: &mut [crate::render::PreparedVertex<S>],
+    store: &mut [StoredTriangle<S>],
+    stats: &mut crate::render::RenderStats,
+) -> Result<usize, RenderError> {
+    if scene.objects.len() > 256 {
+        return Err(RenderError::TooManyObjects);
+    }
+    let mut len = 0;
+    for (i, object) in scene.objects.iter().enumerate() {
+        renderer.prepare(object, scratch)?;
+        let collector = Collector {
+            store: &mut *store,
+            len,
+            object: i as u8,
+        };
+        let mut c = collector;
+        renderer.collect_levels(object, scratch, stats, &mut c)?;
+        len = c.len;
+    }
+    Ok(len)
+}
