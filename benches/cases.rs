@@ -42,6 +42,12 @@ pub struct Storage {
     pub depth: [u16; FB_LEN],
     /// Vertex scratch for the largest standard mesh (28 bytes per vertex).
     pub vertices: [PreparedVertex<4>; scene::MAX_VERTICES],
+    /// The visibility methods' triangle store (56 bytes per front triangle or piece).
+    pub triangles: [zscan::visibility::StoredTriangle<4>; scene::MAX_STORED],
+    /// Their order (painter, scan-line table).
+    pub order: [u32; scene::MAX_STORED],
+    /// The scan-line's active table.
+    pub active: [u32; scene::MAX_STORED],
 }
 
 impl Storage {
@@ -50,6 +56,9 @@ impl Storage {
         Storage {
             depth: [u16::MAX; FB_LEN],
             vertices: [PreparedVertex::default(); scene::MAX_VERTICES],
+            triangles: [zscan::visibility::StoredTriangle::DEFAULT; scene::MAX_STORED],
+            order: [0; scene::MAX_STORED],
+            active: [0; scene::MAX_STORED],
         }
     }
 }
@@ -187,6 +196,46 @@ pub const CASES: &[Case] = &[
     Case {
         name: "frame_bunny_bands16",
         run: |fb, st| scene::frame_in_bands(fb, st, &scene::BUNNY, 16),
+    },
+    Case {
+        name: "frame_quad_backface",
+        run: |fb, st| scene::back_faces(fb, st, &scene::QUAD),
+    },
+    Case {
+        name: "frame_cube_backface",
+        run: |fb, st| scene::back_faces(fb, st, &scene::CUBE),
+    },
+    Case {
+        name: "frame_sphere_backface",
+        run: |fb, st| scene::back_faces(fb, st, &scene::SPHERE),
+    },
+    Case {
+        name: "frame_bunny_backface",
+        run: |fb, st| scene::back_faces(fb, st, &scene::BUNNY),
+    },
+    Case {
+        name: "frame_quad_painter",
+        run: |fb, st| scene::painter(fb, st, &scene::QUAD),
+    },
+    Case {
+        name: "frame_cube_painter",
+        run: |fb, st| scene::painter(fb, st, &scene::CUBE),
+    },
+    Case {
+        name: "frame_sphere_painter",
+        run: |fb, st| scene::painter(fb, st, &scene::SPHERE),
+    },
+    Case {
+        name: "frame_sphere_scanline16",
+        run: |fb, st| scene::scan_lines(fb, st, &scene::SPHERE, 16),
+    },
+    Case {
+        name: "frame_bunny_scanline1",
+        run: |fb, st| scene::scan_lines(fb, st, &scene::BUNNY, 1),
+    },
+    Case {
+        name: "frame_bunny_scanline16",
+        run: |fb, st| scene::scan_lines(fb, st, &scene::BUNNY, 16),
     },
     Case {
         name: "lit_sphere_flat",
@@ -395,6 +444,100 @@ pub mod scene {
     pub const MAX_VERTICES: usize = 1839;
     /// Largest polygon table of the scenes (the bunny's).
     const MAX_POLYGONS: usize = 3674;
+    /// Stored triangles of the visibility methods: every bunny triangle, or the quad's and
+    /// cube's clipped fans and the painter's pieces.
+    pub const MAX_STORED: usize = 4096;
+
+    /// The standard frame by back faces alone ([`zscan::visibility::render_back_faces`]: no
+    /// depth buffer, right on the convex quad, cube and sphere, wrong where the bunny's front
+    /// faces overlap); returns the pixels covered.
+    pub fn back_faces(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else { return 0 };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = core_scene(&r, &objects);
+        let mut stats = StatsWithoutWritten::default();
+        match zscan::visibility::render_back_faces(&r, &scene, fb, &mut st.vertices, &mut stats) {
+            Ok(()) => stats.0.pixels_covered,
+            Err(_) => 0,
+        }
+    }
+
+    /// The standard frame by the depth-sort painter (Newell's tests, splits budget 64, no
+    /// depth buffer); returns the pixels covered.
+    pub fn painter(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
+        use zscan::visibility::{render_painter, PainterMemory, SplitPolicy};
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else { return 0 };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = core_scene(&r, &objects);
+        let mut stats = StatsWithoutWritten::default();
+        let memory = PainterMemory {
+            triangles: &mut st.triangles,
+            order: &mut st.order,
+        };
+        let policy = SplitPolicy::Budget(64);
+        match render_painter(&r, &scene, fb, &mut st.vertices, memory, policy, &mut stats) {
+            Ok(()) => stats.0.pixels_covered,
+            Err(_) => 0,
+        }
+    }
+
+    /// The standard frame by the scan-line method, bands of `rows` rows (16-bit depth for the
+    /// band only), each band copied into `fb` where a device would flush it; returns the
+    /// pixels covered.
+    pub fn scan_lines(
+        fb: &mut Framebuffer<'_>,
+        st: &mut Storage,
+        s: &StandardScene,
+        rows: u16,
+    ) -> u32 {
+        use zscan::visibility::{render_scan_lines, ScanLineMemory};
+        const MAX_ROWS: usize = 16;
+        let rows = rows.min(MAX_ROWS as u16);
+        let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
+        let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else { return 0 };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = core_scene(&r, &objects);
+        let mut stats = StatsWithoutWritten::default();
+        let memory = ScanLineMemory {
+            triangles: &mut st.triangles,
+            order: &mut st.order,
+            active: &mut st.active,
+            pixels: &mut band,
+            depths: &mut depth,
+        };
+        let drawn = render_scan_lines(
+            &r,
+            &scene,
+            (super::WIDTH, super::HEIGHT, rows),
+            &mut st.vertices,
+            memory,
+            &mut stats,
+            |frame, _| {
+                for (y, row) in frame.rows() {
+                    if let Some(out) = fb.row_mut(y) {
+                        out.copy_from_slice(row);
+                    }
+                }
+                Ok::<(), zscan::render::RenderError>(())
+            },
+        );
+        drawn.map_or(0, |()| stats.0.pixels_covered)
+    }
+
+    /// The one-object scene of `objects` for renderer `r` (no lights, background 0).
+    fn core_scene<'a>(r: &Renderer<4>, objects: &'a [Object<'a>]) -> zscan::scene::Scene<'a> {
+        zscan::scene::Scene {
+            camera: *r.camera(),
+            objects,
+            background: 0,
+            ambient: 0,
+            lights: &[],
+        }
+    }
 
     /// One standard scene as core tables.
     pub struct StandardScene {

@@ -51,15 +51,21 @@ pub struct StoredTriangle<const S: u32 = 4> {
 
 impl<const S: u32> Default for StoredTriangle<S> {
     fn default() -> Self {
-        StoredTriangle {
-            v: [SubpixelPoint::new(0, 0); 3],
-            depth: [0; 3],
-            level: [0; 3],
-            object: 0,
-            cuts: [NO_CUT; super::MAX_CUTS],
-            base: 0,
-        }
+        Self::DEFAULT
     }
+}
+
+impl<const S: u32> StoredTriangle<S> {
+    /// An unused slot, for declaring a store (`[StoredTriangle::DEFAULT; N]`, also in a
+    /// `static`).
+    pub const DEFAULT: Self = StoredTriangle {
+        v: [SubpixelPoint::new(0, 0); 3],
+        depth: [0; 3],
+        level: [0; 3],
+        object: 0,
+        cuts: [NO_CUT; super::MAX_CUTS],
+        base: 0,
+    };
 }
 
 impl<const S: u32> StoredTriangle<S> {

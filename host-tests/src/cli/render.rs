@@ -68,6 +68,7 @@ use zscan::target::{DepthValue, Framebuffer, Lut};
 
 use super::CliError;
 use crate::core_render::coord;
+use zscan::visibility::Visibility;
 
 /// Arguments of `zscan render`.
 #[derive(clap::Args, Debug)]
@@ -86,7 +87,23 @@ pub struct RenderArgs {
     /// Render in bands of ROWS rows (the pixels are the same as one pass).
     #[arg(long, value_name = "ROWS")]
     pub bands: Option<u16>,
+    /// Hidden-surface method: backface, painter, scanline or zbuffer (zscan::visibility).
+    /// Back faces alone and the painter need no depth buffer (no --depth-out); the scan-line
+    /// draws in bands of --bands rows (default 1) through one band of depth.
+    #[arg(long, value_name = "METHOD", default_value = "zbuffer", value_parser = parse_visibility)]
+    pub visibility: Visibility,
 }
+
+/// `--visibility`'s parser: a method's name ([`Visibility::name`]).
+fn parse_visibility(s: &str) -> Result<Visibility, String> {
+    Visibility::from_name(s).ok_or_else(|| {
+        let names: Vec<_> = Visibility::ALL.iter().map(|v| v.name()).collect();
+        format!("unknown method {s:?}: one of {}", names.join(", "))
+    })
+}
+
+/// The painter's split budget in `zscan render`.
+pub const PAINTER_SPLITS: usize = 4096;
 
 /// The sub-pixel bits `zscan render` uses (the core's default; the only value accepted).
 pub const SUBPIXEL_BITS: u32 = 4;
@@ -1283,9 +1300,22 @@ impl LoadedScene {
     /// Errors are in words ([`render_error_words`]); when the frame fails, each object is
     /// rendered alone to name the first one that fails by itself (`object k of n`).
     pub fn render<D: DepthValue>(&self, band_rows: Option<u16>) -> Result<Frame<D>, String> {
-        self.render_objects::<D>(band_rows, None).map_err(|e| {
+        self.render_by::<D>(band_rows, Visibility::ZBuffer)
+    }
+
+    /// [`LoadedScene::render`] by the hidden-surface method `visibility` (the depth samples
+    /// are all far for the methods without a frame of depth).
+    pub fn render_by<D: DepthValue>(
+        &self,
+        band_rows: Option<u16>,
+        visibility: Visibility,
+    ) -> Result<Frame<D>, String> {
+        self.render_objects::<D>(band_rows, None, visibility).map_err(|e| {
             let n = self.objects.len();
-            let culprit = (0..n).find(|&k| self.render_objects::<D>(band_rows, Some(k)).is_err());
+            let culprit = (0..n).find(|&k| {
+                self.render_objects::<D>(band_rows, Some(k), visibility)
+                    .is_err()
+            });
             match culprit {
                 Some(k) if n > 1 => format!("render: object {} of {n}: {e}", k + 1),
                 Some(_) => format!("render: object 1: {e}"),
@@ -1299,6 +1329,7 @@ impl LoadedScene {
         &self,
         band_rows: Option<u16>,
         only: Option<usize>,
+        visibility: Visibility,
     ) -> Result<Frame<D>, String> {
         let vp = *self.camera.viewport();
         let (w, h) = (vp.width, vp.height);
@@ -1319,6 +1350,30 @@ impl LoadedScene {
         };
         let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
             .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
+        if visibility != Visibility::ZBuffer {
+            let band = band_rows.unwrap_or(1).clamp(1, h);
+            let (pixels, stats) = crate::core_render::render_visible(
+                &renderer,
+                &scene,
+                (w, h),
+                visibility,
+                Some(PAINTER_SPLITS),
+                band,
+            )
+            .map_err(|e| render_error_words(&e))?;
+            let bands = if visibility == Visibility::ScanLine {
+                h.div_ceil(band) as u32
+            } else {
+                1
+            };
+            let depth = vec![D::FAR; w as usize * h as usize];
+            return Ok(Frame {
+                pixels,
+                depth,
+                stats,
+                bands,
+            });
+        }
         // The vertex stage once per frame and the polygon table (render_in_bands' faster
         // switches): scratch for every object's vertices and polygons.
         let vertices: usize = objects.iter().map(|o| o.mesh.vertices().len()).sum();
@@ -1452,7 +1507,10 @@ fn finish<D: DepthValue + Into<u64>>(
     args: &RenderArgs,
     scene: &LoadedScene,
 ) -> Result<(), CliError> {
-    let frame = scene.render::<D>(args.bands)?;
+    if args.depth_out.is_some() && matches!(args.visibility, Visibility::BackFace | Visibility::Painter) {
+        return Err(format!("--depth-out: --visibility {} keeps no depth buffer", args.visibility).into());
+    }
+    let frame = scene.render_by::<D>(args.bands, args.visibility)?;
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
     let mut pixels = frame.pixels.clone();
@@ -1467,8 +1525,9 @@ fn finish<D: DepthValue + Into<u64>>(
             "width": w,
             "height": h,
             "bands": frame.bands,
-            "band_rows": args.bands.unwrap_or(h).clamp(1, h),
+            "band_rows": args.bands.unwrap_or(if args.visibility == Visibility::ScanLine { 1 } else { h }).clamp(1, h),
             "depth_bits": D::BITS,
+            "visibility": args.visibility.name(),
             "subpixel_bits": SUBPIXEL_BITS,
             "objects": scene.objects.len(),
             "triangles_in": scene.triangles_in,
