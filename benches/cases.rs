@@ -453,7 +453,9 @@ pub mod scene {
     /// faces overlap); returns the pixels covered.
     pub fn back_faces(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
         let objects = [object(s, ShadeMode::GouraudExact)];
         let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
@@ -468,7 +470,9 @@ pub mod scene {
     pub fn painter(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
         use zscan::visibility::{render_painter, PainterMemory, SplitPolicy};
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
         let objects = [object(s, ShadeMode::GouraudExact)];
         let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
@@ -498,7 +502,9 @@ pub mod scene {
         let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
         let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
         let objects = [object(s, ShadeMode::GouraudExact)];
         let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();

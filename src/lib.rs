@@ -90,11 +90,11 @@ pub mod prelude;
 pub mod project;
 pub mod raster;
 pub mod render;
-pub mod visibility;
 pub mod scene;
 pub mod shade;
 pub mod target;
 #[cfg(test)]
 mod test_rng;
+pub mod visibility;
 
 pub use error::Error;

@@ -278,13 +278,15 @@ pub fn render_visible<const SB: u32>(
     match visibility {
         Visibility::BackFace => {
             let mut pixels = vec![0u8; total];
-            let mut frame = Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            let mut frame =
+                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
             render_back_faces(renderer, scene, &mut frame, &mut scratch, &mut stats)?;
             Ok((pixels, stats))
         }
         Visibility::Painter => {
             let mut pixels = vec![0u8; total];
-            let mut frame = Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            let mut frame =
+                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
             let mut triangles = vec![StoredTriangle::default(); capacity];
             let mut order = vec![0u32; capacity];
             let memory = PainterMemory {
@@ -292,7 +294,15 @@ pub fn render_visible<const SB: u32>(
                 order: &mut order,
             };
             let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
-            render_painter(renderer, scene, &mut frame, &mut scratch, memory, policy, &mut stats)?;
+            render_painter(
+                renderer,
+                scene,
+                &mut frame,
+                &mut scratch,
+                memory,
+                policy,
+                &mut stats,
+            )?;
             Ok((pixels, stats))
         }
         Visibility::ScanLine => {
@@ -309,13 +319,21 @@ pub fn render_visible<const SB: u32>(
                 depths: &mut band_depths,
             };
             let mut pixels = vec![scene.background; total];
-            render_scan_lines(renderer, scene, (w, h, band), &mut scratch, memory, &mut stats, |frame, _| {
-                for (y, row) in frame.rows() {
-                    let at = y as usize * w as usize;
-                    pixels[at..at + w as usize].copy_from_slice(row);
-                }
-                Ok::<(), RenderError>(())
-            })?;
+            render_scan_lines(
+                renderer,
+                scene,
+                (w, h, band),
+                &mut scratch,
+                memory,
+                &mut stats,
+                |frame, _| {
+                    for (y, row) in frame.rows() {
+                        let at = y as usize * w as usize;
+                        pixels[at..at + w as usize].copy_from_slice(row);
+                    }
+                    Ok::<(), RenderError>(())
+                },
+            )?;
             Ok((pixels, stats))
         }
         Visibility::ZBuffer => {

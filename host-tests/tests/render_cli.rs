@@ -256,3 +256,88 @@ fn bad_scenes_fail_with_messages_naming_the_problem() {
         "{err}"
     );
 }
+
+/// `--visibility`: the scan-line draws the bunny's z-buffer picture, back faces alone the
+/// convex standard sphere's; the stats name the method; methods without a depth buffer refuse
+/// `--depth-out`; an unknown method is named with the choices.
+#[test]
+fn visibility_methods_from_the_command_line() {
+    let dir = out_dir("visibility");
+    for (scene, method) in [
+        ("standard_bunny.toml", "scanline"),
+        ("standard_sphere.toml", "backface"),
+    ] {
+        let path = scenes().join(scene);
+        let (z_png, _, _) = render(&path, &dir.join("z"), &[]);
+        let png = dir.join(format!("{method}.png"));
+        let stats = dir.join(format!("{method}.json"));
+        let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+            .args([
+                "render",
+                path.to_str().unwrap(),
+                "-o",
+                png.to_str().unwrap(),
+            ])
+            .args(["--stats", stats.to_str().unwrap(), "--visibility", method])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(
+            read_png_rgb(&png).unwrap(),
+            read_png_rgb(&z_png).unwrap(),
+            "{scene} {method}"
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+        assert_eq!(json["visibility"], method);
+    }
+    let path = scenes().join("standard_sphere.toml");
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .args([
+            "render",
+            path.to_str().unwrap(),
+            "-o",
+            dir.join("p.png").to_str().unwrap(),
+        ])
+        .args([
+            "--depth-out",
+            dir.join("d.png").to_str().unwrap(),
+            "--visibility",
+            "painter",
+        ])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("keeps no depth buffer"));
+    // The stored-triangle methods keep levels, not normals: the demo's Phong object is named.
+    let demo = scenes().join("demo.toml");
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .args([
+            "render",
+            demo.to_str().unwrap(),
+            "-o",
+            dir.join("p.png").to_str().unwrap(),
+        ])
+        .args(["--visibility", "scanline"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("a Phong object cannot be stored"));
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .args([
+            "render",
+            path.to_str().unwrap(),
+            "-o",
+            dir.join("p.png").to_str().unwrap(),
+        ])
+        .args(["--visibility", "warnock"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr)
+        .contains("one of backface, painter, scanline, zbuffer"));
+}

@@ -43,7 +43,12 @@ fn standard_scene_core(name: &str) -> zscan_host::core_render::CoreMesh {
 }
 
 /// [`standard_wrong`] with the painter's split policy `splits`.
-fn standard_wrong_with(name: &str, method: Visibility, splits: Option<usize>, band_rows: u16) -> usize {
+fn standard_wrong_with(
+    name: &str,
+    method: Visibility,
+    splits: Option<usize>,
+    band_rows: u16,
+) -> usize {
     let core = standard_scene_core(name);
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
     let scene = Scene {
@@ -55,18 +60,29 @@ fn standard_wrong_with(name: &str, method: Visibility, splits: Option<usize>, ba
     };
     let vp = *core.camera.viewport();
     let (m, z) = both(&scene, (vp.width, vp.height), method, splits, band_rows).unwrap();
-    assert!(z.iter().any(|&p| p != 0), "{name}: the z-buffer drew nothing");
+    assert!(
+        z.iter().any(|&p| p != 0),
+        "{name}: the z-buffer drew nothing"
+    );
     differing(&m, &z)
 }
 
 #[test]
 fn exact_methods_draw_the_z_buffer_pictures_of_the_standard_scenes() {
     for name in ["quad", "cube", "sphere"] {
-        assert_eq!(standard_wrong(name, Visibility::Painter, 1), 0, "{name}: painter");
+        assert_eq!(
+            standard_wrong(name, Visibility::Painter, 1),
+            0,
+            "{name}: painter"
+        );
     }
     for name in ["quad", "cube", "sphere", "bunny"] {
         for rows in [1, 7, 16] {
-            assert_eq!(standard_wrong(name, Visibility::ScanLine, rows), 0, "{name}: scan-line {rows}");
+            assert_eq!(
+                standard_wrong(name, Visibility::ScanLine, rows),
+                0,
+                "{name}: scan-line {rows}"
+            );
         }
     }
 }
@@ -78,7 +94,10 @@ fn back_faces_alone_are_exact_on_convex_meshes_and_wrong_on_the_bunny() {
     }
     let wrong = standard_wrong("bunny", Visibility::BackFace, 1);
     println!("back faces alone, bunny: {wrong} wrong pixels");
-    assert!(wrong > 0, "the bunny is not convex: some front faces overlap");
+    assert!(
+        wrong > 0,
+        "the bunny is not convex: some front faces overlap"
+    );
 }
 
 /// The bunny's front faces defeat the painter's tests 1-5 in places (conservative tests on
@@ -88,17 +107,39 @@ fn back_faces_alone_are_exact_on_convex_meshes_and_wrong_on_the_bunny() {
 fn painter_refuses_the_bunny_with_test_6_and_draws_it_right_without() {
     let core = standard_scene_core("bunny");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene { camera: core.camera, ambient: 0, lights: &[], objects: &objects, background: 0 };
+    let scene = Scene {
+        camera: core.camera,
+        ambient: 0,
+        lights: &[],
+        objects: &objects,
+        background: 0,
+    };
     let vp = *core.camera.viewport();
-    let r = both(&scene, (vp.width, vp.height), Visibility::Painter, Some(100_000), 1);
+    let r = both(
+        &scene,
+        (vp.width, vp.height),
+        Visibility::Painter,
+        Some(100_000),
+        1,
+    );
     assert_eq!(r.err(), Some(RenderError::PainterCycle));
-    assert_eq!(standard_wrong_with("bunny", Visibility::Painter, None, 1), 0);
+    assert_eq!(
+        standard_wrong_with("bunny", Visibility::Painter, None, 1),
+        0
+    );
 }
 
 fn camera(w: u16, h: u16) -> Camera {
     let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("50"));
     let up = Vec3::from_int(0, 1, 0);
-    Camera::look_at(Vec3::from_int(0, 0, 6), Vec3::ZERO, up, lens, Viewport::new(w, h)).unwrap()
+    Camera::look_at(
+        Vec3::from_int(0, 0, 6),
+        Vec3::ZERO,
+        up,
+        lens,
+        Viewport::new(w, h),
+    )
+    .unwrap()
 }
 
 fn v(x: f64, y: f64, z: f64) -> Vec3 {
@@ -134,7 +175,13 @@ fn cycle_of_three() -> (Vec<Vec3>, Vec<u16>, Vec<u8>) {
 fn painter_needs_test_6_on_a_cycle_of_three() {
     let (vs, is, ls) = cycle_of_three();
     let objects = [soup_objects(&vs, &is, &ls)];
-    let scene = Scene { camera: camera(160, 120), ambient: 0, lights: &[], objects: &objects, background: 0 };
+    let scene = Scene {
+        camera: camera(160, 120),
+        ambient: 0,
+        lights: &[],
+        objects: &objects,
+        background: 0,
+    };
     let (never, z) = both(&scene, (160, 120), Visibility::Painter, None, 1).unwrap();
     let wrong_never = differing(&never, &z);
     println!("cycle of three: painter without test 6 {wrong_never} wrong pixels");
@@ -145,7 +192,10 @@ fn painter_needs_test_6_on_a_cycle_of_three() {
     let r = both(&scene, (160, 120), Visibility::Painter, Some(16), 1);
     assert_eq!(r.err(), Some(RenderError::PainterCycle));
     let r = both(&scene, (160, 120), Visibility::Painter, Some(0), 1);
-    assert_eq!(r.err(), Some(RenderError::SplitBudgetExhausted { budget: 0 }));
+    assert_eq!(
+        r.err(),
+        Some(RenderError::SplitBudgetExhausted { budget: 0 })
+    );
     let (scan, _) = both(&scene, (160, 120), Visibility::ScanLine, None, 1).unwrap();
     assert_eq!(differing(&scan, &z), 0);
 }
@@ -153,12 +203,22 @@ fn painter_needs_test_6_on_a_cycle_of_three() {
 #[test]
 fn painter_splits_interpenetrating_triangles() {
     let vs = vec![
-        v(-2.0, -1.0, -1.0), v(2.0, -1.0, 1.0), v(0.0, 1.5, 0.0),
-        v(-2.0, -1.0, 1.0), v(2.0, -1.0, -1.0), v(0.0, 1.2, 0.2),
+        v(-2.0, -1.0, -1.0),
+        v(2.0, -1.0, 1.0),
+        v(0.0, 1.5, 0.0),
+        v(-2.0, -1.0, 1.0),
+        v(2.0, -1.0, -1.0),
+        v(0.0, 1.2, 0.2),
     ];
     let (is, ls) = ((0..6).collect::<Vec<u16>>(), vec![100, 200]);
     let objects = [soup_objects(&vs, &is, &ls)];
-    let scene = Scene { camera: camera(160, 120), ambient: 0, lights: &[], objects: &objects, background: 0 };
+    let scene = Scene {
+        camera: camera(160, 120),
+        ambient: 0,
+        lights: &[],
+        objects: &objects,
+        background: 0,
+    };
     let (never, z) = both(&scene, (160, 120), Visibility::Painter, None, 1).unwrap();
     let (split, _) = both(&scene, (160, 120), Visibility::Painter, Some(16), 1).unwrap();
     let (scan, _) = both(&scene, (160, 120), Visibility::ScanLine, None, 1).unwrap();
@@ -181,16 +241,40 @@ fn random_scenes_agree_with_the_z_buffer() {
         for _ in 0..objects_n {
             let tris = 1 + rng.below(6) as usize;
             let mut vs = Vec::new();
-            let (cx, cy, cz) = (rng.uniform(-1.5, 1.5), rng.uniform(-1.0, 1.0), rng.uniform(-2.0, 2.0));
+            let (cx, cy, cz) = (
+                rng.uniform(-1.5, 1.5),
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-2.0, 2.0),
+            );
             for _ in 0..3 * tris {
-                vs.push(v(cx + rng.uniform(-1.2, 1.2), cy + rng.uniform(-1.2, 1.2), cz + rng.uniform(-1.2, 1.2)));
+                vs.push(v(
+                    cx + rng.uniform(-1.2, 1.2),
+                    cy + rng.uniform(-1.2, 1.2),
+                    cz + rng.uniform(-1.2, 1.2),
+                ));
             }
             let ls: Vec<u8> = (0..tris).map(|_| 16 + rng.below(240) as u8).collect();
             tables.push((vs, (0..3 * tris as u16).collect::<Vec<u16>>(), ls));
         }
-        let objects: Vec<Object<'_>> = tables.iter().map(|(v, i, l)| soup_objects(v, i, l)).collect();
-        let scene = Scene { camera: camera(96, 72), ambient: 0, lights: &[], objects: &objects, background: 0 };
-        let (s, z) = both(&scene, (96, 72), Visibility::ScanLine, None, 1 + (case % 9) as u16).unwrap();
+        let objects: Vec<Object<'_>> = tables
+            .iter()
+            .map(|(v, i, l)| soup_objects(v, i, l))
+            .collect();
+        let scene = Scene {
+            camera: camera(96, 72),
+            ambient: 0,
+            lights: &[],
+            objects: &objects,
+            background: 0,
+        };
+        let (s, z) = both(
+            &scene,
+            (96, 72),
+            Visibility::ScanLine,
+            None,
+            1 + (case % 9) as u16,
+        )
+        .unwrap();
         assert_eq!(differing(&s, &z), 0, "case {case}: scan-line");
         match both(&scene, (96, 72), Visibility::Painter, Some(4096), 1) {
             Ok((p, _)) => {
@@ -201,7 +285,9 @@ fn random_scenes_agree_with_the_z_buffer() {
             Err(e) => panic!("case {case}: {e}"),
         }
     }
-    println!("random scenes: painter drew {drawn} ({painter_wrong} wrong pixels), refused {refused}");
+    println!(
+        "random scenes: painter drew {drawn} ({painter_wrong} wrong pixels), refused {refused}"
+    );
     assert_eq!(painter_wrong, 0);
     // Dense soups of large interpenetrating triangles: the painter refuses most (measured
     // 57 drawn, 143 refused); what it draws is exact.

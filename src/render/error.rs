@@ -94,10 +94,9 @@ impl core::fmt::Display for RenderError {
                 f,
                 "the painter's overlaps need more than its budget of {budget} splits"
             ),
-            RenderError::PieceCutTooOften { cuts } => write!(
-                f,
-                "a painter's piece would need more than {cuts} cuts"
-            ),
+            RenderError::PieceCutTooOften { cuts } => {
+                write!(f, "a painter's piece would need more than {cuts} cuts")
+            }
             RenderError::PainterCycle => write!(
                 f,
                 "the painter's tests cannot order a cycle of pieces (use the scan-line or z-buffer)"

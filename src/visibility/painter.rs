@@ -106,7 +106,13 @@ pub fn render_painter<T: StatsSink, const S: u32>(
         moved: 0,
     };
     while let Some(t) = painter.next(policy)? {
-        draw_piece(scene, &painter.triangles[t], painter.triangles, &mut target, counts)?;
+        draw_piece(
+            scene,
+            &painter.triangles[t],
+            painter.triangles,
+            &mut target,
+            counts,
+        )?;
     }
     Ok(())
 }
@@ -253,9 +259,9 @@ impl<const S: u32> Painter<'_, S> {
         let key = whole.depth_range().1;
         let from = self.moved.max(1);
         let rest = &self.order[from..self.count];
-        let at = from + rest.partition_point(|&e| {
-            self.triangles[(e & !MOVED) as usize].depth_range().1 >= key
-        });
+        let at = from
+            + rest
+                .partition_point(|&e| self.triangles[(e & !MOVED) as usize].depth_range().1 >= key);
         self.order.copy_within(at..self.count, at + 1);
         self.order[at] = f as u32;
         self.count += 1;
@@ -309,8 +315,14 @@ fn boxes<const S: u32>(t: &StoredTriangle<S>) -> ((i32, i32), (i32, i32)) {
     let xs = t.v.map(|p| p.x);
     let ys = t.v.map(|p| p.y);
     (
-        (xs.into_iter().min().unwrap_or(0), xs.into_iter().max().unwrap_or(0)),
-        (ys.into_iter().min().unwrap_or(0), ys.into_iter().max().unwrap_or(0)),
+        (
+            xs.into_iter().min().unwrap_or(0),
+            xs.into_iter().max().unwrap_or(0),
+        ),
+        (
+            ys.into_iter().min().unwrap_or(0),
+            ys.into_iter().max().unwrap_or(0),
+        ),
     )
 }
 
@@ -424,9 +436,8 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
         for &cut in t.cuts.iter().filter(|&&c| c != NO_CUT) {
             let plane = Plane::of(&all[(cut & !CUT_FRONT) as usize]);
             let keep_behind = cut & CUT_FRONT == 0;
-            let keep = |x: i32| {
-                plane.sample_behind(&own, (x as i64) << S, (y as i64) << S) == keep_behind
-            };
+            let keep =
+                |x: i32| plane.sample_behind(&own, (x as i64) << S, (y as i64) << S) == keep_behind;
             (a, b) = kept_columns(a, b, keep);
         }
         if a < b {

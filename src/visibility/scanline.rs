@@ -86,10 +86,12 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
         }
         let cells = width as usize * rows as usize;
         let too_small = RenderError::BufferTooSmall;
-        let mut frame = Framebuffer::band(pixels.get_mut(..cells).ok_or(too_small)?, width, rows, top)
-            .map_err(|_| too_small)?;
-        let mut depth = DepthBuffer::band(depths.get_mut(..cells).ok_or(too_small)?, width, rows, top)
-            .map_err(|_| too_small)?;
+        let mut frame =
+            Framebuffer::band(pixels.get_mut(..cells).ok_or(too_small)?, width, rows, top)
+                .map_err(|_| too_small)?;
+        let mut depth =
+            DepthBuffer::band(depths.get_mut(..cells).ok_or(too_small)?, width, rows, top)
+                .map_err(|_| too_small)?;
         frame.clear(scene.background);
         depth.clear();
         {

@@ -11,13 +11,13 @@
 //! levels `0..=255` (clipped corners' interpolated levels are clamped here, as the level
 //! writer clamps them), objects `0..=255`.
 
+use crate::geometry::vector::Vec3;
 use crate::raster::SubpixelPoint;
 use crate::render::consumer::{Corner, LevelWriter, TriangleConsumer};
 use crate::render::RenderError;
 use crate::scene::Scene;
 use crate::shade::span_writer::{RasterTarget, WrittenCount};
 use crate::target::DepthValue;
-use crate::geometry::vector::Vec3;
 
 /// No cut: see [`StoredTriangle::cuts`].
 pub(crate) const NO_CUT: u32 = u32::MAX;

@@ -1310,18 +1310,19 @@ impl LoadedScene {
         band_rows: Option<u16>,
         visibility: Visibility,
     ) -> Result<Frame<D>, String> {
-        self.render_objects::<D>(band_rows, None, visibility).map_err(|e| {
-            let n = self.objects.len();
-            let culprit = (0..n).find(|&k| {
-                self.render_objects::<D>(band_rows, Some(k), visibility)
-                    .is_err()
-            });
-            match culprit {
-                Some(k) if n > 1 => format!("render: object {} of {n}: {e}", k + 1),
-                Some(_) => format!("render: object 1: {e}"),
-                None => format!("render: {e}"),
-            }
-        })
+        self.render_objects::<D>(band_rows, None, visibility)
+            .map_err(|e| {
+                let n = self.objects.len();
+                let culprit = (0..n).find(|&k| {
+                    self.render_objects::<D>(band_rows, Some(k), visibility)
+                        .is_err()
+                });
+                match culprit {
+                    Some(k) if n > 1 => format!("render: object {} of {n}: {e}", k + 1),
+                    Some(_) => format!("render: object 1: {e}"),
+                    None => format!("render: {e}"),
+                }
+            })
     }
 
     /// [`LoadedScene::render`] of every object, or of object `only` alone.
@@ -1507,8 +1508,14 @@ fn finish<D: DepthValue + Into<u64>>(
     args: &RenderArgs,
     scene: &LoadedScene,
 ) -> Result<(), CliError> {
-    if args.depth_out.is_some() && matches!(args.visibility, Visibility::BackFace | Visibility::Painter) {
-        return Err(format!("--depth-out: --visibility {} keeps no depth buffer", args.visibility).into());
+    if args.depth_out.is_some()
+        && matches!(args.visibility, Visibility::BackFace | Visibility::Painter)
+    {
+        return Err(format!(
+            "--depth-out: --visibility {} keeps no depth buffer",
+            args.visibility
+        )
+        .into());
     }
     let frame = scene.render_by::<D>(args.bands, args.visibility)?;
     let vp = *scene.camera.viewport();
