@@ -313,6 +313,33 @@ fn visibility_methods_from_the_command_line() {
         .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("keeps no depth buffer"));
+    // auto: the quad is exactly convex (back faces alone), the bunny is not (z-buffer).
+    for (scene, method) in [
+        ("standard_quad.toml", "backface"),
+        ("standard_bunny.toml", "zbuffer"),
+    ] {
+        let path = scenes().join(scene);
+        let stats = dir.join("auto.json");
+        let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+            .args([
+                "render",
+                path.to_str().unwrap(),
+                "-o",
+                dir.join("a.png").to_str().unwrap(),
+            ])
+            .args(["--stats", stats.to_str().unwrap(), "--visibility", "auto"])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(String::from_utf8_lossy(&out.stdout).contains(&format!("plan: {method} (")));
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+        assert_eq!(json["visibility"], method, "{scene}");
+    }
     // The stored-triangle methods keep levels, not normals: the demo's Phong object is named.
     let demo = scenes().join("demo.toml");
     let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
@@ -339,5 +366,5 @@ fn visibility_methods_from_the_command_line() {
         .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr)
-        .contains("one of backface, painter, scanline, zbuffer"));
+        .contains("one of auto, backface, painter, scanline, zbuffer"));
 }

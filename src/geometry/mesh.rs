@@ -285,6 +285,32 @@ impl<'a> Mesh<'a> {
         Ok(())
     }
 
+    /// Whether the mesh is convex: every vertex lies on or behind the plane of every polygon
+    /// of non-zero area (through its first vertex, with its exact outward fan normal
+    /// [`face_normal_wide`](Self::face_normal_wide)). Exact: edge vectors `< 2^27`, normals
+    /// `< 2^63`, each product `< 2^90` in `i128`. Then no two front faces overlap on screen,
+    /// so back-face culling alone draws the mesh right
+    /// ([`visibility`](crate::visibility)). `O(polygons × vertices)`: compute it once (a
+    /// 1,839-vertex, 3,674-triangle mesh takes 6.8 M point–plane tests) and keep it with the
+    /// mesh. A non-planar polygon's own vertices may lie off its fan plane, which makes the
+    /// answer `false` (conservative).
+    pub fn is_convex(&self) -> bool {
+        self.polygons().all(|poly| {
+            let n = self.face_normal_wide(poly);
+            if n == [0; 3] {
+                return true;
+            }
+            let p0 = poly.first().map_or(Vec3::ZERO, |&i| self.vertex(i)).bits();
+            self.vertices.iter().all(|v| {
+                let v = v.bits();
+                let side: i128 = (0..3)
+                    .map(|k| (v[k] as i64 - p0[k] as i64) as i128 * n[k] as i128)
+                    .sum();
+                side <= 0
+            })
+        })
+    }
+
     /// True when `polygon` faces `eye` (given in the mesh's own frame): `(Ω − P_0)·N > 0`,
     /// with the exact normal.
     pub fn is_front_facing(&self, polygon: &[u16], eye: Vec3) -> bool {

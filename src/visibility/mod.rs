@@ -29,11 +29,13 @@
 
 mod backface;
 mod painter;
+mod plan;
 mod scanline;
 mod store;
 
 pub use backface::render_back_faces;
 pub use painter::{render_painter, PainterMemory, SplitPolicy, MAX_CUTS};
+pub use plan::{plan, Plan, PlanReason};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 

@@ -87,19 +87,29 @@ pub struct RenderArgs {
     /// Render in bands of ROWS rows (the pixels are the same as one pass).
     #[arg(long, value_name = "ROWS")]
     pub bands: Option<u16>,
-    /// Hidden-surface method: backface, painter, scanline or zbuffer (zscan::visibility).
+    /// Hidden-surface method: auto (zscan::visibility::plan: back faces alone for one convex
+    /// culled object, else the z-buffer), backface, painter, scanline or zbuffer.
     /// Back faces alone and the painter need no depth buffer (no --depth-out); the scan-line
     /// draws in bands of --bands rows (default 1) through one band of depth.
     #[arg(long, value_name = "METHOD", default_value = "zbuffer", value_parser = parse_visibility)]
-    pub visibility: Visibility,
+    pub visibility: VisibilityArg,
 }
 
+/// `--visibility`'s value: a method, or `auto` (`None`: the planner's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct VisibilityArg(pub Option<Visibility>);
+
 /// `--visibility`'s parser: a method's name ([`Visibility::name`]).
-fn parse_visibility(s: &str) -> Result<Visibility, String> {
-    Visibility::from_name(s).ok_or_else(|| {
-        let names: Vec<_> = Visibility::ALL.iter().map(|v| v.name()).collect();
-        format!("unknown method {s:?}: one of {}", names.join(", "))
-    })
+fn parse_visibility(s: &str) -> Result<VisibilityArg, String> {
+    if s == "auto" {
+        return Ok(VisibilityArg(None));
+    }
+    Visibility::from_name(s)
+        .map(|v| VisibilityArg(Some(v)))
+        .ok_or_else(|| {
+            let names: Vec<_> = Visibility::ALL.iter().map(|v| v.name()).collect();
+            format!("unknown method {s:?}: one of auto, {}", names.join(", "))
+        })
 }
 
 /// The painter's split budget in `zscan render`.
@@ -1303,6 +1313,26 @@ impl LoadedScene {
         self.render_by::<D>(band_rows, Visibility::ZBuffer)
     }
 
+    /// The plan of [`zscan::visibility::plan`] for this scene, each object's convexity
+    /// computed here ([`Mesh::is_convex`](zscan::geometry::mesh::Mesh::is_convex)).
+    pub fn plan(&self) -> Result<zscan::visibility::Plan, String> {
+        let objects = self
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(k, o)| o.object().map_err(|e| format!("object {}: {e}", k + 1)))
+            .collect::<Result<Vec<_>, _>>()?;
+        let convex: Vec<bool> = objects.iter().map(|o| o.mesh.is_convex()).collect();
+        let scene = Scene {
+            camera: self.camera,
+            objects: &objects,
+            background: self.background,
+            ambient: self.ambient,
+            lights: &self.lights,
+        };
+        Ok(zscan::visibility::plan(&scene, &convex))
+    }
+
     /// [`LoadedScene::render`] by the hidden-surface method `visibility` (the depth samples
     /// are all far for the methods without a frame of depth).
     pub fn render_by<D: DepthValue>(
@@ -1508,16 +1538,23 @@ fn finish<D: DepthValue + Into<u64>>(
     args: &RenderArgs,
     scene: &LoadedScene,
 ) -> Result<(), CliError> {
-    if args.depth_out.is_some()
-        && matches!(args.visibility, Visibility::BackFace | Visibility::Painter)
+    let (visibility, reason) = match args.visibility.0 {
+        Some(v) => (v, None),
+        None => {
+            let p = scene.plan()?;
+            println!("plan: {} ({})", p.visibility, p.reason);
+            (p.visibility, Some(p.reason))
+        }
+    };
+    if args.depth_out.is_some() && matches!(visibility, Visibility::BackFace | Visibility::Painter)
     {
         return Err(format!(
             "--depth-out: --visibility {} keeps no depth buffer",
-            args.visibility
+            visibility
         )
         .into());
     }
-    let frame = scene.render_by::<D>(args.bands, args.visibility)?;
+    let frame = scene.render_by::<D>(args.bands, visibility)?;
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
     let mut pixels = frame.pixels.clone();
@@ -1532,9 +1569,10 @@ fn finish<D: DepthValue + Into<u64>>(
             "width": w,
             "height": h,
             "bands": frame.bands,
-            "band_rows": args.bands.unwrap_or(if args.visibility == Visibility::ScanLine { 1 } else { h }).clamp(1, h),
+            "band_rows": args.bands.unwrap_or(if visibility == Visibility::ScanLine { 1 } else { h }).clamp(1, h),
             "depth_bits": D::BITS,
-            "visibility": args.visibility.name(),
+            "visibility": visibility.name(),
+            "plan_reason": reason.map(|r| r.to_string()),
             "subpixel_bits": SUBPIXEL_BITS,
             "objects": scene.objects.len(),
             "triangles_in": scene.triangles_in,
