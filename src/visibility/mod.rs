@@ -16,6 +16,9 @@
 //! | [`ScanLine`](Visibility::ScanLine) (`scanline.rs`) | a stored triangle and an index per front triangle, a band of rows and its depth | any scene (exact depth per row) |
 //! | [`ZBuffer`](Visibility::ZBuffer) (`render/`) | a depth sample per pixel (or per band pixel) | any scene |
 //!
+//! [`plan`] picks the cheapest method a scene allows from what is cheap to know (today: one
+//! culled object with an exactly convex mesh needs no depth buffer; `plan.rs`).
+//!
 //! Shared conventions: triangles are collected in scene order; a stored triangle keeps its
 //! corners exactly as the polygon stage handed them (sub-pixel position, 32-bit depth, level),
 //! so drawing it later writes the pixels it would have written at once. The z-buffer keeps the
