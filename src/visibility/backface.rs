@@ -17,7 +17,7 @@ use crate::target::{DepthBuffer, Framebuffer, NoDepth};
 /// Clears `frame` to the scene's background and draws every object in order, back faces
 /// culled, front faces painted as they come (no depth test). `scratch` holds at least the
 /// largest mesh's vertices. The picture equals the z-buffer's when the scene qualifies
-/// ([module doc](self)).
+/// (the module doc of `visibility::backface`).
 pub fn render_back_faces<const S: u32>(
     renderer: &Renderer<S>,
     scene: &Scene<'_>,
