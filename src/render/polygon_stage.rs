@@ -522,11 +522,6 @@ fn draw_counted<const S: u32, const N: usize>(
     draw: &mut impl TriangleConsumer<S, N>,
     stats: &mut RenderStats,
 ) -> Result<(), RenderError> {
-    let (covered, written) = draw.triangle(pi, tri)?;
-    if covered > 0 || written > 0 {
-        stats.triangles_drawn += 1;
-    }
-    stats.pixels_covered += covered;
-    stats.pixels_written += written;
+    stats.add_triangle(draw.triangle(pi, tri)?);
     Ok(())
 }

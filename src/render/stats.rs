@@ -61,6 +61,19 @@ impl StatsSink for StatsWithoutWritten {
     }
 }
 
+impl RenderStats {
+    /// Counts one triangle handed to a writer, which returned `(covered, written)` pixels:
+    /// `triangles_drawn` when it reached a pixel of the buffers.
+    #[inline(always)]
+    pub(crate) fn add_triangle(&mut self, (covered, written): (u32, u32)) {
+        if covered > 0 || written > 0 {
+            self.triangles_drawn += 1;
+        }
+        self.pixels_covered += covered;
+        self.pixels_written += written;
+    }
+}
+
 impl core::ops::AddAssign for RenderStats {
     /// Sums two frames' (or bands') counts.
     fn add_assign(&mut self, o: RenderStats) {

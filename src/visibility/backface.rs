@@ -26,14 +26,25 @@ pub fn render_back_faces<const S: u32>(
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
     frame.clear(scene.background);
+    without_depth(frame, |frame, depth| {
+        for object in scene.objects {
+            renderer.draw_object(object, scratch, frame, depth, stats)?;
+        }
+        Ok(())
+    })
+}
+
+/// Runs `draw` with `frame` and a [`NoDepth`] buffer of the same rows: what the methods that
+/// paint without a depth test (back faces alone, the painter) draw through.
+pub(super) fn without_depth<R>(
+    frame: &mut Framebuffer<'_>,
+    draw: impl FnOnce(&mut Framebuffer<'_>, &mut DepthBuffer<'_, NoDepth>) -> Result<R, RenderError>,
+) -> Result<R, RenderError> {
     let (width, height) = (frame.width(), frame.height());
     // Zero bytes at any length (a frame has at most 2^24 pixels).
     let mut samples = [NoDepth; 1 << 24];
     let n = width as usize * height as usize;
     let mut depth = DepthBuffer::band(&mut samples[..n], width, height, frame.top() as u16)
         .map_err(|_| RenderError::BufferTooSmall)?;
-    for object in scene.objects {
-        renderer.draw_object(object, scratch, frame, &mut depth, stats)?;
-    }
-    Ok(())
+    draw(frame, &mut depth)
 }

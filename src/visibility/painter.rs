@@ -35,12 +35,13 @@
 
 use core::cmp::Reverse;
 
-use super::store::{collect, StoredTriangle, CUT_FRONT, NO_CUT};
+use super::backface::without_depth;
+use super::store::{collect, sort_order, StoredTriangle, CUT_FRONT, NO_CUT};
 use crate::raster::Window;
 use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
 use crate::scene::Scene;
 use crate::shade::span_writer::RasterTarget;
-use crate::target::{DepthBuffer, Framebuffer, NoDepth};
+use crate::target::{Framebuffer, NoDepth};
 
 /// Cuts a piece may carry (a piece cut more often is an error).
 pub const MAX_CUTS: usize = 3;
@@ -86,35 +87,29 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     let order = &mut order[..capacity];
     let n = collect(renderer, scene, scratch, triangles, counts)?;
     frame.clear(scene.background);
-    let (width, height) = (frame.width(), frame.height());
-    let mut samples = [NoDepth; 1 << 24];
-    let cells = width as usize * height as usize;
-    let mut depth = DepthBuffer::band(&mut samples[..cells], width, height, frame.top() as u16)
-        .map_err(|_| RenderError::BufferTooSmall)?;
-    let mut target = RasterTarget::with_count(frame, &mut depth, T::Count::default());
-    for (i, o) in order[..n].iter_mut().enumerate() {
-        *o = i as u32;
-    }
-    order[..n].sort_unstable_by_key(|&i| (Reverse(triangles[i as usize].depth_range().1), i));
-    let mut painter = Painter {
-        triangles,
-        order,
-        count: n,
-        stored: n,
-        splits: 0,
-        moves: 0,
-        moved: 0,
-    };
-    while let Some(t) = painter.next(policy)? {
-        draw_piece(
-            scene,
-            &painter.triangles[t],
-            painter.triangles,
-            &mut target,
-            counts,
-        )?;
-    }
-    Ok(())
+    sort_order(&mut order[..n], |i| Reverse(triangles[i].depth_range().1));
+    without_depth(frame, |frame, depth| {
+        let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
+        let mut painter = Painter {
+            triangles,
+            order,
+            count: n,
+            stored: n,
+            splits: 0,
+            moves: 0,
+            moved: 0,
+        };
+        while let Some(t) = painter.next(policy)? {
+            draw_piece(
+                scene,
+                &painter.triangles[t],
+                painter.triangles,
+                &mut target,
+                counts,
+            )?;
+        }
+        Ok(())
+    })
 }
 
 /// Newell's ordering loop over the stored triangles.
@@ -413,16 +408,8 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
     target: &mut RasterTarget<'_, NoDepth, C>,
     stats: &mut RenderStats,
 ) -> Result<(), RenderError> {
-    let add = |(covered, written): (u32, u32), stats: &mut RenderStats| {
-        if covered > 0 || written > 0 {
-            stats.triangles_drawn += 1;
-        }
-        stats.pixels_covered += covered;
-        stats.pixels_written += written;
-    };
     if t.cuts[0] == NO_CUT {
-        let r = t.draw(scene, target)?;
-        add(r, stats);
+        stats.add_triangle(t.draw(scene, target)?);
         return Ok(());
     }
     let full = target.buffers();
@@ -447,7 +434,7 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
         }
     }
     target.restrict(full);
-    add(sum, stats);
+    stats.add_triangle(sum);
     Ok(())
 }
 

@@ -12,7 +12,7 @@
 //! Memory: a stored triangle (56 bytes) and a `u32` of order per front triangle, a `u32` per
 //! active triangle, and the band's pixels and depth samples (`width × band_rows` each).
 
-use super::store::{collect, StoredTriangle};
+use super::store::{collect, sort_order, StoredTriangle};
 use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
 use crate::scene::Scene;
 use crate::shade::span_writer::RasterTarget;
@@ -58,10 +58,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
     let capacity = triangles.len().min(order.len());
     let n = collect(renderer, scene, scratch, &mut triangles[..capacity], counts)?;
     let (triangles, order) = (&triangles[..n], &mut order[..n]);
-    for (i, o) in order.iter_mut().enumerate() {
-        *o = i as u32;
-    }
-    order.sort_unstable_by_key(|&i| (triangles[i as usize].rows().0, i));
+    sort_order(order, |i| triangles[i].rows().0);
     let band_rows = band_rows.clamp(1, height.max(1));
     let (mut next, mut live) = (0usize, 0usize);
     let mut top = 0u16;
@@ -123,12 +120,7 @@ fn draw_active<D: DepthValue, C: crate::shade::span_writer::WrittenCount, const 
     stats: &mut RenderStats,
 ) -> Result<(), RenderError> {
     for &t in active {
-        let (covered, written) = triangles[t as usize].draw(scene, target)?;
-        if covered > 0 || written > 0 {
-            stats.triangles_drawn += 1;
-        }
-        stats.pixels_covered += covered;
-        stats.pixels_written += written;
+        stats.add_triangle(triangles[t as usize].draw(scene, target)?);
     }
     Ok(())
 }

@@ -163,14 +163,22 @@ pub(crate) fn collect<const S: u32>(
     let mut len = 0;
     for (i, object) in scene.objects.iter().enumerate() {
         renderer.prepare(object, scratch)?;
-        let collector = Collector {
+        let mut collector = Collector {
             store: &mut *store,
             len,
             object: i as u8,
         };
-        let mut c = collector;
-        renderer.collect_levels(object, scratch, stats, &mut c)?;
-        len = c.len;
+        renderer.collect_levels(object, scratch, stats, &mut collector)?;
+        len = collector.len;
     }
     Ok(len)
+}
+
+/// Fills `order` with the indices `0..order.len()` of stored triangles, sorted by `key`, then
+/// by index (so equal keys keep the stored order).
+pub(crate) fn sort_order<K: Ord>(order: &mut [u32], key: impl Fn(usize) -> K) {
+    for (i, o) in order.iter_mut().enumerate() {
+        *o = i as u32;
+    }
+    order.sort_unstable_by_key(|&i| (key(i as usize), i));
 }

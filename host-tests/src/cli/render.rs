@@ -1316,21 +1316,30 @@ impl LoadedScene {
     /// The plan of [`zscan::visibility::plan`] for this scene, each object's convexity
     /// computed here ([`Mesh::is_convex`](zscan::geometry::mesh::Mesh::is_convex)).
     pub fn plan(&self) -> Result<zscan::visibility::Plan, String> {
-        let objects = self
-            .objects
+        let objects = self.core_objects(None)?;
+        let convex: Vec<bool> = objects.iter().map(|o| o.mesh.is_convex()).collect();
+        Ok(zscan::visibility::plan(&self.core_scene(&objects), &convex))
+    }
+
+    /// The core objects of the scene, or object `only` alone.
+    fn core_objects(&self, only: Option<usize>) -> Result<Vec<zscan::scene::Object<'_>>, String> {
+        self.objects
             .iter()
             .enumerate()
+            .filter(|(k, _)| only.is_none_or(|o| o == *k))
             .map(|(k, o)| o.object().map_err(|e| format!("object {}: {e}", k + 1)))
-            .collect::<Result<Vec<_>, _>>()?;
-        let convex: Vec<bool> = objects.iter().map(|o| o.mesh.is_convex()).collect();
-        let scene = Scene {
+            .collect()
+    }
+
+    /// The core scene of `objects` with this scene's camera, lights and background.
+    fn core_scene<'a>(&'a self, objects: &'a [zscan::scene::Object<'a>]) -> Scene<'a> {
+        Scene {
             camera: self.camera,
-            objects: &objects,
+            objects,
             background: self.background,
             ambient: self.ambient,
             lights: &self.lights,
-        };
-        Ok(zscan::visibility::plan(&scene, &convex))
+        }
     }
 
     /// [`LoadedScene::render`] by the hidden-surface method `visibility` (the depth samples
@@ -1365,20 +1374,8 @@ impl LoadedScene {
         let vp = *self.camera.viewport();
         let (w, h) = (vp.width, vp.height);
         super::check_picture_size("[viewport] width × height", w, h)?;
-        let objects = self
-            .objects
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| only.is_none_or(|o| o == *k))
-            .map(|(k, o)| o.object().map_err(|e| format!("object {}: {e}", k + 1)))
-            .collect::<Result<Vec<_>, _>>()?;
-        let scene = Scene {
-            camera: self.camera,
-            objects: &objects,
-            background: self.background,
-            ambient: self.ambient,
-            lights: &self.lights,
-        };
+        let objects = self.core_objects(only)?;
+        let scene = self.core_scene(&objects);
         let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
             .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
         if visibility != Visibility::ZBuffer {
