@@ -183,8 +183,8 @@ impl fmt::Display for PlaneError {
             }
             PlaneError::TooLarge => write!(
                 f,
-                "triangle too large for exact interpolation: twice its area reaches 2^30 \
-                 square sub-pixel units"
+                "triangle too large for the 32-bit stepping plane: twice its area reaches 2^30 \
+                 square sub-pixel units (the wide plane takes it)"
             ),
         }
     }
@@ -194,11 +194,6 @@ impl fmt::Display for DrawError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             DrawError::Fill(e) => write!(f, "fill: {e}"),
-            DrawError::TooLarge => write!(
-                f,
-                "triangle too large for exact interpolation: twice its area reaches 2^30 \
-                 square sub-pixel units"
-            ),
         }
     }
 }
@@ -498,13 +493,17 @@ mod tests {
     }
 
     #[test]
-    fn draw_error_names_the_area_limit() {
+    fn draw_error_names_the_fill_error() {
         let t = messages(&[
             DrawError::Fill(FillError::TooManyEdges { capacity: 7 }),
-            DrawError::TooLarge,
+            DrawError::Fill(FillError::CoordinateOutOfRange { vertex: 2 }),
         ]);
         assert!(t[0].starts_with("fill: ") && t[0].contains('7'), "{}", t[0]);
-        assert!(t[1].contains("2^30"), "{}", t[1]);
+        assert!(
+            t[1].contains("vertex 2") && t[1].contains("268435455"),
+            "{}",
+            t[1]
+        );
     }
 
     #[test]
@@ -538,7 +537,9 @@ mod tests {
             RenderError::Transform(MatrixError::ZeroAxis),
             RenderError::Projection(ProjectError::BehindNearPlane),
             RenderError::Clip(ClipError::PlaneOutOfRange),
-            RenderError::Draw(DrawError::TooLarge),
+            RenderError::Draw(DrawError::Fill(FillError::CoordinateOutOfRange {
+                vertex: 0,
+            })),
             RenderError::BufferTooSmall,
             RenderError::Lighting(LightingError::TooManyLights),
         ]);

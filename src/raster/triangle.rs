@@ -67,16 +67,40 @@ pub fn fill_triangle<const S: u32>(
     fill_triangle_with::<IncrementalWalker, S>(v, window, emit)
 }
 
-/// Fills a triangle with the edge stepping strategy `W`.
-///
-/// The middle vertex `b` (by row) is left of the long edge `a → c` when
-/// `cross(a, b, c) < 0` (screen axes: `x` right, `y` down).
+/// Fills a triangle with the edge stepping strategy `W`; vertices outside the range are
+/// [`FillError::CoordinateOutOfRange`], before any arithmetic.
 pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
     v: [SubpixelPoint<S>; 3],
     window: &Window,
-    mut emit: impl FnMut(Span),
+    emit: impl FnMut(Span),
 ) -> Result<(), FillError> {
     check_range(&v)?;
+    fill_in_range_with::<W, S>(v, window, emit);
+    Ok(())
+}
+
+/// [`fill_triangle`] for vertices whose range the caller has checked once already (the span
+/// writers check before their plane set-up, the renderer's projector per vertex): the same
+/// spans, without a second check. Asserted in checked builds.
+#[inline]
+pub(crate) fn fill_triangle_in_range<const S: u32>(
+    v: [SubpixelPoint<S>; 3],
+    window: &Window,
+    emit: impl FnMut(Span),
+) {
+    debug_assert!(check_range(&v).is_ok(), "vertices outside the fill's range");
+    fill_in_range_with::<IncrementalWalker, S>(v, window, emit)
+}
+
+/// The fill itself, for vertices within the range.
+///
+/// The middle vertex `b` (by row) is left of the long edge `a → c` when
+/// `cross(a, b, c) < 0` (screen axes: `x` right, `y` down).
+fn fill_in_range_with<W: EdgeWalker, const S: u32>(
+    v: [SubpixelPoint<S>; 3],
+    window: &Window,
+    mut emit: impl FnMut(Span),
+) {
     // Sort by row (three compares).
     let [mut a, mut b, mut c] = v;
     if b.y < a.y {
@@ -88,9 +112,9 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
             core::mem::swap(&mut a, &mut b);
         }
     }
-    let area = cross_in_range(a, b, c); // in range: checked above
+    let area = cross_in_range(a, b, c); // in range: checked by the callers
     if area == 0 {
-        return Ok(());
+        return;
     }
     let long = Edge {
         x0: a.x,
@@ -114,7 +138,7 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
     let y_mid = top.end_row::<S>(); // == bottom.first_row()
     let y_end = long.end_row::<S>().min(window.y1);
     if y_first >= y_end || window.x0 >= window.x1 {
-        return Ok(());
+        return;
     }
     let long_w = W::start::<S>(&long, EdgeSide::Left, y_first);
     let middle_left = area < 0;
@@ -148,7 +172,7 @@ pub fn fill_triangle_with<W: EdgeWalker, const S: u32>(
             y += 1;
         }
         if y >= y_end {
-            return Ok(());
+            return;
         }
         if middle_left {
             left_w = W::start::<S>(&bottom, EdgeSide::Left, y);

@@ -152,7 +152,10 @@ pub struct BandScratch<'a, const S: u32> {
 /// as one pass (the raster stage writes exactly the rows a buffer holds), whatever the scratch
 /// ([`BandScratch`]).
 ///
-/// The band's buffers `(pixels, depths)` need `width × band_rows` elements each. Statistics
+/// `band_rows` is at least 1 ([`RenderError::BadBandRows`] names a 0); a band taller than the
+/// picture is allowed and draws the picture in one band, whose buffers then need only
+/// `width × height` elements. Otherwise the band's buffers `(pixels, depths)` need
+/// `width × band_rows` elements each. Statistics
 /// are added to `stats` (a [`StatsSink`], as for [`render_scene`]) summed over bands: pixel
 /// counts add up to the picture's and `clipped` counts each band's clipper runs. With
 /// the polygon table, `polygons_in`, `rejected` and `culled` are counted once per frame;
@@ -168,7 +171,11 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
     mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
     let BandScratch { vertices, polygons } = scratch;
-    let band_rows = band_rows.clamp(1, height.max(1));
+    if band_rows == 0 {
+        return Err(RenderError::BadBandRows { band_rows }.into());
+    }
+    // A band taller than the picture is the whole picture (documented above).
+    let band_rows = band_rows.min(height.max(1));
     let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
     let total_polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
     let prepare_once = vertices.len() >= total;

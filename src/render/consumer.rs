@@ -96,12 +96,11 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 1>
         let v = c.map(|c| c.screen);
         let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
         let (ramp, shade) = (self.object.ramp, self.object.shade);
-        if self.object.dither {
+        Ok(if self.object.dither {
             draw_in_range(self.target, v, values, shade, |x, y| Bayer4::at(ramp, x, y))
         } else {
             draw_in_range(self.target, v, values, shade, |_, _| ramp)
-        }
-        .map_err(RenderError::Draw)
+        })
     }
 }
 

@@ -66,6 +66,12 @@ pub enum RenderError {
     PhongUnsupported,
     /// A scene with more objects than a stored triangle can name (256).
     TooManyObjects,
+    /// [`render_in_bands`](crate::render::render_in_bands) was asked for bands of
+    /// `band_rows` rows, below its minimum of 1.
+    BadBandRows {
+        /// The rows asked for.
+        band_rows: u16,
+    },
 }
 
 impl core::fmt::Display for RenderError {
@@ -114,6 +120,9 @@ impl core::fmt::Display for RenderError {
                 "a Phong object cannot be stored by this visibility method (use the z-buffer)"
             ),
             RenderError::TooManyObjects => write!(f, "more than 256 objects in the scene"),
+            RenderError::BadBandRows { band_rows } => {
+                write!(f, "bands of {band_rows} rows: a band needs at least 1 row")
+            }
         }
     }
 }

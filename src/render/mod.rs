@@ -35,10 +35,12 @@
 //! ([`MAX_MESH_COORD_BITS`](crate::geometry::mesh::MAX_MESH_COORD_BITS)); observer-frame
 //! positions are I16F16 and saturate (see `vertex_stage.rs`). Projected vertices are within
 //! the frustum's guard band (at most 4 screen extents from the principal point, capped by the
-//! raster's `±(2^28 − 1)` sub-pixel range); triangles whose doubled area reaches the attribute
-//! planes' limit (`2·area < 2^30` sub-pixel units², at large viewports) are reported as
-//! [`DrawError::TooLarge`](crate::shade::span_writer::DrawError::TooLarge). Intensities are
-//! `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
+//! raster's `±(2^28 − 1)` sub-pixel range), and every triangle of that range is drawn with the
+//! exact planes, whatever its size: those too large for the 32-bit stepping plane (`2·area ≥
+//! 2^30` sub-pixel units², a quad filling a 512×512 view and up) take the wide plane
+//! ([`WidePlane`](crate::shade::attributes::WidePlane)), out of line. So any viewport the
+//! [`Viewport`](crate::geometry::camera::Viewport) holds (sides up to 65 535 pixels) and any
+//! principal point render. Intensities are `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
 
 mod bands;
 pub(crate) mod consumer;

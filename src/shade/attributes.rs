@@ -7,12 +7,14 @@
 //! are generic over [`Interpolant`], so a flat attribute ([`Constant`]) costs nothing per pixel
 //! and the exact ([`Exact`]) and fast ([`Dda`]) variants share one loop.
 //!
-//! Two set-ups give the same values: [`AttributePlane`] (any triangle; `i64` products, span
-//! starts carried row to row by [`RowStarts`] on 32-bit targets) and [`SmallPlane`] (a
+//! Three set-ups give the same values: [`AttributePlane`] (`2D < 2^30`; `i64` products, span
+//! starts carried row to row by [`RowStarts`] on 32-bit targets), [`SmallPlane`] (a
 //! bounding box below `2^K` sub-pixel units, `K = 10` at `S = 4`: every product, division and
 //! remainder fits 32 bits, so a span start is two multiply-adds and one 32-bit division per
-//! attribute and the set-up has no 64-bit division). Span loops take either through
-//! [`SpanStarts`].
+//! attribute and the set-up has no 64-bit division) and [`WidePlane`] (any triangle of the
+//! raster's range, `i128` set-up and starts, a 64-bit remainder: [`ExactWide`]), taken out of
+//! line only for the triangles [`AttributePlane`] refuses (its doc says why this, and not a
+//! tighter guard band). Span loops take any of them through [`SpanStarts`].
 //!
 //! ## What is computed
 //! With vertices `P0, P1, P2` (sub-pixel units, `F = 2^S`) and values `A0, A1, A2`, the affine
@@ -34,9 +36,11 @@
 //! - Attribute values are `u32` (depth uses the full range). Values are added with wrapping
 //!   arithmetic: at a covered pixel the true value is a convex combination of the vertex values,
 //!   so it lies in `0..2^32` and the wrapped result equals it exactly.
-//! - `0 < D < 2^30` (at `S = 4`, triangles up to 2 M square pixels): the remainder and `2D` fit
-//!   `u32` with room for one addition. Larger triangles are rejected with
-//!   [`PlaneError::TooLarge`]; the 3D pipeline's guard band keeps screen triangles far below.
+//! - [`AttributePlane`] and [`SmallPlane`]: `0 < D < 2^30` (at `S = 4`, triangles up to 2 M
+//!   square pixels): the remainder and `2D` fit `u32` with room for one addition. Larger
+//!   triangles are [`PlaneError::TooLarge`] there and go to [`WidePlane`] (`D < 2^58`, the
+//!   whole raster range: a quad filling a 512×512 view already has `D = 2^26`, the guard band
+//!   lets fan triangles reach 16 times that, a 4096×4096 view `2^32`).
 //! - `|A1 − A0|, |A2 − A0| ≤ 2^32` and coordinate differences `< 2^29` give `|gx|, |gy| < 2^62`.
 //!   `M` at a covered pixel is bounded by `D·2^32 < 2^62`; it is evaluated with wrapping
 //!   products, exact because the true result is in range.
@@ -462,16 +466,22 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
 }
 
 /// Where the exact span starts of one triangle come from: [`RowStarts`] over an
-/// [`AttributePlane`] (any triangle) or a [`SmallPlane`] (32-bit arithmetic). Span loops are
-/// generic over it, so both feed the same span machinery.
+/// [`AttributePlane`] (`2D < 2^31`), a [`SmallPlane`] (32-bit arithmetic), or a
+/// [`WidePlane`] (any triangle of the raster's range). Span loops are generic over it, so all
+/// three feed the same span machinery.
 pub trait SpanStarts<const N: usize> {
+    /// The exact interpolant a span starts from: [`Exact`], or [`ExactWide`] for a
+    /// [`WidePlane`].
+    type Exact: Interpolant;
     /// The exact values at `(x, y)`, a covered pixel, ready to step right.
-    fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N];
+    fn exact_at(&mut self, x: i32, y: i32) -> [Self::Exact; N];
     /// Attribute `i < N` at `(x, y)` (a covered pixel) as [`AttributePlane::dda`] gives it.
     fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda;
 }
 
 impl<const N: usize, const S: u32> SpanStarts<N> for RowStarts<'_, N, S> {
+    type Exact = Exact;
+
     #[inline(always)]
     fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N] {
         self.at(x, y)
@@ -697,6 +707,8 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
 }
 
 impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
+    type Exact = Exact;
+
     #[inline(always)]
     fn exact_at(&mut self, x: i32, y: i32) -> [Exact; N] {
         let (px, py) = self.offset(x, y);
@@ -715,6 +727,177 @@ impl<const N: usize, const S: u32> SpanStarts<N> for SmallPlane<N, S> {
     }
 
     #[inline(always)]
+    fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda {
+        self.dda(i, x, y)
+    }
+}
+
+/// [`Exact`] with a 64-bit remainder: the correctly rounded value of a [`WidePlane`], whose
+/// `2D` may reach `2^59`. Same value, remainder and carry rule as [`Exact`].
+#[derive(Debug, Clone, Copy)]
+pub struct ExactWide {
+    value: u32,
+    /// Remainder of `2M + D` by `2D`, in `0..two_d`.
+    rem: u64,
+    /// Quotient added per pixel (mod 2^32).
+    q: u32,
+    /// Remainder added per pixel, in `0..two_d`.
+    r: u64,
+    /// `2D < 2^59`: `rem + r < 2^60` cannot overflow.
+    two_d: u64,
+}
+
+impl ExactWide {
+    /// The remainder of the value's numerator and `2D` (as [`Exact::remainder`]).
+    pub fn remainder(&self) -> (u64, u64) {
+        (self.rem, self.two_d)
+    }
+}
+
+impl Interpolant for ExactWide {
+    #[inline(always)]
+    fn value(&self) -> u32 {
+        self.value
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        let t = self.rem + self.r;
+        let carry = t >= self.two_d;
+        self.rem = if carry { t - self.two_d } else { t };
+        self.value = self.value.wrapping_add(self.q).wrapping_add(carry as u32);
+    }
+}
+
+/// The exact affine interpolant of `N` attributes over **any** triangle of the raster's range
+/// (`|x|, |y| ≤ 2^28 − 1` sub-pixel units): the same values as [`AttributePlane`], for the
+/// triangles whose `2D` reaches `2^31` (its [`PlaneError::TooLarge`]).
+///
+/// ## Why a third plane, and not a tighter guard band
+/// Screen triangles that large are legitimate: a quad filling a 512×512 view is two
+/// triangles of `D = 2^26` at `S = 4`, the guard band ([`Frustum`](crate::clip::frustum::Frustum))
+/// lets a clipped polygon's fan triangles reach four times the screen, and a 4096×4096 view
+/// alone holds triangles of `D = 2^32`. No guard band can keep `D < 2^30` at such sizes, and
+/// a screen-space split would put new vertices at rounded positions, changing edges or
+/// values. So the planes take larger triangles: [`AttributePlane::new`] keeps its 32-bit
+/// stepping (every triangle of the standard scenes), and only when it reports
+/// [`PlaneError::TooLarge`] do the span writers call this set-up, out of line, so that the
+/// common triangles run exactly the instructions they ran before.
+///
+/// ## Numeric contract
+/// - Differences of vertex coordinates are below `2^29`, so `D < 2^58` (a triangle fills at
+///   most half its box) and `2D < 2^59`: [`ExactWide`]'s remainder, step and `2D` are `u64`,
+///   `rem + r < 2^60`.
+/// - `|A1 − A0|, |A2 − A0| < 2^32`: `|gx|, |gy| < 2·2^32·2^29 = 2^62`, exact in `i64`.
+/// - `M(p)` and `gx·F` are formed in `i128` (`|gx·px| < 2^62·2^48`), and every division is an
+///   exact floored `i128` division: a span start costs one `i128` division per attribute
+///   (evaluated directly, no row carry: these triangles are few and their spans long).
+/// - Quotients are kept mod `2^32`, like the values themselves (wrapping, exact at covered
+///   pixels as the module doc says).
+#[derive(Debug, Clone)]
+pub struct WidePlane<const N: usize, const S: u32> {
+    origin: SubpixelPoint<S>,
+    base: [u32; N],
+    gx: [i64; N],
+    gy: [i64; N],
+    /// `D`, positive, `< 2^58`.
+    d: u64,
+    /// Per attribute, `(q, r)` of one pixel step right.
+    step_x: [(u32, u64); N],
+}
+
+impl<const N: usize, const S: u32> WidePlane<N, S> {
+    /// Sets up the plane of `values[i]` at vertex `v[i]` (vertices within the raster's range);
+    /// [`PlaneError::Degenerate`] for a triangle of zero area, never `TooLarge`.
+    pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Result<Self, PlaneError> {
+        debug_assert!(
+            v.iter()
+                .all(|p| p.x.unsigned_abs() < 1 << 28 && p.y.unsigned_abs() < 1 << 28),
+            "plane vertices outside ±(2^28 − 1)"
+        );
+        let (x0, y0) = (v[0].x as i64, v[0].y as i64);
+        let (dx1, dy1) = (v[1].x as i64 - x0, v[1].y as i64 - y0);
+        let (dx2, dy2) = (v[2].x as i64 - x0, v[2].y as i64 - y0);
+        // Products below 2^58: exact in i64.
+        let cross = dx1 * dy2 - dy1 * dx2;
+        if cross == 0 {
+            return Err(PlaneError::Degenerate);
+        }
+        let sign = cross.signum();
+        let d = cross.unsigned_abs();
+        let mut gx = [0i64; N];
+        let mut gy = [0i64; N];
+        let mut step_x = [(0u32, 0u64); N];
+        for i in 0..N {
+            let a1 = values[1][i] as i64 - values[0][i] as i64;
+            let a2 = values[2][i] as i64 - values[0][i] as i64;
+            gx[i] = sign * (a1 * dy2 - a2 * dy1);
+            gy[i] = sign * (a2 * dx1 - a1 * dx2);
+            // One pixel right adds 2·gx·F to 2M + D: quotient ⌊gx·F / D⌋, remainder
+            // 2·(gx·F mod D).
+            let gf = (gx[i] as i128) << S;
+            let (q, r) = (gf.div_euclid(d as i128), gf.rem_euclid(d as i128));
+            step_x[i] = (q as u32, 2 * r as u64);
+        }
+        Ok(WidePlane {
+            origin: v[0],
+            base: values[0],
+            gx,
+            gy,
+            d,
+            step_x,
+        })
+    }
+
+    /// `M(p)` of the module doc at pixel `(x, y)`, exactly.
+    #[inline]
+    fn m(&self, i: usize, x: i32, y: i32) -> i128 {
+        let px = ((x as i64) << S) - self.origin.x as i64;
+        let py = ((y as i64) << S) - self.origin.y as i64;
+        self.gx[i] as i128 * px as i128 + self.gy[i] as i128 * py as i128
+    }
+
+    /// Attribute `i < N` at the covered pixel `(x, y)`, ready to step right exactly: the
+    /// value [`AttributePlane::exact`] gives where both apply.
+    pub fn exact(&self, i: usize, x: i32, y: i32) -> ExactWide {
+        let two_d = 2 * self.d as i128;
+        let n = 2 * self.m(i, x, y) + self.d as i128;
+        ExactWide {
+            value: self.base[i].wrapping_add(n.div_euclid(two_d) as u32),
+            rem: n.rem_euclid(two_d) as u64,
+            q: self.step_x[i].0,
+            r: self.step_x[i].1,
+            two_d: two_d as u64,
+        }
+    }
+
+    /// Attribute `i < N` at the covered pixel `(x, y)` as a 16.16 [`Dda`]: the value
+    /// [`AttributePlane::dda`] gives where both apply (attributes below `2^15`).
+    pub fn dda(&self, i: usize, x: i32, y: i32) -> Dda {
+        let d = self.d as i128;
+        let start = ((self.base[i] as i128) << 16) + (self.m(i, x, y) << 16).div_euclid(d);
+        let inc = ((self.gx[i] as i128) << (16 + S)).div_euclid(d);
+        Dda {
+            acc: (start + (1 << 15)) as u32,
+            inc: inc as u32,
+        }
+    }
+
+    /// All values at pixel `(x, y)`, exactly rounded.
+    pub fn values_at(&self, x: i32, y: i32) -> [u32; N] {
+        core::array::from_fn(|i| self.exact(i, x, y).value())
+    }
+}
+
+impl<const N: usize, const S: u32> SpanStarts<N> for WidePlane<N, S> {
+    type Exact = ExactWide;
+
+    #[inline]
+    fn exact_at(&mut self, x: i32, y: i32) -> [ExactWide; N] {
+        core::array::from_fn(|i| self.exact(i, x, y))
+    }
+
+    #[inline]
     fn dda_at(&self, i: usize, x: i32, y: i32) -> Dda {
         self.dda(i, x, y)
     }
@@ -1067,6 +1250,70 @@ mod tests {
             assert_eq!(split_gradient(a1, a2, c1, c2, negative, &d), want);
             assert_eq!(split_gradient_narrow(a1, a2, c1, c2, negative, &d), want);
         }
+    }
+
+    /// The wide plane on triangles up to the raster's whole range: every value of sampled
+    /// spans (stepped exactly across the span, up to 2^14 pixels) is the correctly rounded
+    /// interpolant of [`exact`], for depths over the full 32-bit range; and where the general
+    /// plane also applies, values, remainders, steps and 16.16 starts are the general plane's.
+    #[test]
+    fn wide_plane_is_exact_up_to_the_raster_range() {
+        let mut rng = crate::test_rng::XorShift(0x9E37_79B9_7F4A_7C15u64);
+        let mut rnd = |m: u64| rng.next_u64() % m;
+        let (mut wide, mut both, mut pixels) = (0, 0, 0u64);
+        for i in 0..600 {
+            // Boxes from 2^10 to 2^29 sub-pixel units: past the general plane's limit and within.
+            let bits = 10 + (i % 20) as u32;
+            let lim = ((1u64 << bits) - 1).min((1 << 28) - 1);
+            let c = |r: u64| r as i32 - lim as i32 / 2 * (bits < 29) as i32;
+            let pick = |r: &mut dyn FnMut(u64) -> u64| {
+                if bits >= 29 {
+                    (r(2 * lim + 1) as i64 - lim as i64) as i32
+                } else {
+                    c(r(lim + 1))
+                }
+            };
+            let v = [0; 3].map(|_| SubpixelPoint::<4>::new(pick(&mut rnd), pick(&mut rnd)));
+            let a = [0; 3].map(|_| [rnd(1 << 32) as u32, rnd(511) as u32]);
+            let Ok(plane) = WidePlane::<2, 4>::new(v, a) else {
+                continue;
+            };
+            let general = AttributePlane::<2, 4>::new(v, a);
+            wide += general.is_err() as u32;
+            // 8 rows around a random height of the triangle, each span cut to 2^14 pixels.
+            let ys = v.map(|p| p.y >> 4);
+            let (y_lo, y_hi) = (*ys.iter().min().unwrap(), *ys.iter().max().unwrap());
+            let y = y_lo + (rnd((y_hi - y_lo) as u64 + 1) as i32);
+            let window = crate::raster::Window::new(-(1 << 24), y - 4, 1 << 24, y + 4);
+            crate::raster::triangle::fill_triangle(v, &window, |s| {
+                let mut c = [plane.exact(0, s.x0, s.y), plane.exact(1, s.x0, s.y)];
+                if let Ok(g) = &general {
+                    for (k, w) in c.iter().enumerate() {
+                        let e = g.exact(k, s.x0, s.y);
+                        let (rem, two_d) = e.remainder();
+                        let narrow = (e.value(), (rem as u64, two_d as u64));
+                        assert_eq!((w.value(), w.remainder()), narrow);
+                        assert_eq!((w.q, w.r), (e.q, e.r as u64));
+                    }
+                    let (wd, gd) = (plane.dda(1, s.x0, s.y), g.dda(1, s.x0, s.y));
+                    assert_eq!((wd.acc, wd.inc), (gd.acc, gd.inc));
+                    both += 1;
+                }
+                for x in s.x0..s.x1.min(s.x0 + (1 << 14)) {
+                    for (k, got) in c.iter_mut().enumerate() {
+                        let want = exact(v, [a[0][k], a[1][k], a[2][k]], x, s.y);
+                        assert_eq!(got.value(), want, "attr {k} at ({x},{}) of {v:?}", s.y);
+                        got.step();
+                    }
+                    pixels += 1;
+                }
+            })
+            .unwrap();
+        }
+        assert!(
+            wide > 300 && both > 100 && pixels > 1_000_000,
+            "{wide} {both} {pixels}"
+        );
     }
 
     #[test]

@@ -18,19 +18,21 @@
 //!   `n + 32768 ∈ [0, 65536]`; positions are raw I16F16 observer coordinates stored offset by
 //!   `2^31` (`u32`). Interpolated values are convex combinations of the vertex values, so they
 //!   stay in those ranges, and each pixel receives the correctly rounded affine interpolant
-//!   ([`Exact`]).
+//!   ([`Exact`](super::attributes::Exact)).
 //! - Interpolation is affine in screen space (as the course's scanline algorithm); the
 //!   position therefore drifts from the true surface point on receding triangles by the
 //!   perspective error, which only moves `L` and `V` (not the normal) by a fraction of the
 //!   triangle.
 //! - Lighting as [`lighting`](super::lighting): integer only.
 
-use super::attributes::{AttributePlane, Exact, Interpolant, PlaneError, RowStarts};
+use super::attributes::{
+    AttributePlane, Interpolant, PlaneError, RowStarts, SpanStarts, WidePlane,
+};
 use super::dither::Bayer4;
 use super::lighting::{unit_q15, Illumination, Material, ONE};
 use super::span_writer::{depth_span, DrawError, LuminanceRamp, Quantizer, Shading};
 use crate::geometry::vector::Vec3;
-use crate::raster::triangle::fill_triangle;
+use crate::raster::triangle::fill_triangle_in_range;
 use crate::raster::SubpixelPoint;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
@@ -120,7 +122,10 @@ fn corner_values<const S: u32>(v: &PhongVertex<S>) -> [u32; 7] {
 }
 
 /// Draws a depth-tested, Phong-shaded triangle. Pixels, bands and the return value
-/// `(covered, written)` as [`draw_triangle`](super::span_writer::draw_triangle).
+/// `(covered, written)` as [`draw_triangle`](super::span_writer::draw_triangle): vertices
+/// outside the raster's range are [`DrawError::Fill`] (checked once, before the plane), any
+/// triangle within it is drawn (one too large for the [`AttributePlane`] through the
+/// [`WidePlane`], out of line).
 pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
@@ -129,7 +134,6 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
 ) -> Result<(u32, u32), DrawError> {
     let v = corners.map(|c| c.screen);
     crate::raster::range::check_range(&v).map_err(DrawError::Fill)?;
-    let window = super::span_writer::drawable_window(frame, depth);
     // Depths clamp to the deepest value that stores below FAR (target::depth's module doc).
     let values = corners.map(|c| {
         let mut a = corner_values(&c);
@@ -139,17 +143,46 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     let plane = match AttributePlane::<7, S>::new(v, values) {
         Ok(p) => p,
         Err(PlaneError::Degenerate) => return Ok((0, 0)),
-        Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
+        Err(PlaneError::TooLarge) => return Ok(draw_wide(frame, depth, v, values, ctx)),
     };
+    Ok(draw_spans(frame, depth, v, RowStarts::new(&plane), ctx))
+}
+
+/// [`draw_triangle_phong`] for a triangle too large for the [`AttributePlane`]: the
+/// [`WidePlane`], out of line so that the common triangles' path stays as it was.
+#[cold]
+#[inline(never)]
+fn draw_wide<D: DepthValue, const S: u32>(
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 7]; 3],
+    ctx: &PhongContext<'_>,
+) -> (u32, u32) {
+    match WidePlane::<7, S>::new(v, values) {
+        Ok(plane) => draw_spans(frame, depth, v, plane, ctx),
+        Err(_) => (0, 0), // zero area: covers nothing
+    }
+}
+
+/// The span loop of [`draw_triangle_phong`] over the exact starts `starts` (vertices in range).
+#[inline(always)]
+fn draw_spans<D: DepthValue, St: SpanStarts<7>, const S: u32>(
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    v: [SubpixelPoint<S>; 3],
+    mut starts: St,
+    ctx: &PhongContext<'_>,
+) -> (u32, u32) {
+    let window = super::span_writer::drawable_window(frame, depth);
     let (mut covered, mut written) = (0u32, 0u32);
-    let mut starts = RowStarts::new(&plane);
-    fill_triangle(v, &window, |s| {
+    fill_triangle_in_range(v, &window, |s| {
         let (x0, x1) = (s.x0 as usize, s.x1 as usize);
         covered += (x1 - x0) as u32;
         let (Some(c), Some(z)) = (frame.span_mut(s.y, x0, x1), depth.span_mut(s.y, x0, x1)) else {
             return;
         };
-        let e: [Exact; 7] = starts.at(s.x0, s.y);
+        let e = starts.exact_at(s.x0, s.y);
         let attrs = [e[1], e[2], e[3], e[4], e[5], e[6]];
         written += if ctx.dither {
             let sh = PhongShading {
@@ -168,9 +201,8 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
             };
             depth_span(c, z, e[0], sh)
         };
-    })
-    .map_err(DrawError::Fill)?;
-    Ok((covered, written))
+    });
+    (covered, written)
 }
 
 #[cfg(test)]

@@ -9,8 +9,11 @@
 //! Small triangles (bounding box below `2^K` sub-pixel units on both axes,
 //! `K =` [`small_bits`](super::attributes::small_bits)`(S)`: 64 pixels at `S = 4`) get a
 //! [`SmallPlane`], whose set-up and span starts are 32-bit arithmetic; the others an
-//! [`AttributePlane`] with [`RowStarts`]. Both give the same values and feed the same span code
-//! ([`SpanStarts`]). The switch is the 32-bit arithmetic's limit, not a tuned size: every
+//! [`AttributePlane`] with [`RowStarts`], and the few too large for its 32-bit stepping
+//! (`2D ≥ 2^31`: large viewports, guard-band fan triangles) a [`WidePlane`], set up out of
+//! line (`TriangleSpans::wide`) so the others run the instructions they ran before. All give
+//! the same values and feed the same span code ([`SpanStarts`]): every triangle of the
+//! raster's range is drawn. The switch is the 32-bit arithmetic's limit, not a tuned size: every
 //! triangle of the standard sphere and bunny is below it, and the 32-bit path measured cheaper
 //! there (Cortex-M4 `frame_bunny` −22 %, `frame_sphere` −18 %; host −0.2 % and −1.5 %).
 //!
@@ -27,8 +30,8 @@
 //! interpolated value is in range and the span loops map it without a test).
 
 use super::attributes::{
-    AttributePlane, Constant, Exact, ExactRun, Interpolant, PlaneError, RowStarts, SmallPlane,
-    SpanStarts,
+    AttributePlane, Constant, Exact, ExactRun, ExactWide, Interpolant, PlaneError, RowStarts,
+    SmallPlane, SpanStarts, WidePlane,
 };
 pub use super::span::{
     depth_span, depth_span_with, CountWritten, FlatIndex, Gouraud, LuminanceRamp, Quantizer,
@@ -40,7 +43,7 @@ use crate::arith::euclid::Divisor;
 use crate::arith::TINY_WRITER;
 use crate::raster::polygon::FillError;
 use crate::raster::range::check_range;
-use crate::raster::triangle::{bounds, fill_triangle};
+use crate::raster::triangle::{bounds, fill_triangle_in_range};
 use crate::raster::{SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
@@ -60,13 +63,12 @@ pub enum ShadeMode {
     Phong,
 }
 
-/// Why a triangle was not drawn.
+/// Why a triangle was not drawn. Every triangle of the raster's range is drawn, whatever its
+/// size: one too large for the 32-bit stepping of [`AttributePlane`] takes the [`WidePlane`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DrawError {
-    /// The fill rejected the vertices.
+    /// The fill rejected the vertices (outside the raster's range).
     Fill(FillError),
-    /// The triangle is too large for exact attribute interpolation.
-    TooLarge,
 }
 
 /// Draws a depth-tested, shaded triangle into a frame and its depth buffer.
@@ -284,8 +286,9 @@ pub(crate) const fn tiny_kind(kind: Kind, direct_ramp: bool) -> Tiny {
 /// `plan`, then the set-up of that path.
 ///
 /// Vertices outside the raster's range (`|x|, |y| ≤ 2^28 − 1` sub-pixel units, `S ≤ 16`) are
-/// [`DrawError::Fill`] with [`FillError::CoordinateOutOfRange`], checked before any
-/// arithmetic.
+/// [`DrawError::Fill`] with [`FillError::CoordinateOutOfRange`], checked here once, before any
+/// arithmetic (the plane set-up and the fill that follow rely on it and do not check again).
+/// Any triangle within the range is drawn, whatever its size.
 pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
@@ -294,7 +297,7 @@ pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u
     quantizer_at: impl Fn(i32, i32) -> Q,
 ) -> Result<(u32, u32), DrawError> {
     check_range(&v).map_err(DrawError::Fill)?;
-    draw_in_range(target, v, values, mode, quantizer_at)
+    Ok(draw_in_range(target, v, values, mode, quantizer_at))
 }
 
 /// [`draw_in_range`] for a triangle with a vertex depth above [`DepthValue::MAX_DEPTH32`]: the
@@ -307,21 +310,22 @@ fn draw_clamped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     values: [[u32; 2]; 3],
     mode: ShadeMode,
     quantizer_at: impl Fn(i32, i32) -> Q,
-) -> Result<(u32, u32), DrawError> {
+) -> (u32, u32) {
     let values = values.map(|[z, l]| [z.min(D::MAX_DEPTH32), l]);
     draw_in_range(target, v, values, mode, quantizer_at)
 }
 
 /// [`draw_triangle_on`] for vertices already within the raster's range: the renderer's
 /// consumers call it with projected vertices, which the projector keeps within
-/// `±(2^28 − 1)` (checked there once per vertex, asserted here in checked builds).
+/// `±(2^28 − 1)` (checked there once per vertex, asserted here in checked builds). Cannot
+/// fail: every triangle of the range is drawn.
 pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
     values: [[u32; 2]; 3],
     mode: ShadeMode,
     quantizer_at: impl Fn(i32, i32) -> Q,
-) -> Result<(u32, u32), DrawError> {
+) -> (u32, u32) {
     debug_assert!(
         check_range(&v).is_ok(),
         "vertices outside the raster's range"
@@ -359,12 +363,12 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
                 let lum = |l: u32| if kind == Kind::Flat { flat_lum() } else { l } + first;
                 let values = values.map(|[z, l]| [z, lum(l)]);
                 if let Some(t) = TinyTriangle::<S>::new(v, values, &window) {
-                    return Ok(t.draw(&mut target.targets, target.count, &|_, _| Direct));
+                    return t.draw(&mut target.targets, target.count, &|_, _| Direct);
                 }
             }
             Tiny::Mapped => {
                 if let Some(drawn) = tiny_mapped(target, v, values, &quantizer_at) {
-                    return Ok(drawn);
+                    return drawn;
                 }
             }
             Tiny::No => {}
@@ -372,7 +376,7 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
     }
     // (After the tiny writer, which tests the columns itself and clips the rows.)
     if !bounds_meet(&v, &window) {
-        return Ok((0, 0));
+        return (0, 0);
     }
     let spans = TriangleSpans {
         v,
@@ -426,24 +430,25 @@ fn tiny_mapped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
 /// Bounding-box width (pixels) from which a triangle's spans use [`ExactRun`].
 const MIN_RUN_WIDTH: u32 = 16;
 
-/// How a span loop gets its exact interpolants from [`Exact`] starts: as they are, or as
-/// [`ExactRun`] accumulators (one add per pixel) when every span is short enough.
-trait FromExact {
+/// How a span loop gets its exact interpolants from the exact starts `E` of its plane
+/// ([`Exact`], or [`ExactWide`](super::attributes::ExactWide) for a [`WidePlane`]): as they
+/// are, or as [`ExactRun`] accumulators (one add per pixel) when every span is short enough.
+trait FromExact<E> {
     type I: Interpolant;
     /// Per-triangle data derived from a first exact state.
-    fn prepare(e: &Exact) -> Self;
+    fn prepare(e: &E) -> Self;
     /// The interpolant for a span starting at `e`.
-    fn start(&self, e: &Exact) -> Self::I;
+    fn start(&self, e: &E) -> Self::I;
 }
 
-impl FromExact for Exact {
-    type I = Exact;
+impl<E: Interpolant> FromExact<E> for E {
+    type I = E;
     #[inline(always)]
-    fn prepare(e: &Exact) -> Self {
+    fn prepare(e: &E) -> Self {
         *e
     }
     #[inline(always)]
-    fn start(&self, e: &Exact) -> Exact {
+    fn start(&self, e: &E) -> E {
         *e
     }
 }
@@ -451,7 +456,7 @@ impl FromExact for Exact {
 /// The per-triangle 32.32 step of an [`ExactRun`] and its prepared `2D`.
 struct ExactRunFrom((u64, Divisor));
 
-impl FromExact for ExactRunFrom {
+impl FromExact<Exact> for ExactRunFrom {
     type I = ExactRun;
     #[inline(always)]
     fn prepare(e: &Exact) -> Self {
@@ -560,26 +565,18 @@ struct TriangleSpans<'a, 't, D, C, const S: u32> {
 }
 
 impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S> {
-    /// Constant depth `z` and flat luminance `lum`: no plane. A triangle too large for a plane
-    /// still reports [`DrawError::TooLarge`], as the other kinds do.
+    /// Constant depth `z` and flat luminance `lum`: no plane, any size (a zero-area triangle
+    /// covers nothing in the fill).
     #[inline(always)]
     fn constant<Q: Quantizer>(
         self,
         z: u32,
         lum: u32,
         quantizer_at: impl Fn(i32, i32) -> Q,
-    ) -> Result<(u32, u32), DrawError> {
-        if SmallPlane::<1, S>::fits(&self.v) {
-            // Below the small planes' limit the area is far below the general limit.
-        } else if let Err(e) = AttributePlane::<1, S>::new(self.v, [[z]; 3]) {
-            return match e {
-                PlaneError::Degenerate => Ok((0, 0)),
-                PlaneError::TooLarge => Err(DrawError::TooLarge),
-            };
-        }
+    ) -> (u32, u32) {
         let (mut covered, mut written) = (0u32, 0u32);
         let targets = &mut *self.targets;
-        fill_triangle(self.v, &self.window, |s| {
+        fill_triangle_in_range(self.v, &self.window, |s| {
             covered += s.x1.wrapping_sub(s.x0) as u32;
             let Some((c, zs)) = targets.span(&s) else {
                 return;
@@ -589,19 +586,14 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
                 quantizer: quantizer_at(s.x0, s.y),
             };
             written += depth_span_with(c, zs, Constant(z), shading, self.count);
-        })
-        .map_err(DrawError::Fill)?;
-        Ok((covered, written))
+        });
+        (covered, written)
     }
 
-    /// The exact plane of `values` (attribute 0 is the depth), small or general, and the span
-    /// loop over it with span kind `kind`.
+    /// The exact plane of `values` (attribute 0 is the depth), small, general or wide, and the
+    /// span loop over it with span kind `kind`.
     #[inline(always)]
-    fn planar<K: SpanKind<N>, const N: usize>(
-        self,
-        values: [[u32; N]; 3],
-        kind: K,
-    ) -> Result<(u32, u32), DrawError> {
+    fn planar<K: SpanKind<N>, const N: usize>(self, values: [[u32; N]; 3], kind: K) -> (u32, u32) {
         // Small planes step plain Exact values: their spans are short, and ExactRun starts
         // (a 64-bit division each) measured dearer on the Cortex-M4 (standard sphere +10 %).
         if let Some(small) = SmallPlane::<N, S>::new(self.v, values) {
@@ -609,8 +601,8 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
         }
         let plane = match AttributePlane::<N, S>::new(self.v, values) {
             Ok(p) => p,
-            Err(PlaneError::Degenerate) => return Ok((0, 0)),
-            Err(PlaneError::TooLarge) => return Err(DrawError::TooLarge),
+            Err(PlaneError::Degenerate) => return (0, 0),
+            Err(PlaneError::TooLarge) => return self.wide(values, kind),
         };
         // The longest span is at most the bounding box's width in pixels plus one.
         let xs = self.v.map(|p| p.x);
@@ -626,18 +618,29 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
         }
     }
 
+    /// [`Self::planar`] for a triangle too large for the [`AttributePlane`] (`2D ≥ 2^31`):
+    /// the [`WidePlane`], out of line so that the common triangles' path stays as it was.
+    #[cold]
+    #[inline(never)]
+    fn wide<K: SpanKind<N>, const N: usize>(self, values: [[u32; N]; 3], kind: K) -> (u32, u32) {
+        match WidePlane::<N, S>::new(self.v, values) {
+            Ok(plane) => self.run::<ExactWide, _, K, N>(plane, kind),
+            Err(_) => (0, 0), // zero area: covers nothing
+        }
+    }
+
     /// The span loop: every span of the fill, sliced from the buffers, its exact starts taken
     /// from `starts` (made [`ExactRun`]s by `F`), written by `kind`.
     #[inline(always)]
-    fn run<F: FromExact, St: SpanStarts<N>, K: SpanKind<N>, const N: usize>(
+    fn run<F: FromExact<St::Exact>, St: SpanStarts<N>, K: SpanKind<N>, const N: usize>(
         self,
         mut starts: St,
         kind: K,
-    ) -> Result<(u32, u32), DrawError> {
+    ) -> (u32, u32) {
         let (mut covered, mut written) = (0u32, 0u32);
         let mut per_triangle: Option<[F; N]> = None;
         let targets = &mut *self.targets;
-        fill_triangle(self.v, &self.window, |s| {
+        fill_triangle_in_range(self.v, &self.window, |s| {
             covered += s.x1.wrapping_sub(s.x0) as u32;
             let Some((c, z)) = targets.span(&s) else {
                 return;
@@ -646,9 +649,8 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
             let f = per_triangle.get_or_insert_with(|| e.each_ref().map(F::prepare));
             let attrs = core::array::from_fn(|i| f[i].start(&e[i]));
             written += kind.write(c, z, attrs, &starts, (s.x0, s.y), self.count);
-        })
-        .map_err(DrawError::Fill)?;
-        Ok((covered, written))
+        });
+        (covered, written)
     }
 }
 
@@ -736,7 +738,7 @@ mod tests {
                     targets: &mut target.targets,
                     count: target.count,
                 };
-                Some(spans.planar(values, ExactKind(quantizer_at)).unwrap())
+                Some(spans.planar(values, ExactKind(quantizer_at)))
             };
             (counts, px, zs)
         };

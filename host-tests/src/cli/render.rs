@@ -1471,12 +1471,7 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
             #[allow(unreachable_patterns)]
             other => format!("clipping: {other:?}"),
         },
-        R::Draw(d) => match d {
-            DrawError::Fill(f) => format!("raster: {f}"),
-            DrawError::TooLarge => "raster: a projected triangle is too large for exact \
-                 attribute interpolation (twice its area must stay below 2^30 sub-pixel units²)"
-                .into(),
-        },
+        R::Draw(DrawError::Fill(f)) => format!("raster: {f}"),
         R::Lighting(l) => match l {
             LightingError::TooManyLights => format!(
                 "lighting: more than {} lights",

@@ -34,7 +34,7 @@ use crate::geometry::vector::{unit_bits, Vec3};
 use crate::project::Projector;
 use crate::raster::triangle::fill_triangle;
 use crate::raster::{SubpixelPoint, Window};
-use crate::shade::attributes::{AttributePlane, Interpolant, PlaneError};
+use crate::shade::attributes::{AttributePlane, Interpolant, PlaneError, WidePlane};
 use crate::shade::lighting::Light;
 use crate::target::DepthValue;
 
@@ -493,23 +493,35 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
         code
     }
 
-    /// One triangle of depths, nearest kept.
+    /// One triangle of depths, nearest kept; one too large for the [`AttributePlane`] takes
+    /// the [`WidePlane`] (the same exact values).
     fn draw_triangle(
         &mut self,
         c: [(SubpixelPoint<SUBPIXEL_BITS>, u32); 3],
     ) -> Result<(), ShadowError> {
         let v = [c[0].0, c[1].0, c[2].0];
-        let plane = match AttributePlane::<1, SUBPIXEL_BITS>::new(v, [[c[0].1], [c[1].1], [c[2].1]])
-        {
-            Ok(p) => p,
-            Err(PlaneError::Degenerate) => return Ok(()), // covers no texel
-            Err(PlaneError::TooLarge) => return Err(ShadowError::Raster),
-        };
+        let values = [[c[0].1], [c[1].1], [c[2].1]];
+        match AttributePlane::<1, SUBPIXEL_BITS>::new(v, values) {
+            Ok(p) => self.fill(v, |x, y| p.exact(0, x, y)),
+            Err(PlaneError::Degenerate) => Ok(()), // covers no texel
+            Err(PlaneError::TooLarge) => match WidePlane::<1, SUBPIXEL_BITS>::new(v, values) {
+                Ok(p) => self.fill(v, |x, y| p.exact(0, x, y)),
+                Err(_) => Ok(()),
+            },
+        }
+    }
+
+    /// The texels of triangle `v`, each span's depths stepped from `start(x0, y)`.
+    fn fill<I: Interpolant>(
+        &mut self,
+        v: [SubpixelPoint<SUBPIXEL_BITS>; 3],
+        start: impl Fn(i32, i32) -> I,
+    ) -> Result<(), ShadowError> {
         let window = Window::new(0, 0, self.width as i32, self.height as i32);
         let w = self.width as usize;
         let samples = &mut *self.samples;
         fill_triangle(v, &window, |s| {
-            let mut z = plane.exact(0, s.x0, s.y);
+            let mut z = start(s.x0, s.y);
             let row = s.y as usize * w;
             if let Some(span) = samples.get_mut(row + s.x0 as usize..row + s.x1 as usize) {
                 for stored in span {
