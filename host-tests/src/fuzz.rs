@@ -429,15 +429,29 @@ pub fn random_scene(rng: &mut Rng) -> String {
         }
     }
     let _ = writeln!(s, "[viewport]");
-    let _ = writeln!(s, "width = {}", integer(rng, 1, 48));
-    let _ = writeln!(s, "height = {}", integer(rng, 1, 40));
-    if rng.range(0, 4) == 0 {
-        let _ = writeln!(
-            s,
-            "principal = [{}, {}]",
-            number(rng, -10.0, 50.0),
-            number(rng, -10.0, 50.0)
-        );
+    // Mostly small pictures; some up to the tool's 4096-pixel side (strips, so that a case
+    // stays fast) and, rarely, the whole 4096 × 4096: every size must render (issue 16 #1).
+    let (w, h) = match rng.range(0, 19) {
+        0 => (integer(rng, 1, 4096), integer(rng, 1, 24)),
+        1 => (integer(rng, 1, 24), integer(rng, 1, 4096)),
+        2 if rng.range(0, 3999) == 0 => ("4096".into(), "4096".into()),
+        2 => (integer(rng, 256, 1024), integer(rng, 64, 192)),
+        _ => (integer(rng, 1, 48), integer(rng, 1, 40)),
+    };
+    let _ = writeln!(s, "width = {w}\nheight = {h}");
+    if rng.range(0, 3) == 0 {
+        // Near the picture, at its corners and edges, or anywhere in the I16F16 range.
+        let side = |rng: &mut Rng, n: &str| {
+            let n = n.parse::<f64>().unwrap_or(48.0).min(4096.0);
+            match rng.range(0, 5) {
+                0 => ["0", "-0.5", "-32767", "32767"][rng.range(0, 3) as usize].to_string(),
+                1 => format!("{}", n - 1.0),
+                2 => format!("{:.3}", rng.uniform(-32767.0, 32767.0)),
+                _ => number(rng, -10.0, n + 10.0),
+            }
+        };
+        let (px, py) = (side(rng, &w), side(rng, &h));
+        let _ = writeln!(s, "principal = [{px}, {py}]");
     }
     if rng.range(0, 6) == 0 {
         let _ = writeln!(
@@ -649,17 +663,50 @@ pub struct Report {
     pub failures: Vec<(Case, String)>,
 }
 
+/// What a campaign writes to its log while it runs.
+pub enum Log<'w> {
+    /// Nothing.
+    None,
+    /// One line per case: its index, target and input, escaped to one line.
+    Inputs(&'w mut dyn std::io::Write),
+    /// One line every `n` cases: the cases run so far, accepted per target, the time (a case
+    /// is regenerated from the seed and its index, [`generate`]).
+    Progress(&'w mut dyn std::io::Write, u64),
+}
+
 /// Runs `cases` cases of the campaign `seed`; `log` gets one line per case (its target and
 /// input, escaped to one line) when given.
-pub fn campaign(seed: u64, cases: u64, mut log: Option<&mut dyn std::io::Write>) -> Report {
+pub fn campaign(seed: u64, cases: u64, log: Option<&mut dyn std::io::Write>) -> Report {
+    campaign_from(seed, 0..cases, log.map_or(Log::None, Log::Inputs))
+}
+
+/// [`campaign`] over the case indices `range` (so that several processes can share a
+/// campaign), logging as `log` says.
+pub fn campaign_from(seed: u64, range: std::ops::Range<u64>, mut log: Log<'_>) -> Report {
     let mut report = Report::default();
+    let started = std::time::Instant::now();
     // Panics are expected to be caught and reported; keep the default hook's noise out.
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    for k in 0..cases {
+    for k in range {
         let case = generate(seed, k);
-        if let Some(w) = log.as_mut() {
-            let _ = writeln!(w, "case {k} {}: {:?}", case.target.name(), case.input);
+        match &mut log {
+            Log::Inputs(w) => {
+                let _ = writeln!(w, "case {k} {}: {:?}", case.target.name(), case.input);
+            }
+            Log::Progress(w, n) if report.cases > 0 && report.cases % *n == 0 => {
+                let _ = writeln!(
+                    w,
+                    "progress: {} cases (up to index {k}) in {:.1?}, accepted (scene, obj, \
+                     spans, core) = {:?}, {} failures",
+                    report.cases,
+                    started.elapsed(),
+                    report.accepted,
+                    report.failures.len()
+                );
+                let _ = w.flush();
+            }
+            _ => {}
         }
         report.cases += 1;
         let start = std::time::Instant::now();

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use zscan_host::fuzz::{campaign, check, Case};
+use zscan_host::fuzz::{campaign, campaign_from, check, Case, Log};
 
 fn corpus() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fuzz-corpus")
@@ -64,7 +64,10 @@ fn corpus_replays() {
 }
 
 /// The long campaign: `ZSCAN_FUZZ_CASES` cases (default 100,000) of `ZSCAN_FUZZ_SEED`,
-/// printing every input tried. Run by `scripts/fuzz.sh COUNT [SEED]`.
+/// starting at case index `ZSCAN_FUZZ_FIRST` (default 0), printing every input tried, or with
+/// `ZSCAN_FUZZ_LOG=progress` a progress line every 100,000 cases. Ends with the build (overflow
+/// checks on or off), the cases per target, the accepted inputs, the time per target and the
+/// failures. Run by `scripts/fuzz.sh`.
 #[test]
 #[ignore = "long; run by scripts/fuzz.sh"]
 fn long_campaign() {
@@ -75,14 +78,30 @@ fn long_campaign() {
             .unwrap_or(d)
     };
     let (cases, seed) = (env("ZSCAN_FUZZ_CASES", 100_000), env("ZSCAN_FUZZ_SEED", 1));
+    let first = env("ZSCAN_FUZZ_FIRST", 0);
+    let progress = std::env::var("ZSCAN_FUZZ_LOG").is_ok_and(|v| v == "progress");
+    // Overflow checks on when adding one to i32::MAX panics in this build.
+    let overflow_checks = std::panic::catch_unwind(|| std::hint::black_box(i32::MAX) + 1).is_err();
     let start = std::time::Instant::now();
     let mut out = std::io::stdout();
-    let report = campaign(seed, cases, Some(&mut out));
+    let log = if progress {
+        Log::Progress(&mut out, 100_000)
+    } else {
+        Log::Inputs(&mut out)
+    };
+    let report = campaign_from(seed, first..first + cases, log);
+    let per_target = |t: usize| (first..first + cases).filter(|k| k % 4 == t as u64).count();
     println!(
-        "fuzz: seed {seed}: {} cases in {:?}, accepted (scene, obj, spans, core) = {:?}, {} failures",
+        "fuzz: seed {seed}, cases {first}..{}, overflow checks {}: {} cases in {:?}; per target \
+         (scene, obj, spans, core): run {:?}, accepted {:?}, time {:?}; slowest {:?}; {} failures",
+        first + cases,
+        if overflow_checks { "on" } else { "off" },
         report.cases,
         start.elapsed(),
+        [0, 1, 2, 3].map(per_target),
         report.accepted,
+        report.time,
+        report.slowest.as_ref().map(|(c, t)| (c.target.name(), *t)),
         report.failures.len()
     );
     report_failures(&report);
