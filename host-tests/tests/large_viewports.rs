@@ -63,7 +63,7 @@ fn huge_triangles_have_exact_coverage_depth_and_luminance() {
             .abs();
         huge += (d2 >= 1 << 30) as u32;
         // A band through the triangle's middle rows.
-        let top = ((v[0].1 + v[1].1 + v[2].1) / 3 >> 4) as u16;
+        let top = (((v[0].1 + v[1].1 + v[2].1) / 3) >> 4) as u16;
         let top = top.min(u16::MAX - ROWS);
         px.fill(7);
         let mut fb = Framebuffer::band(&mut px, W, ROWS, top).unwrap();
@@ -74,7 +74,6 @@ fn huge_triangles_have_exact_coverage_depth_and_luminance() {
         let mode = ShadeMode::GouraudExact;
         let (n, _) = draw_triangle(&mut fb, &mut zb, sv, values, LuminanceRamp::GREY, mode)
             .unwrap_or_else(|e| panic!("{v:?}: {e}"));
-        drop(fb);
         let mut count = 0u64;
         for r in 0..ROWS as usize {
             let y = top as i64 + r as i64;
@@ -195,7 +194,6 @@ fn maximum_viewports_render_the_quad() {
                 &mut stats,
             )
             .unwrap_or_else(|e| panic!("{w}×{h} at {p:?}: {e}"));
-            drop(fb);
             for (k, (&l, &z)) in px.iter().zip(&zs).enumerate() {
                 let (x, y) = (
                     (k % w as usize) as f64,
