@@ -27,6 +27,24 @@ pub struct RenderStats {
     /// Pixels that passed the depth test and were written (not counted, 0, when drawn for a
     /// [`StatsWithoutWritten`]).
     pub pixels_written: u32,
+    /// The visibility methods' own counts (zero for the others).
+    pub method: MethodCounts,
+}
+
+/// What a visibility method ([`crate::visibility`]) did beyond drawing: a few adds per
+/// triangle, pair or window, none per pixel.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MethodCounts {
+    /// Painter: pair tests decided by Newell's test 1 to 5 (index 0 is test 1).
+    pub painter_tests: [u32; 5],
+    /// Painter: pairs no test 1–5 ordered (a triangle moved before another, or split).
+    pub painter_ambiguities: u32,
+    /// Painter: splits (test 6).
+    pub painter_splits: u32,
+    /// Scan-line: the most triangles in the active table at once.
+    pub active_peak: u32,
+    /// Warnock: the windows visited, by verdict.
+    pub windows: crate::visibility::WindowCounts,
 }
 
 /// Where the renderer adds its counts, and whether its span loops count written pixels:
@@ -84,5 +102,18 @@ impl core::ops::AddAssign for RenderStats {
         self.triangles_drawn += o.triangles_drawn;
         self.pixels_covered += o.pixels_covered;
         self.pixels_written += o.pixels_written;
+        let (m, n) = (&mut self.method, o.method);
+        for (a, b) in m.painter_tests.iter_mut().zip(n.painter_tests) {
+            *a += b;
+        }
+        m.painter_ambiguities += n.painter_ambiguities;
+        m.painter_splits += n.painter_splits;
+        m.active_peak = m.active_peak.max(n.active_peak);
+        let (w, v) = (&mut m.windows, n.windows);
+        w.empty += v.empty;
+        w.one += v.one;
+        w.front += v.front;
+        w.pixel += v.pixel;
+        w.split += v.split;
     }
 }

@@ -35,12 +35,14 @@ mod painter;
 mod plan;
 mod scanline;
 mod store;
+mod warnock;
 
 pub use backface::render_back_faces;
 pub use painter::{render_painter, PainterMemory, SplitPolicy, MAX_CUTS};
 pub use plan::{plan, Plan, PlanReason};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
+pub use warnock::{render_warnock, Area, WarnockMemory, WindowCounts};
 
 /// A hidden-surface method ([module doc](self)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -51,16 +53,19 @@ pub enum Visibility {
     Painter,
     /// Scan-line: a triangle table by first row, an active list, a band of depth rows.
     ScanLine,
+    /// Warnock's area subdivision: windows drawn when simple, else split, down to a pixel.
+    Warnock,
     /// Full-frame (or banded) depth buffer.
     ZBuffer,
 }
 
 impl Visibility {
     /// Every method, cheapest first.
-    pub const ALL: [Visibility; 4] = [
+    pub const ALL: [Visibility; 5] = [
         Visibility::BackFace,
         Visibility::Painter,
         Visibility::ScanLine,
+        Visibility::Warnock,
         Visibility::ZBuffer,
     ];
 
@@ -70,6 +75,7 @@ impl Visibility {
             Visibility::BackFace => "backface",
             Visibility::Painter => "painter",
             Visibility::ScanLine => "scanline",
+            Visibility::Warnock => "warnock",
             Visibility::ZBuffer => "zbuffer",
         }
     }
