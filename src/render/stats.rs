@@ -41,10 +41,17 @@ pub struct MethodCounts {
     pub painter_ambiguities: u32,
     /// Painter: splits (test 6).
     pub painter_splits: u32,
+    /// Painter, scan-line, Warnock: triangles stored (with the painter's pieces), the entries
+    /// of the triangle store the frame used.
+    pub stored: u32,
     /// Scan-line: the most triangles in the active table at once.
     pub active_peak: u32,
     /// Warnock: the windows visited, by verdict.
     pub windows: crate::visibility::WindowCounts,
+    /// Warnock: the most candidate entries on its stack at once.
+    pub candidates_peak: u32,
+    /// Warnock: the most windows on its stack at once.
+    pub stack_peak: u32,
 }
 
 /// Where the renderer adds its counts, and whether its span loops count written pixels:
@@ -108,12 +115,10 @@ impl core::ops::AddAssign for RenderStats {
         }
         m.painter_ambiguities += n.painter_ambiguities;
         m.painter_splits += n.painter_splits;
+        m.stored = m.stored.max(n.stored);
         m.active_peak = m.active_peak.max(n.active_peak);
-        let (w, v) = (&mut m.windows, n.windows);
-        w.empty += v.empty;
-        w.one += v.one;
-        w.front += v.front;
-        w.pixel += v.pixel;
-        w.split += v.split;
+        m.candidates_peak = m.candidates_peak.max(n.candidates_peak);
+        m.stack_peak = m.stack_peak.max(n.stack_peak);
+        m.windows += n.windows;
     }
 }

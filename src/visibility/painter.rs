@@ -98,6 +98,8 @@ pub fn render_painter<T: StatsSink, const S: u32>(
             splits: 0,
             moves: 0,
             moved: 0,
+            tests: [0; 5],
+            ambiguities: 0,
         };
         while let Some(t) = painter.next(policy)? {
             draw_piece(
@@ -108,6 +110,11 @@ pub fn render_painter<T: StatsSink, const S: u32>(
                 counts,
             )?;
         }
+        let m = &mut counts.method;
+        m.painter_tests = painter.tests;
+        m.painter_ambiguities = painter.ambiguities;
+        m.painter_splits = painter.splits as u32;
+        m.stored = painter.stored as u32;
         Ok(())
     })
 }
@@ -125,6 +132,9 @@ struct Painter<'m, const S: u32> {
     splits: usize,
     /// Entries moved to the front since the last paint or split.
     moves: usize,
+    /// Pair tests decided by test 1–5, and pairs none decided (`MethodCounts`).
+    tests: [u32; 5],
+    ambiguities: u32,
 }
 
 impl<const S: u32> Painter<'_, S> {
@@ -144,13 +154,14 @@ impl<const S: u32> Painter<'_, S> {
                 self.paint_first();
                 return Ok(Some(p));
             };
+            self.ambiguities += 1;
             let q = (self.order[k] & !MOVED) as usize;
             // Q first, marked: when it was not moved yet, or when the tests show that Q may
             // be painted before P (a cut piece meets the triangle that cut it), as long as
             // moves since the last paint stay below the entries left (beyond, the marked
             // entries go round a cycle of the tests).
-            let reorder = self.order[k] & MOVED == 0
-                || (self.moves < self.count && may_precede(self.triangles, q, p));
+            let reorder =
+                self.order[k] & MOVED == 0 || (self.moves < self.count && self.may_precede(q, p));
             if reorder {
                 self.order[..=k].rotate_right(1);
                 self.order[0] |= MOVED;
@@ -202,22 +213,35 @@ impl<const S: u32> Painter<'_, S> {
     /// The first entry after the first whose triangle `p` may not be painted before, if any:
     /// every moved entry, then the sorted ones while their farthest depth is beyond `p`'s
     /// nearest (test 1 holds for the rest).
-    fn blocker(&self, p: usize) -> Option<usize> {
+    fn blocker(&mut self, p: usize) -> Option<usize> {
         let (p_near, _) = self.triangles[p].depth_range();
-        let entry = |k: usize| (self.order[k] & !MOVED) as usize;
-        if let Some(k) = (1..self.moved).find(|&k| !may_precede(self.triangles, p, entry(k))) {
-            return Some(k);
+        for k in 1..self.moved {
+            if !self.may_precede(p, (self.order[k] & !MOVED) as usize) {
+                return Some(k);
+            }
         }
         for k in self.moved.max(1)..self.count {
-            let q = entry(k);
+            let q = (self.order[k] & !MOVED) as usize;
             if self.triangles[q].depth_range().1 <= p_near {
+                self.tests[0] += 1;
                 return None;
             }
-            if !may_precede(self.triangles, p, q) {
+            if !self.may_precede(p, q) {
                 return Some(k);
             }
         }
         None
+    }
+
+    /// Whether painting `a` before `b` is right wherever they overlap (tests 1–5), counted.
+    fn may_precede(&mut self, a: usize, b: usize) -> bool {
+        match deciding_test(self.triangles, a, b) {
+            Some(test) => {
+                self.tests[test] += 1;
+                true
+            }
+            None => false,
+        }
     }
 
     /// Removes the first entry (painted).
@@ -264,33 +288,34 @@ impl<const S: u32> Painter<'_, S> {
     }
 }
 
-/// Whether painting `a` before `b` is right wherever they overlap (tests 1–5, module doc).
-fn may_precede<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> bool {
+/// Which of tests 1–5 (module doc) shows that painting `a` before `b` is right wherever they
+/// overlap (0 for test 1), if one does.
+fn deciding_test<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> Option<usize> {
     let (ta, tb) = (&t[a], &t[b]);
     let (a_near, _) = ta.depth_range();
     let (_, b_far) = tb.depth_range();
     // 1. Depth ranges.
     if a_near >= b_far {
-        return true;
+        return Some(0);
     }
     // 2. Screen boxes, x then y.
     let (ax, ay) = boxes(ta);
     let (bx, by) = boxes(tb);
     if ax.1 < bx.0 || bx.1 < ax.0 || ay.1 < by.0 || by.1 < ay.0 {
-        return true;
+        return Some(1);
     }
     // 3. A behind B's plane (its corners, or a cut that says so).
     let b_plane = Plane::of(&t[tb.base as usize]);
     if ta.cuts.contains(&tb.base) || (0..3).all(|k| b_plane.behind(ta, k) >= 0) {
-        return true;
+        return Some(2);
     }
     // 4. B in front of A's plane.
     let a_plane = Plane::of(&t[ta.base as usize]);
     if tb.cuts.contains(&(ta.base | CUT_FRONT)) || (0..3).all(|k| a_plane.behind(tb, k) <= 0) {
-        return true;
+        return Some(3);
     }
     // 5. Projections disjoint.
-    separated(ta, tb) || separated(tb, ta)
+    (separated(ta, tb) || separated(tb, ta)).then_some(4)
 }
 
 /// Whether `a`'s corners lie strictly on both sides of `b`'s plane, and `a` is not cut by it

@@ -12,8 +12,10 @@
 //! - **one**: one candidate, drawn restricted to the window, no depth;
 //! - **front**: a surrounding candidate that the z-buffer would keep at every pixel of the
 //!   window against every other candidate, drawn restricted to the window;
-//! - **pixel**: a one-pixel window, decided as the z-buffer decides it: among the candidates
-//!   covering the pixel, the nearest exactly rounded depth, the earliest stored on ties;
+//! - **pixel**: the front verdict on a one-pixel window, which is always simple: every
+//!   candidate covers its one lattice point (surrounds it), each depth bound is the depth
+//!   there, and the front test is the z-buffer's own comparison (the nearest exactly rounded
+//!   depth, the earliest stored on ties);
 //! - **split**: else, four sub-windows (two when one side is one pixel).
 //!
 //! Exactness. Coverage is the fill's rule (`raster::polygon`): a lattice point is covered when
@@ -102,6 +104,17 @@ pub struct WindowCounts {
     pub split: u32,
 }
 
+impl core::ops::AddAssign for WindowCounts {
+    /// Sums two frames' counts.
+    fn add_assign(&mut self, o: WindowCounts) {
+        self.empty += o.empty;
+        self.one += o.one;
+        self.front += o.front;
+        self.pixel += o.pixel;
+        self.split += o.split;
+    }
+}
+
 impl WindowCounts {
     /// Every window visited.
     pub fn total(&self) -> u32 {
@@ -174,8 +187,8 @@ enum Verdict {
     Empty,
     /// Draw this triangle over the window (one candidate, or the surrounding one in front).
     Draw(u32, bool),
-    /// Draw this triangle at the one pixel, or nothing when none covers it.
-    Pixel(Option<u32>),
+    /// Draw this triangle at the one pixel (the nearest there, the earliest on ties).
+    Pixel(u32),
     Split,
 }
 
@@ -208,14 +221,13 @@ impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
                 }
                 Verdict::Pixel(t) => {
                     counts.pixel += 1;
-                    if let Some(t) = t {
-                        self.draw(t, window)?;
-                    }
+                    self.draw(t, window)?;
                 }
                 Verdict::Split => {
                     counts.split += 1;
                     if level + 1 >= MAX_LEVELS {
-                        // A window of at most 2^16 pixels a side is one pixel by then.
+                        // A window of at most 2^16 pixels a side is one pixel by then, and a
+                        // one-pixel window is always simple (module doc): not reached.
                         return Err(RenderError::SubdivisionStackFull {
                             capacity: stack_capacity,
                         });
@@ -251,6 +263,8 @@ impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
             level: level as u8,
         };
         *top += 1;
+        let peak = &mut self.stats.method.stack_peak;
+        *peak = (*peak).max(*top as u32);
         Ok(())
     }
 
@@ -288,6 +302,8 @@ impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
             end += 1;
         }
         self.starts[level + 1] = end;
+        let peak = &mut self.stats.method.candidates_peak;
+        *peak = (*peak).max(end as u32);
         Ok(())
     }
 
@@ -319,32 +335,15 @@ impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
                 }
             });
             if wins {
-                return Verdict::Draw(t, true);
+                let pixel = window.x1 - window.x0 == 1 && window.y1 - window.y0 == 1;
+                return if pixel {
+                    Verdict::Pixel(t)
+                } else {
+                    Verdict::Draw(t, true)
+                };
             }
-        }
-        if window.x1 - window.x0 == 1 && window.y1 - window.y0 == 1 {
-            return Verdict::Pixel(self.at_pixel(list, window.x0, window.y0));
         }
         Verdict::Split
-    }
-
-    /// The z-buffer's decision at pixel `(x, y)`: the candidate covering it with the nearest
-    /// stored depth, the earliest on ties (the list is in stored order).
-    fn at_pixel(&self, list: &[u32], x: i32, y: i32) -> Option<u32> {
-        let (px, py) = ((x as i64) << S, (y as i64) << S);
-        let mut best: Option<(i128, u32)> = None;
-        for &e in list {
-            let t = e & !SURROUNDS;
-            let tri = &self.triangles[t as usize];
-            if !covers(tri, px, py) {
-                continue;
-            }
-            let d = DepthPlane::of(tri).at(px, py);
-            if best.is_none_or(|(b, _)| d < b) {
-                best = Some((d, t));
-            }
-        }
-        best.map(|(_, t)| t)
     }
 
     /// Draws triangle `t` restricted to `window`, counting.
@@ -466,7 +465,8 @@ impl Edge {
 }
 
 /// Whether `t` covers the lattice point `(x, y)` (sub-pixel units): the fill's rule.
-pub(crate) fn covers<const S: u32>(t: &StoredTriangle<S>, x: i64, y: i64) -> bool {
+#[cfg(test)]
+fn covers<const S: u32>(t: &StoredTriangle<S>, x: i64, y: i64) -> bool {
     Edge::of(t).iter().all(|e| e.holds(x, y))
 }
 
