@@ -44,7 +44,7 @@ pub struct Storage {
     pub vertices: [PreparedVertex<4>; scene::MAX_VERTICES],
     /// The visibility methods' triangle store (56 bytes per front triangle or piece).
     pub triangles: [zscan::visibility::StoredTriangle<4>; scene::MAX_STORED],
-    /// Their order (painter, scan-line table).
+    /// Their order (painter, scan-line table; Warnock's candidate lists).
     pub order: [u32; scene::MAX_STORED],
     /// The scan-line's active table.
     pub active: [u32; scene::MAX_STORED],
@@ -236,6 +236,22 @@ pub const CASES: &[Case] = &[
     Case {
         name: "frame_bunny_scanline16",
         run: |fb, st| scene::scan_lines(fb, st, &scene::BUNNY, 16),
+    },
+    Case {
+        name: "frame_quad_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::QUAD),
+    },
+    Case {
+        name: "frame_cube_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::CUBE),
+    },
+    Case {
+        name: "frame_sphere_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::SPHERE),
+    },
+    Case {
+        name: "frame_bunny_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::BUNNY),
     },
     Case {
         name: "lit_sphere_flat",
@@ -482,6 +498,31 @@ pub mod scene {
         };
         let policy = SplitPolicy::Budget(64);
         match render_painter(&r, &scene, fb, &mut st.vertices, memory, policy, &mut stats) {
+            Ok(()) => stats.0.pixels_covered,
+            Err(_) => 0,
+        }
+    }
+
+    /// The standard frame by Warnock's area subdivision (no depth buffer; the order table
+    /// holds the candidate lists: 2,585 entries at most on the bunny); returns the pixels
+    /// covered.
+    pub fn warnock(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
+        use zscan::visibility::{render_warnock, Area, WarnockMemory};
+        // 1 + 3 × 9 levels at 320 × 240.
+        let mut windows = [Area::DEFAULT; 28];
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = core_scene(&r, &objects);
+        let mut stats = StatsWithoutWritten::default();
+        let memory = WarnockMemory {
+            triangles: &mut st.triangles,
+            candidates: &mut st.order,
+            windows: &mut windows,
+        };
+        match render_warnock(&r, &scene, fb, &mut st.vertices, memory, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
