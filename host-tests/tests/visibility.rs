@@ -581,3 +581,109 @@ fn the_plan_of_random_single_meshes_draws_the_z_buffer_picture() {
     println!("random single meshes: {back_faces} of 120 drawn by back faces alone");
     assert!(back_faces > 5);
 }
+
+/// Two parallel surfaces `gap` apart at about 40 units from a camera whose far/near ratio
+/// is `ratio` (far 50), tilted so that their distance grows across the frame; the farther
+/// surface is drawn first, so that a depth tie keeps it (a wrong pixel).
+fn far_pair(gap: f64) -> (Vec<Vec3>, Vec<u16>, Vec<u8>) {
+    let mut vs = Vec::new();
+    for (z, _) in [(-34.0 - gap, 80u8), (-34.0, 200u8)] {
+        // A quad from x = −14 to 14, y = −9 to 9, its depth falling 0.4 per unit of x.
+        for (x, y) in [(-14.0, -9.0), (14.0, -9.0), (14.0, 9.0), (-14.0, 9.0)] {
+            vs.push(v(x, y, z - 0.4 * x));
+        }
+    }
+    let is = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7];
+    (vs, is, vec![80, 80, 200, 200])
+}
+
+fn far_camera(w: u16, h: u16, near: &str) -> Camera {
+    let lens = Lens::new(Angle::from_degrees(60), Coord::lit(near), Coord::lit("50"));
+    let up = Vec3::from_int(0, 1, 0);
+    Camera::look_at(
+        Vec3::from_int(0, 0, 6),
+        Vec3::ZERO,
+        up,
+        lens,
+        Viewport::new(w, h),
+    )
+    .unwrap()
+}
+
+/// Where methods fail, counted: a 16-bit z-buffer at far/near = 1000 and 10,000 against a
+/// 32-bit one on two close surfaces far away (z-fighting: the farther surface, drawn first,
+/// keeps the pixels where both store the same 16-bit depth); the scan-line and Warnock compare
+/// the 32-bit z-buffer's own depths (none differ); the painter orders the two planes exactly
+/// and paints the nearer last (it differs only where the 32-bit z-buffer itself ties).
+#[test]
+fn z_fighting_counted_by_depth_bits_and_far_near_ratio() {
+    use zscan::render::{BandScratch, PolygonRows, PreparedVertex};
+    use zscan_host::core_render::render_picture;
+    let (w, h) = (160u16, 120u16);
+    let mut counts = Vec::new();
+    for (near, ratio) in [("0.05", 1000), ("0.005", 10_000)] {
+        for gap in GAPS {
+            let (vs, is, ls) = far_pair(gap);
+            let objects = [soup_objects(&vs, &is, &ls)];
+            let scene = Scene {
+                camera: far_camera(w, h, near),
+                ambient: 0,
+                lights: &[],
+                objects: &objects,
+                background: 0,
+            };
+            let renderer = Renderer::for_scene(&scene).unwrap();
+            let mut scratch = vec![PreparedVertex::default(); vs.len()];
+            let mut table = vec![PolygonRows::default(); 4];
+            let scratch = BandScratch {
+                vertices: &mut scratch,
+                polygons: &mut table,
+            };
+            let (z16, _, _) =
+                render_picture::<u16, 4>(&renderer, &scene, (w, h), None, scratch).unwrap();
+            let method = |m: Visibility| {
+                render_visible(&renderer, &scene, (w, h), m, Some(64), 1)
+                    .unwrap()
+                    .0
+            };
+            let z32 = method(Visibility::ZBuffer);
+            // Both surfaces show where they should: the nearer over the farther.
+            let near_shown = z32.iter().filter(|&&p| p == 200).count();
+            assert!(near_shown > 2000, "{ratio} {gap}: {near_shown}");
+            let row = (
+                ratio,
+                gap,
+                differing(&z16, &z32),
+                differing(&method(Visibility::ScanLine), &z32),
+                differing(&method(Visibility::Warnock), &z32),
+                differing(&method(Visibility::Painter), &z32),
+            );
+            println!("far/near {ratio}, gap {gap}: 16-bit z-buffer, scan-line, Warnock, painter wrong against 32-bit: {:?}", (row.2, row.3, row.4, row.5));
+            counts.push(row);
+        }
+    }
+    for &(ratio, gap, z16, scan, warnock, painter) in &counts {
+        assert_eq!((scan, warnock), (0, 0), "{ratio} {gap}");
+        // The painter paints the nearer surface last: where it differs, the 32-bit z-buffer
+        // kept the farther one on a tie, which the 16-bit one then does too.
+        assert!(painter <= z16, "{ratio} {gap}");
+    }
+    // Z-fighting grows as the gap closes and as far/near grows (precision goes to the near
+    // plane: a 16-bit step is about 0.5 units at 40 units for far/near = 1000, 5 at 10,000).
+    let wrong = |r: i32, g: f64| counts.iter().find(|c| c.0 == r && c.1 == g).unwrap().2;
+    for pair in GAPS.windows(2) {
+        for ratio in [1000, 10_000] {
+            assert!(
+                wrong(ratio, pair[0]) <= wrong(ratio, pair[1]),
+                "{ratio} {pair:?}"
+            );
+        }
+    }
+    for gap in GAPS {
+        assert!(wrong(10_000, gap) >= wrong(1000, gap), "{gap}");
+    }
+    assert!(wrong(1000, 2.0) < wrong(1000, 0.1) && wrong(10_000, 0.1) > 0);
+}
+
+/// The gaps between the far surfaces of [`z_fighting_counted_by_depth_bits_and_far_near_ratio`].
+const GAPS: [f64; 4] = [2.0, 0.5, 0.1, 0.001];
