@@ -48,6 +48,8 @@ pub struct Storage {
     pub order: [u32; scene::MAX_STORED],
     /// The scan-line's active table.
     pub active: [u32; scene::MAX_STORED],
+    /// The painter's plane normals (24 bytes per front triangle).
+    pub normals: [zscan::visibility::Normal; scene::MAX_STORED],
 }
 
 impl Storage {
@@ -59,6 +61,7 @@ impl Storage {
             triangles: [zscan::visibility::StoredTriangle::DEFAULT; scene::MAX_STORED],
             order: [0; scene::MAX_STORED],
             active: [0; scene::MAX_STORED],
+            normals: [zscan::visibility::Normal::DEFAULT; scene::MAX_STORED],
         }
     }
 }
@@ -495,6 +498,7 @@ pub mod scene {
         let memory = PainterMemory {
             triangles: &mut st.triangles,
             order: &mut st.order,
+            normals: &mut st.normals,
         };
         let policy = SplitPolicy::Budget(64);
         match render_painter(&r, &scene, fb, &mut st.vertices, memory, policy, &mut stats) {

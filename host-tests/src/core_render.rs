@@ -18,8 +18,8 @@ use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
 use zscan::target::{DepthValue, Framebuffer};
 use zscan::visibility::{
-    render_back_faces, render_painter, render_scan_lines, render_warnock, Area, PainterMemory,
-    ScanLineMemory, SplitPolicy, StoredTriangle, Visibility, WarnockMemory,
+    render_back_faces, render_painter, render_scan_lines, render_warnock, Area, Normal,
+    PainterMemory, ScanLineMemory, SplitPolicy, StoredTriangle, Visibility, WarnockMemory,
 };
 
 use crate::scenes::Scene;
@@ -283,7 +283,14 @@ pub fn ram_bytes<const SB: u32>(
     scratch
         + match visibility {
             Visibility::BackFace => frame,
-            Visibility::Painter => frame + stored + order,
+            Visibility::Painter => {
+                let pieces = m.pieces as usize;
+                frame
+                    + stored
+                    + order
+                    + pieces * (size_of::<StoredTriangle<SB>>() + 4)
+                    + m.stored as usize * size_of::<Normal>()
+            }
             Visibility::ScanLine => {
                 band * (1 + depth_bytes) + stored + order + 4 * m.active_peak as usize
             }
@@ -330,9 +337,11 @@ pub fn render_visible<const SB: u32>(
                 Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
             let mut triangles = vec![StoredTriangle::default(); capacity];
             let mut order = vec![0u32; capacity];
+            let mut normals = vec![Normal::DEFAULT; capacity];
             let memory = PainterMemory {
                 triangles: &mut triangles,
                 order: &mut order,
+                normals: &mut normals,
             };
             let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
             render_painter(

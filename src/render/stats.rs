@@ -41,9 +41,10 @@ pub struct MethodCounts {
     pub painter_ambiguities: u32,
     /// Painter: splits (test 6).
     pub painter_splits: u32,
-    /// Painter, scan-line, Warnock: triangles stored (with the painter's pieces), the entries
-    /// of the triangle store the frame used.
+    /// Painter, scan-line, Warnock: the front triangles stored.
     pub stored: u32,
+    /// Painter: the pieces its splits stored after the front triangles.
+    pub pieces: u32,
     /// Scan-line: the most triangles in the active table at once.
     pub active_peak: u32,
     /// Warnock: the windows visited, by verdict.
@@ -116,6 +117,7 @@ impl core::ops::AddAssign for RenderStats {
         m.painter_ambiguities += n.painter_ambiguities;
         m.painter_splits += n.painter_splits;
         m.stored = m.stored.max(n.stored);
+        m.pieces = m.pieces.max(n.pieces);
         m.active_peak = m.active_peak.max(n.active_peak);
         m.candidates_peak = m.candidates_peak.max(n.candidates_peak);
         m.stack_peak = m.stack_peak.max(n.stack_peak);

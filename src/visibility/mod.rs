@@ -38,7 +38,7 @@ mod store;
 mod warnock;
 
 pub use backface::render_back_faces;
-pub use painter::{render_painter, PainterMemory, SplitPolicy, MAX_CUTS};
+pub use painter::{render_painter, Normal, PainterMemory, SplitPolicy, MAX_CUTS};
 pub use plan::{plan, Plan, PlanReason};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;

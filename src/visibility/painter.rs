@@ -31,7 +31,9 @@
 //! difference, two of them) and `n_d` = twice the screen area, `|n_d| < 2^59`: `i64`. A point's
 //! side of a plane is `n·(p − p0) < 2^62·2^29·2 + 2^59·2^32 < 2^93`: `i128`. A sample's side of
 //! a cut plane is exact in `i128` too (`sample_side`). Memory: a stored triangle (56 bytes)
-//! and a `u32` of order per front triangle and per piece; a piece has at most [`MAX_CUTS`] cuts.
+//! and a `u32` of order per front triangle and per piece, and a plane normal (24 bytes) per
+//! front triangle, computed once after the store is filled (the tests read it instead of
+//! recomputing the plane per pair); a piece has at most [`MAX_CUTS`] cuts.
 
 use core::cmp::Reverse;
 
@@ -67,6 +69,25 @@ pub struct PainterMemory<'a, const S: u32 = 4> {
     pub triangles: &'a mut [StoredTriangle<S>],
     /// The drawing order, one entry per stored triangle (as long as `triangles`).
     pub order: &'a mut [u32],
+    /// Each front triangle's plane normal, computed once (24 bytes per front triangle; the
+    /// pieces share their triangle's).
+    pub normals: &'a mut [Normal],
+}
+
+/// A front triangle's plane normal in `(X, Y, D)` (module doc), kept once per triangle by the
+/// painter ([`PainterMemory::normals`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Normal([i64; 3]);
+
+impl Normal {
+    /// An unused slot, for declaring a table (`[Normal::DEFAULT; N]`, also in a `static`).
+    pub const DEFAULT: Normal = Normal([0; 3]);
+}
+
+impl Default for Normal {
+    fn default() -> Self {
+        Normal::DEFAULT
+    }
 }
 
 /// Clears `frame`, stores every object's front triangles, orders them by Newell's tests
@@ -81,17 +102,30 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     stats: &mut T,
 ) -> Result<(), RenderError> {
     let counts = stats.counts();
-    let PainterMemory { triangles, order } = memory;
+    let PainterMemory {
+        triangles,
+        order,
+        normals,
+    } = memory;
     let capacity = triangles.len().min(order.len());
     let triangles = &mut triangles[..capacity];
     let order = &mut order[..capacity];
     let n = collect(renderer, scene, scratch, triangles, counts)?;
+    let full = RenderError::TriangleStoreFull {
+        capacity: normals.len(),
+    };
+    let normals = normals.get_mut(..n).ok_or(full)?;
+    for (normal, t) in normals.iter_mut().zip(triangles.iter()) {
+        *normal = Plane::of(t).normal();
+    }
+    let normals = &*normals;
     frame.clear(scene.background);
     sort_order(&mut order[..n], |i| Reverse(triangles[i].depth_range().1));
     without_depth(frame, |frame, depth| {
         let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
         let mut painter = Painter {
             triangles,
+            normals,
             order,
             count: n,
             stored: n,
@@ -102,19 +136,14 @@ pub fn render_painter<T: StatsSink, const S: u32>(
             ambiguities: 0,
         };
         while let Some(t) = painter.next(policy)? {
-            draw_piece(
-                scene,
-                &painter.triangles[t],
-                painter.triangles,
-                &mut target,
-                counts,
-            )?;
+            let all = (&*painter.triangles, normals);
+            draw_piece(scene, &painter.triangles[t], all, &mut target, counts)?;
         }
         let m = &mut counts.method;
         m.painter_tests = painter.tests;
         m.painter_ambiguities = painter.ambiguities;
         m.painter_splits = painter.splits as u32;
-        m.stored = painter.stored as u32;
+        m.pieces = (painter.stored - n) as u32;
         Ok(())
     })
 }
@@ -122,6 +151,8 @@ pub fn render_painter<T: StatsSink, const S: u32>(
 /// Newell's ordering loop over the stored triangles.
 struct Painter<'m, const S: u32> {
     triangles: &'m mut [StoredTriangle<S>],
+    /// The front triangles' plane normals (by base index).
+    normals: &'m [Normal],
     /// `order[..count]`: the triangles not painted yet; `order[..moved]` were moved to the
     /// front (Newell's marks), `order[moved..count]` are sorted by farthest depth, descending.
     order: &'m mut [u32],
@@ -180,9 +211,10 @@ impl<const S: u32> Painter<'_, S> {
                     // Split the one that crosses the other's plane (P first, as Newell);
                     // when neither does, one lies wholly in front of the other's plane and
                     // only the marks stood in the way: Q goes first.
-                    let cut = if straddles(self.triangles, p, q) {
+                    let all = (&*self.triangles, self.normals);
+                    let cut = if straddles(all, p, q) {
                         Some((0, q))
-                    } else if straddles(self.triangles, q, p) {
+                    } else if straddles(all, q, p) {
                         Some((k, p))
                     } else {
                         None
@@ -235,7 +267,7 @@ impl<const S: u32> Painter<'_, S> {
 
     /// Whether painting `a` before `b` is right wherever they overlap (tests 1–5), counted.
     fn may_precede(&mut self, a: usize, b: usize) -> bool {
-        match deciding_test(self.triangles, a, b) {
+        match deciding_test((self.triangles, self.normals), a, b) {
             Some(test) => {
                 self.tests[test] += 1;
                 true
@@ -290,7 +322,8 @@ impl<const S: u32> Painter<'_, S> {
 
 /// Which of tests 1–5 (module doc) shows that painting `a` before `b` is right wherever they
 /// overlap (0 for test 1), if one does.
-fn deciding_test<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> Option<usize> {
+fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<usize> {
+    let t = all.0;
     let (ta, tb) = (&t[a], &t[b]);
     let (a_near, _) = ta.depth_range();
     let (_, b_far) = tb.depth_range();
@@ -305,12 +338,12 @@ fn deciding_test<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> O
         return Some(1);
     }
     // 3. A behind B's plane (its corners, or a cut that says so).
-    let b_plane = Plane::of(&t[tb.base as usize]);
+    let b_plane = Plane::stored(all, tb.base);
     if ta.cuts.contains(&tb.base) || (0..3).all(|k| b_plane.behind(ta, k) >= 0) {
         return Some(2);
     }
     // 4. B in front of A's plane.
-    let a_plane = Plane::of(&t[ta.base as usize]);
+    let a_plane = Plane::stored(all, ta.base);
     if tb.cuts.contains(&(ta.base | CUT_FRONT)) || (0..3).all(|k| a_plane.behind(tb, k) <= 0) {
         return Some(3);
     }
@@ -320,12 +353,12 @@ fn deciding_test<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> O
 
 /// Whether `a`'s corners lie strictly on both sides of `b`'s plane, and `a` is not cut by it
 /// already.
-fn straddles<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> bool {
-    let (ta, tb) = (&t[a], &t[b]);
+fn straddles<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> bool {
+    let (ta, tb) = (&all.0[a], &all.0[b]);
     if ta.cuts.iter().any(|&c| c & !CUT_FRONT == tb.base) {
         return false;
     }
-    let plane = Plane::of(&t[tb.base as usize]);
+    let plane = Plane::stored(all, tb.base);
     let sides = [0, 1, 2].map(|k| plane.behind(ta, k));
     sides.contains(&1) && sides.contains(&-1)
 }
@@ -370,7 +403,24 @@ struct Plane {
     facing: i128,
 }
 
+/// The stored triangles and their bases' normals.
+type Store<'a, const S: u32> = (&'a [StoredTriangle<S>], &'a [Normal]);
+
 impl Plane {
+    /// The plane of base triangle `base`, from its stored normal.
+    fn stored<const S: u32>((t, normals): Store<'_, S>, base: u32) -> Plane {
+        let (t, n) = (&t[base as usize], normals[base as usize].0);
+        Plane {
+            n,
+            origin: [t.v[0].x as i64, t.v[0].y as i64, t.depth[0] as i64],
+            facing: if n[2] < 0 { -1 } else { 1 },
+        }
+    }
+
+    fn normal(&self) -> Normal {
+        Normal(self.n)
+    }
+
     fn of<const S: u32>(t: &StoredTriangle<S>) -> Plane {
         let p = |k: usize| [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
         let (o, b, c) = (p(0), p(1), p(2));
@@ -429,7 +479,7 @@ impl Plane {
 fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
     scene: &Scene<'_>,
     t: &StoredTriangle<S>,
-    all: &[StoredTriangle<S>],
+    all: Store<'_, S>,
     target: &mut RasterTarget<'_, NoDepth, C>,
     stats: &mut RenderStats,
 ) -> Result<(), RenderError> {
@@ -438,7 +488,7 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
         return Ok(());
     }
     let full = target.buffers();
-    let own = Plane::of(&all[t.base as usize]);
+    let own = Plane::stored(all, t.base);
     let ((x_lo, x_hi), _) = boxes(t);
     let (row_lo, row_hi) = t.rows();
     let cols = ((-((-x_lo) >> S)).max(full.x0), (x_hi >> S).min(full.x1 - 1));
@@ -446,7 +496,7 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
     for y in row_lo.max(full.y0)..=row_hi.min(full.y1 - 1) {
         let (mut a, mut b) = (cols.0, cols.1 + 1);
         for &cut in t.cuts.iter().filter(|&&c| c != NO_CUT) {
-            let plane = Plane::of(&all[(cut & !CUT_FRONT) as usize]);
+            let plane = Plane::stored(all, cut & !CUT_FRONT);
             let keep_behind = cut & CUT_FRONT == 0;
             let keep =
                 |x: i32| plane.sample_behind(&own, (x as i64) << S, (y as i64) << S) == keep_behind;

@@ -561,7 +561,7 @@ mod tests {
 
     #[test]
     fn coverage_and_depth_are_the_writers() {
-        let mut rng = XorShift::new(0x3a7_0017);
+        let mut rng = XorShift::new(0x03a7_0017);
         let w = Window::new(-24, -24, 24, 24);
         for _ in 0..400 {
             let t = random_triangle(&mut rng, 20 << 4);
@@ -585,7 +585,7 @@ mod tests {
 
     #[test]
     fn the_looker_is_exact_for_surrounding_and_safe_for_disjoint() {
-        let mut rng = XorShift::new(0x100c_e5);
+        let mut rng = XorShift::new(0x0010_0ce5);
         let w = Window::new(-24, -24, 24, 24);
         let mut seen = [0u32; 4];
         for _ in 0..300 {

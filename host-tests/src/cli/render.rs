@@ -1598,6 +1598,7 @@ fn finish<D: DepthValue + Into<u64>>(
                 "ambiguities": m.painter_ambiguities,
                 "splits": m.painter_splits,
                 "stored": m.stored,
+                "pieces": m.pieces,
             }),
             Visibility::ScanLine => serde_json::json!({
                 "active_peak": m.active_peak,
