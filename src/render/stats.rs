@@ -20,7 +20,8 @@ pub struct RenderStats {
     /// Polygons that went through the 3D clipper (in bands: once per band that runs it).
     pub clipped: u32,
     /// Triangles that covered or wrote at least one pixel of the buffers (in bands: counted
-    /// once per band that a triangle reaches).
+    /// once per band that a triangle reaches; by the painter once per piece, by Warnock's
+    /// subdivision once per window that draws it).
     pub triangles_drawn: u32,
     /// Pixels covered by drawn triangles inside the buffers (depth test passed or not).
     pub pixels_covered: u32,

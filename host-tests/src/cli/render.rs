@@ -48,7 +48,14 @@
 //! drawn 32, linearly in the stored depth, and the background 0. The stats JSON holds the
 //! core's [`RenderStats`] (with `--bands`, summed over the bands: the per-polygon counts then
 //! repeat once per band, the pixel counts add up to the frame's), the host's triangle count,
-//! frame size, bands and depth bits.
+//! frame size, bands and depth bits, the hidden-surface method (`visibility`), `ram_bytes`
+//! (every caller buffer the frame used: frame or band, depth samples, vertex scratch, polygon
+//! table, triangle store, orders and stacks as far as the frame filled them:
+//! [`ram_bytes`](crate::core_render::ram_bytes)), and `method`, the method's own counts
+//! (painter: `tests` decided by Newell's tests 1–5, `ambiguities`, `splits`, `pieces`;
+//! scan-line: `active_peak`; Warnock: `windows` visited and by verdict, stack peaks;
+//! `stored`: front triangles stored). With the stored-triangle methods `triangles_drawn`
+//! counts a triangle once per piece, band or window that draws it.
 use std::fs;
 use std::path::{Path, PathBuf};
 
