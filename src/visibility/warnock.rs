@@ -35,7 +35,14 @@
 //! a stack of candidate lists (a `u32` per candidate, each level's list after its parent's: at
 //! most the front triangles plus the lists along one path of the subdivision); a stack of
 //! windows (at most `1 + 3·levels`, `levels = ⌈log2 max(width, height)⌉`: 28 at 320 × 240).
-//! Exceeding either is an error naming it, drawn nothing wrong.
+//! Exceeding any is an error naming it and its capacity, never a wrong picture. No depth
+//! buffer: the claim is the 32-bit z-buffer's picture (a 16-bit one differs where its depths
+//! tie, `docs/BENCHMARKS.md`).
+//!
+//! Cost: a window is simple only when one triangle covers it or one surrounding triangle is in
+//! front, so along every edge of a mesh (two triangles sharing it, neither surrounding) the
+//! windows split down to pixels, and each window drawn sets up its triangle again: ×11–22 the
+//! z-buffer frame on the Cortex-M4 for the standard scenes (`docs/BENCHMARKS.md`).
 //!
 //! Numeric contract: corners within `±(2^28 − 1)` sub-pixel units, pixels within the frame
 //! (`< 2^16` pixels, `< 2^(16 + S) ≤ 2^32` sub-pixel units). Edge functions in `i64`: normal
