@@ -44,10 +44,12 @@ pub struct Storage {
     pub vertices: [PreparedVertex<4>; scene::MAX_VERTICES],
     /// The visibility methods' triangle store (56 bytes per front triangle or piece).
     pub triangles: [zscan::visibility::StoredTriangle<4>; scene::MAX_STORED],
-    /// Their order (painter, scan-line table).
+    /// Their order (painter, scan-line table; Warnock's candidate lists).
     pub order: [u32; scene::MAX_STORED],
     /// The scan-line's active table.
     pub active: [u32; scene::MAX_STORED],
+    /// The painter's plane normals (24 bytes per front triangle).
+    pub normals: [zscan::visibility::Normal; scene::MAX_STORED],
 }
 
 impl Storage {
@@ -59,6 +61,7 @@ impl Storage {
             triangles: [zscan::visibility::StoredTriangle::DEFAULT; scene::MAX_STORED],
             order: [0; scene::MAX_STORED],
             active: [0; scene::MAX_STORED],
+            normals: [zscan::visibility::Normal::DEFAULT; scene::MAX_STORED],
         }
     }
 }
@@ -236,6 +239,22 @@ pub const CASES: &[Case] = &[
     Case {
         name: "frame_bunny_scanline16",
         run: |fb, st| scene::scan_lines(fb, st, &scene::BUNNY, 16),
+    },
+    Case {
+        name: "frame_quad_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::QUAD),
+    },
+    Case {
+        name: "frame_cube_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::CUBE),
+    },
+    Case {
+        name: "frame_sphere_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::SPHERE),
+    },
+    Case {
+        name: "frame_bunny_warnock",
+        run: |fb, st| scene::warnock(fb, st, &scene::BUNNY),
     },
     Case {
         name: "lit_sphere_flat",
@@ -479,9 +498,35 @@ pub mod scene {
         let memory = PainterMemory {
             triangles: &mut st.triangles,
             order: &mut st.order,
+            normals: &mut st.normals,
         };
         let policy = SplitPolicy::Budget(64);
         match render_painter(&r, &scene, fb, &mut st.vertices, memory, policy, &mut stats) {
+            Ok(()) => stats.0.pixels_covered,
+            Err(_) => 0,
+        }
+    }
+
+    /// The standard frame by Warnock's area subdivision (no depth buffer; the order table
+    /// holds the candidate lists: 2,585 entries at most on the bunny); returns the pixels
+    /// covered.
+    pub fn warnock(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
+        use zscan::visibility::{render_warnock, Area, WarnockMemory};
+        // 1 + 3 × 9 levels at 320 × 240.
+        let mut windows = [Area::DEFAULT; 28];
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = core_scene(&r, &objects);
+        let mut stats = StatsWithoutWritten::default();
+        let memory = WarnockMemory {
+            triangles: &mut st.triangles,
+            candidates: &mut st.order,
+            windows: &mut windows,
+        };
+        match render_warnock(&r, &scene, fb, &mut st.vertices, memory, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }

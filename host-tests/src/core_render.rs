@@ -18,8 +18,8 @@ use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
 use zscan::target::{DepthValue, Framebuffer};
 use zscan::visibility::{
-    render_back_faces, render_painter, render_scan_lines, PainterMemory, ScanLineMemory,
-    SplitPolicy, StoredTriangle, Visibility,
+    render_back_faces, render_painter, render_scan_lines, render_warnock, Area, Normal,
+    PainterMemory, ScanLineMemory, SplitPolicy, StoredTriangle, Visibility, WarnockMemory,
 };
 
 use crate::scenes::Scene;
@@ -256,6 +256,54 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     Ok((pixels, depth, stats))
 }
 
+/// Windows on Warnock's stack in [`render_visible`]: `1 + 3 × 16` levels, any frame.
+pub const WARNOCK_WINDOWS: usize = 49;
+
+/// The caller memory, in bytes, of a `w × h` frame drawn by `visibility` with `band_rows`-row
+/// bands (scan-line, z-buffer) and `depth_bytes` per depth sample, for a scene of `vertices`
+/// vertices and `polygons` polygons, as [`render_visible`] and `zscan render` give it (the
+/// `ram_bytes` of `--stats`): the frame (the band, for the methods that draw in bands), the
+/// depth samples, the vertex scratch, the z-buffer's polygon table, and the triangle store,
+/// orders, active table and Warnock's stacks as far as the frame filled them (`stats.method`).
+pub fn ram_bytes<const SB: u32>(
+    visibility: Visibility,
+    (w, h): (u16, u16),
+    band_rows: u16,
+    (vertices, polygons): (usize, usize),
+    depth_bytes: usize,
+    stats: &RenderStats,
+) -> usize {
+    use core::mem::size_of;
+    let m = &stats.method;
+    let frame = w as usize * h as usize;
+    let band = w as usize * band_rows.clamp(1, h.max(1)) as usize;
+    let scratch = vertices * size_of::<PreparedVertex<SB>>();
+    let stored = m.stored as usize * size_of::<StoredTriangle<SB>>();
+    let order = 4 * m.stored as usize;
+    scratch
+        + match visibility {
+            Visibility::BackFace => frame,
+            Visibility::Painter => {
+                let pieces = m.pieces as usize;
+                frame
+                    + stored
+                    + order
+                    + pieces * (size_of::<StoredTriangle<SB>>() + 4)
+                    + m.stored as usize * size_of::<Normal>()
+            }
+            Visibility::ScanLine => {
+                band * (1 + depth_bytes) + stored + order + 4 * m.active_peak as usize
+            }
+            Visibility::Warnock => {
+                frame
+                    + stored
+                    + 4 * m.candidates_peak as usize
+                    + m.stack_peak as usize * size_of::<Area>()
+            }
+            Visibility::ZBuffer => band * (1 + depth_bytes) + polygons * size_of::<PolygonRows>(),
+        }
+}
+
 /// Renders `scene` into a whole `w × h` picture by the hidden-surface method `visibility`
 /// ([`zscan::visibility`]), with caller memory sized for the scene on the host: the painter
 /// with a split budget of `splits` (`None`: no test 6), the scan-line and z-buffer in bands of
@@ -289,9 +337,11 @@ pub fn render_visible<const SB: u32>(
                 Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
             let mut triangles = vec![StoredTriangle::default(); capacity];
             let mut order = vec![0u32; capacity];
+            let mut normals = vec![Normal::DEFAULT; capacity];
             let memory = PainterMemory {
                 triangles: &mut triangles,
                 order: &mut order,
+                normals: &mut normals,
             };
             let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
             render_painter(
@@ -333,6 +383,28 @@ pub fn render_visible<const SB: u32>(
                     }
                     Ok::<(), RenderError>(())
                 },
+            )?;
+            Ok((pixels, stats))
+        }
+        Visibility::Warnock => {
+            let mut pixels = vec![0u8; total];
+            let mut frame =
+                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            let mut triangles = vec![StoredTriangle::default(); capacity];
+            let mut candidates = vec![0u32; 2 * capacity];
+            let mut windows = vec![Area::DEFAULT; WARNOCK_WINDOWS];
+            let memory = WarnockMemory {
+                triangles: &mut triangles,
+                candidates: &mut candidates,
+                windows: &mut windows,
+            };
+            render_warnock(
+                renderer,
+                scene,
+                &mut frame,
+                &mut scratch,
+                memory,
+                &mut stats,
             )?;
             Ok((pixels, stats))
         }

@@ -95,3 +95,16 @@ fn fnv1a_known_values() {
     assert_eq!(cases::fnv1a(b"a"), 0xe40c_292c);
     assert_eq!(cases::fnv1a(b"foobar"), 0xbf9c_f968);
 }
+
+/// The Warnock cases draw the z-buffer frame's picture (the standard scenes have no two
+/// surfaces within a 16-bit depth step, so the 16-bit `frame_*` equals the 32-bit z-buffer
+/// Warnock matches) and report the pixels they drew.
+#[test]
+fn warnock_cases_draw_the_z_buffer_frames() {
+    for scene in ["quad", "cube", "sphere", "bunny"] {
+        let (px, pixels) = draw(case(&format!("frame_{scene}_warnock")));
+        let (_, z) = draw(case(&format!("frame_{scene}")));
+        assert_eq!(pixels, z, "{scene}");
+        assert!(px > 0, "{scene}");
+    }
+}

@@ -266,6 +266,7 @@ fn visibility_methods_from_the_command_line() {
     for (scene, method) in [
         ("standard_bunny.toml", "scanline"),
         ("standard_sphere.toml", "backface"),
+        ("standard_bunny.toml", "warnock"),
     ] {
         let path = scenes().join(scene);
         let (z_png, _, _) = render(&path, &dir.join("z"), &[]);
@@ -294,6 +295,19 @@ fn visibility_methods_from_the_command_line() {
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
         assert_eq!(json["visibility"], method);
+        // Every method reports its caller memory: at least the 320 × 240 frame or band.
+        assert!(json["ram_bytes"].as_u64().unwrap() > 320, "{json}");
+        if method == "warnock" {
+            let windows = &json["method"];
+            let parts: u64 = ["empty", "one", "front", "pixel", "split"]
+                .iter()
+                .map(|v| windows[format!("windows_{v}")].as_u64().unwrap())
+                .sum();
+            assert!(
+                parts > 0 && parts == windows["windows"].as_u64().unwrap(),
+                "{json}"
+            );
+        }
     }
     let path = scenes().join("standard_sphere.toml");
     let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
@@ -361,10 +375,10 @@ fn visibility_methods_from_the_command_line() {
             "-o",
             dir.join("p.png").to_str().unwrap(),
         ])
-        .args(["--visibility", "warnock"])
+        .args(["--visibility", "newell"])
         .output()
         .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr)
-        .contains("one of auto, backface, painter, scanline, zbuffer"));
+        .contains("one of auto, backface, painter, scanline, warnock, zbuffer"));
 }

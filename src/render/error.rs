@@ -56,6 +56,12 @@ pub enum RenderError {
         /// Windows the stack holds.
         capacity: usize,
     },
+    /// Warnock's subdivision needed more candidate entries (the lists of the windows being
+    /// subdivided, one after the other) than the caller's memory holds.
+    SubdivisionCandidatesFull {
+        /// Entries the candidate stack holds.
+        capacity: usize,
+    },
     /// The scan-line method's active table holds fewer triangles than reach one band.
     ActiveTableFull {
         /// Triangles the active table holds.
@@ -110,6 +116,10 @@ impl core::fmt::Display for RenderError {
             RenderError::SubdivisionStackFull { capacity } => write!(
                 f,
                 "Warnock's subdivision needs more than its stack of {capacity} windows"
+            ),
+            RenderError::SubdivisionCandidatesFull { capacity } => write!(
+                f,
+                "Warnock's subdivision needs more than its {capacity} candidate entries"
             ),
             RenderError::ActiveTableFull { capacity } => write!(
                 f,

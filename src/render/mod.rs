@@ -60,5 +60,5 @@ pub use error::RenderError;
 pub use frame::render_scene;
 pub use polygon_rows::PolygonRows;
 pub use renderer::Renderer;
-pub use stats::{RenderStats, StatsSink, StatsWithoutWritten};
+pub use stats::{MethodCounts, RenderStats, StatsSink, StatsWithoutWritten};
 pub use vertex_stage::PreparedVertex;

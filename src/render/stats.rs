@@ -20,13 +20,40 @@ pub struct RenderStats {
     /// Polygons that went through the 3D clipper (in bands: once per band that runs it).
     pub clipped: u32,
     /// Triangles that covered or wrote at least one pixel of the buffers (in bands: counted
-    /// once per band that a triangle reaches).
+    /// once per band that a triangle reaches; by the painter once per piece, by Warnock's
+    /// subdivision once per window that draws it).
     pub triangles_drawn: u32,
     /// Pixels covered by drawn triangles inside the buffers (depth test passed or not).
     pub pixels_covered: u32,
     /// Pixels that passed the depth test and were written (not counted, 0, when drawn for a
     /// [`StatsWithoutWritten`]).
     pub pixels_written: u32,
+    /// The visibility methods' own counts (zero for the others).
+    pub method: MethodCounts,
+}
+
+/// What a visibility method ([`crate::visibility`]) did beyond drawing: a few adds per
+/// triangle, pair or window, none per pixel.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MethodCounts {
+    /// Painter: pair tests decided by Newell's test 1 to 5 (index 0 is test 1).
+    pub painter_tests: [u32; 5],
+    /// Painter: pairs no test 1–5 ordered (a triangle moved before another, or split).
+    pub painter_ambiguities: u32,
+    /// Painter: splits (test 6).
+    pub painter_splits: u32,
+    /// Painter, scan-line, Warnock: the front triangles stored.
+    pub stored: u32,
+    /// Painter: the pieces its splits stored after the front triangles.
+    pub pieces: u32,
+    /// Scan-line: the most triangles in the active table at once.
+    pub active_peak: u32,
+    /// Warnock: the windows visited, by verdict.
+    pub windows: crate::visibility::WindowCounts,
+    /// Warnock: the most candidate entries on its stack at once.
+    pub candidates_peak: u32,
+    /// Warnock: the most windows on its stack at once.
+    pub stack_peak: u32,
 }
 
 /// Where the renderer adds its counts, and whether its span loops count written pixels:
@@ -84,5 +111,17 @@ impl core::ops::AddAssign for RenderStats {
         self.triangles_drawn += o.triangles_drawn;
         self.pixels_covered += o.pixels_covered;
         self.pixels_written += o.pixels_written;
+        let (m, n) = (&mut self.method, o.method);
+        for (a, b) in m.painter_tests.iter_mut().zip(n.painter_tests) {
+            *a += b;
+        }
+        m.painter_ambiguities += n.painter_ambiguities;
+        m.painter_splits += n.painter_splits;
+        m.stored = m.stored.max(n.stored);
+        m.pieces = m.pieces.max(n.pieces);
+        m.active_peak = m.active_peak.max(n.active_peak);
+        m.candidates_peak = m.candidates_peak.max(n.candidates_peak);
+        m.stack_peak = m.stack_peak.max(n.stack_peak);
+        m.windows += n.windows;
     }
 }

@@ -31,7 +31,9 @@
 //! difference, two of them) and `n_d` = twice the screen area, `|n_d| < 2^59`: `i64`. A point's
 //! side of a plane is `n·(p − p0) < 2^62·2^29·2 + 2^59·2^32 < 2^93`: `i128`. A sample's side of
 //! a cut plane is exact in `i128` too (`sample_side`). Memory: a stored triangle (56 bytes)
-//! and a `u32` of order per front triangle and per piece; a piece has at most [`MAX_CUTS`] cuts.
+//! and a `u32` of order per front triangle and per piece, and a plane normal (24 bytes) per
+//! front triangle, computed once after the store is filled (the tests read it instead of
+//! recomputing the plane per pair); a piece has at most [`MAX_CUTS`] cuts.
 
 use core::cmp::Reverse;
 
@@ -67,6 +69,25 @@ pub struct PainterMemory<'a, const S: u32 = 4> {
     pub triangles: &'a mut [StoredTriangle<S>],
     /// The drawing order, one entry per stored triangle (as long as `triangles`).
     pub order: &'a mut [u32],
+    /// Each front triangle's plane normal, computed once (24 bytes per front triangle; the
+    /// pieces share their triangle's).
+    pub normals: &'a mut [Normal],
+}
+
+/// A front triangle's plane normal in `(X, Y, D)` (module doc), kept once per triangle by the
+/// painter ([`PainterMemory::normals`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Normal([i64; 3]);
+
+impl Normal {
+    /// An unused slot, for declaring a table (`[Normal::DEFAULT; N]`, also in a `static`).
+    pub const DEFAULT: Normal = Normal([0; 3]);
+}
+
+impl Default for Normal {
+    fn default() -> Self {
+        Normal::DEFAULT
+    }
 }
 
 /// Clears `frame`, stores every object's front triangles, orders them by Newell's tests
@@ -81,33 +102,48 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     stats: &mut T,
 ) -> Result<(), RenderError> {
     let counts = stats.counts();
-    let PainterMemory { triangles, order } = memory;
+    let PainterMemory {
+        triangles,
+        order,
+        normals,
+    } = memory;
     let capacity = triangles.len().min(order.len());
     let triangles = &mut triangles[..capacity];
     let order = &mut order[..capacity];
     let n = collect(renderer, scene, scratch, triangles, counts)?;
+    let full = RenderError::TriangleStoreFull {
+        capacity: normals.len(),
+    };
+    let normals = normals.get_mut(..n).ok_or(full)?;
+    for (normal, t) in normals.iter_mut().zip(triangles.iter()) {
+        *normal = Plane::of(t).normal();
+    }
+    let normals = &*normals;
     frame.clear(scene.background);
     sort_order(&mut order[..n], |i| Reverse(triangles[i].depth_range().1));
     without_depth(frame, |frame, depth| {
         let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
         let mut painter = Painter {
             triangles,
+            normals,
             order,
             count: n,
             stored: n,
             splits: 0,
             moves: 0,
             moved: 0,
+            tests: [0; 5],
+            ambiguities: 0,
         };
         while let Some(t) = painter.next(policy)? {
-            draw_piece(
-                scene,
-                &painter.triangles[t],
-                painter.triangles,
-                &mut target,
-                counts,
-            )?;
+            let all = (&*painter.triangles, normals);
+            draw_piece(scene, &painter.triangles[t], all, &mut target, counts)?;
         }
+        let m = &mut counts.method;
+        m.painter_tests = painter.tests;
+        m.painter_ambiguities = painter.ambiguities;
+        m.painter_splits = painter.splits as u32;
+        m.pieces = (painter.stored - n) as u32;
         Ok(())
     })
 }
@@ -115,6 +151,8 @@ pub fn render_painter<T: StatsSink, const S: u32>(
 /// Newell's ordering loop over the stored triangles.
 struct Painter<'m, const S: u32> {
     triangles: &'m mut [StoredTriangle<S>],
+    /// The front triangles' plane normals (by base index).
+    normals: &'m [Normal],
     /// `order[..count]`: the triangles not painted yet; `order[..moved]` were moved to the
     /// front (Newell's marks), `order[moved..count]` are sorted by farthest depth, descending.
     order: &'m mut [u32],
@@ -125,6 +163,9 @@ struct Painter<'m, const S: u32> {
     splits: usize,
     /// Entries moved to the front since the last paint or split.
     moves: usize,
+    /// Pair tests decided by test 1–5, and pairs none decided (`MethodCounts`).
+    tests: [u32; 5],
+    ambiguities: u32,
 }
 
 impl<const S: u32> Painter<'_, S> {
@@ -144,13 +185,14 @@ impl<const S: u32> Painter<'_, S> {
                 self.paint_first();
                 return Ok(Some(p));
             };
+            self.ambiguities += 1;
             let q = (self.order[k] & !MOVED) as usize;
             // Q first, marked: when it was not moved yet, or when the tests show that Q may
             // be painted before P (a cut piece meets the triangle that cut it), as long as
             // moves since the last paint stay below the entries left (beyond, the marked
             // entries go round a cycle of the tests).
-            let reorder = self.order[k] & MOVED == 0
-                || (self.moves < self.count && may_precede(self.triangles, q, p));
+            let reorder =
+                self.order[k] & MOVED == 0 || (self.moves < self.count && self.may_precede(q, p));
             if reorder {
                 self.order[..=k].rotate_right(1);
                 self.order[0] |= MOVED;
@@ -169,9 +211,10 @@ impl<const S: u32> Painter<'_, S> {
                     // Split the one that crosses the other's plane (P first, as Newell);
                     // when neither does, one lies wholly in front of the other's plane and
                     // only the marks stood in the way: Q goes first.
-                    let cut = if straddles(self.triangles, p, q) {
+                    let all = (&*self.triangles, self.normals);
+                    let cut = if straddles(all, p, q) {
                         Some((0, q))
-                    } else if straddles(self.triangles, q, p) {
+                    } else if straddles(all, q, p) {
                         Some((k, p))
                     } else {
                         None
@@ -202,22 +245,35 @@ impl<const S: u32> Painter<'_, S> {
     /// The first entry after the first whose triangle `p` may not be painted before, if any:
     /// every moved entry, then the sorted ones while their farthest depth is beyond `p`'s
     /// nearest (test 1 holds for the rest).
-    fn blocker(&self, p: usize) -> Option<usize> {
+    fn blocker(&mut self, p: usize) -> Option<usize> {
         let (p_near, _) = self.triangles[p].depth_range();
-        let entry = |k: usize| (self.order[k] & !MOVED) as usize;
-        if let Some(k) = (1..self.moved).find(|&k| !may_precede(self.triangles, p, entry(k))) {
-            return Some(k);
+        for k in 1..self.moved {
+            if !self.may_precede(p, (self.order[k] & !MOVED) as usize) {
+                return Some(k);
+            }
         }
         for k in self.moved.max(1)..self.count {
-            let q = entry(k);
+            let q = (self.order[k] & !MOVED) as usize;
             if self.triangles[q].depth_range().1 <= p_near {
+                self.tests[0] += 1;
                 return None;
             }
-            if !may_precede(self.triangles, p, q) {
+            if !self.may_precede(p, q) {
                 return Some(k);
             }
         }
         None
+    }
+
+    /// Whether painting `a` before `b` is right wherever they overlap (tests 1–5), counted.
+    fn may_precede(&mut self, a: usize, b: usize) -> bool {
+        match deciding_test((self.triangles, self.normals), a, b) {
+            Some(test) => {
+                self.tests[test] += 1;
+                true
+            }
+            None => false,
+        }
     }
 
     /// Removes the first entry (painted).
@@ -264,43 +320,45 @@ impl<const S: u32> Painter<'_, S> {
     }
 }
 
-/// Whether painting `a` before `b` is right wherever they overlap (tests 1–5, module doc).
-fn may_precede<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> bool {
+/// Which of tests 1–5 (module doc) shows that painting `a` before `b` is right wherever they
+/// overlap (0 for test 1), if one does.
+fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<usize> {
+    let t = all.0;
     let (ta, tb) = (&t[a], &t[b]);
     let (a_near, _) = ta.depth_range();
     let (_, b_far) = tb.depth_range();
     // 1. Depth ranges.
     if a_near >= b_far {
-        return true;
+        return Some(0);
     }
     // 2. Screen boxes, x then y.
     let (ax, ay) = boxes(ta);
     let (bx, by) = boxes(tb);
     if ax.1 < bx.0 || bx.1 < ax.0 || ay.1 < by.0 || by.1 < ay.0 {
-        return true;
+        return Some(1);
     }
     // 3. A behind B's plane (its corners, or a cut that says so).
-    let b_plane = Plane::of(&t[tb.base as usize]);
+    let b_plane = Plane::stored(all, tb.base);
     if ta.cuts.contains(&tb.base) || (0..3).all(|k| b_plane.behind(ta, k) >= 0) {
-        return true;
+        return Some(2);
     }
     // 4. B in front of A's plane.
-    let a_plane = Plane::of(&t[ta.base as usize]);
+    let a_plane = Plane::stored(all, ta.base);
     if tb.cuts.contains(&(ta.base | CUT_FRONT)) || (0..3).all(|k| a_plane.behind(tb, k) <= 0) {
-        return true;
+        return Some(3);
     }
     // 5. Projections disjoint.
-    separated(ta, tb) || separated(tb, ta)
+    (separated(ta, tb) || separated(tb, ta)).then_some(4)
 }
 
 /// Whether `a`'s corners lie strictly on both sides of `b`'s plane, and `a` is not cut by it
 /// already.
-fn straddles<const S: u32>(t: &[StoredTriangle<S>], a: usize, b: usize) -> bool {
-    let (ta, tb) = (&t[a], &t[b]);
+fn straddles<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> bool {
+    let (ta, tb) = (&all.0[a], &all.0[b]);
     if ta.cuts.iter().any(|&c| c & !CUT_FRONT == tb.base) {
         return false;
     }
-    let plane = Plane::of(&t[tb.base as usize]);
+    let plane = Plane::stored(all, tb.base);
     let sides = [0, 1, 2].map(|k| plane.behind(ta, k));
     sides.contains(&1) && sides.contains(&-1)
 }
@@ -345,7 +403,24 @@ struct Plane {
     facing: i128,
 }
 
+/// The stored triangles and their bases' normals.
+type Store<'a, const S: u32> = (&'a [StoredTriangle<S>], &'a [Normal]);
+
 impl Plane {
+    /// The plane of base triangle `base`, from its stored normal.
+    fn stored<const S: u32>((t, normals): Store<'_, S>, base: u32) -> Plane {
+        let (t, n) = (&t[base as usize], normals[base as usize].0);
+        Plane {
+            n,
+            origin: [t.v[0].x as i64, t.v[0].y as i64, t.depth[0] as i64],
+            facing: if n[2] < 0 { -1 } else { 1 },
+        }
+    }
+
+    fn normal(&self) -> Normal {
+        Normal(self.n)
+    }
+
     fn of<const S: u32>(t: &StoredTriangle<S>) -> Plane {
         let p = |k: usize| [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
         let (o, b, c) = (p(0), p(1), p(2));
@@ -404,7 +479,7 @@ impl Plane {
 fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
     scene: &Scene<'_>,
     t: &StoredTriangle<S>,
-    all: &[StoredTriangle<S>],
+    all: Store<'_, S>,
     target: &mut RasterTarget<'_, NoDepth, C>,
     stats: &mut RenderStats,
 ) -> Result<(), RenderError> {
@@ -413,7 +488,7 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
         return Ok(());
     }
     let full = target.buffers();
-    let own = Plane::of(&all[t.base as usize]);
+    let own = Plane::stored(all, t.base);
     let ((x_lo, x_hi), _) = boxes(t);
     let (row_lo, row_hi) = t.rows();
     let cols = ((-((-x_lo) >> S)).max(full.x0), (x_hi >> S).min(full.x1 - 1));
@@ -421,7 +496,7 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
     for y in row_lo.max(full.y0)..=row_hi.min(full.y1 - 1) {
         let (mut a, mut b) = (cols.0, cols.1 + 1);
         for &cut in t.cuts.iter().filter(|&&c| c != NO_CUT) {
-            let plane = Plane::of(&all[(cut & !CUT_FRONT) as usize]);
+            let plane = Plane::stored(all, cut & !CUT_FRONT);
             let keep_behind = cut & CUT_FRONT == 0;
             let keep =
                 |x: i32| plane.sample_behind(&own, (x as i64) << S, (y as i64) << S) == keep_behind;

@@ -81,6 +81,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
             active[at] = t;
             live += 1;
         }
+        counts.method.active_peak = counts.method.active_peak.max(live as u32);
         let cells = width as usize * rows as usize;
         let too_small = RenderError::BufferTooSmall;
         let mut frame =

@@ -171,6 +171,7 @@ pub(crate) fn collect<const S: u32>(
         renderer.collect_levels(object, scratch, stats, &mut collector)?;
         len = collector.len;
     }
+    stats.method.stored = len as u32;
     Ok(len)
 }
 

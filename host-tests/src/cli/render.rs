@@ -48,7 +48,14 @@
 //! drawn 32, linearly in the stored depth, and the background 0. The stats JSON holds the
 //! core's [`RenderStats`] (with `--bands`, summed over the bands: the per-polygon counts then
 //! repeat once per band, the pixel counts add up to the frame's), the host's triangle count,
-//! frame size, bands and depth bits.
+//! frame size, bands and depth bits, the hidden-surface method (`visibility`), `ram_bytes`
+//! (every caller buffer the frame used: frame or band, depth samples, vertex scratch, polygon
+//! table, triangle store, orders and stacks as far as the frame filled them:
+//! [`ram_bytes`](crate::core_render::ram_bytes)), and `method`, the method's own counts
+//! (painter: `tests` decided by Newell's tests 1–5, `ambiguities`, `splits`, `pieces`;
+//! scan-line: `active_peak`; Warnock: `windows` visited and by verdict, stack peaks;
+//! `stored`: front triangles stored). With the stored-triangle methods `triangles_drawn`
+//! counts a triangle once per piece, band or window that draws it.
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -88,8 +95,9 @@ pub struct RenderArgs {
     #[arg(long, value_name = "ROWS")]
     pub bands: Option<u16>,
     /// Hidden-surface method: auto (zscan::visibility::plan: back faces alone for one convex
-    /// culled object, else the z-buffer), backface, painter, scanline or zbuffer.
-    /// Back faces alone and the painter need no depth buffer (no --depth-out); the scan-line
+    /// culled object, else the z-buffer), backface, painter, scanline, warnock or zbuffer.
+    /// Back faces alone, the painter and Warnock's subdivision need no depth buffer (no
+    /// --depth-out); the scan-line
     /// draws in bands of --bands rows (default 1) through one band of depth.
     #[arg(long, value_name = "METHOD", default_value = "zbuffer", value_parser = parse_visibility)]
     pub visibility: VisibilityArg,
@@ -1538,7 +1546,11 @@ fn finish<D: DepthValue + Into<u64>>(
             (p.visibility, Some(p.reason))
         }
     };
-    if args.depth_out.is_some() && matches!(visibility, Visibility::BackFace | Visibility::Painter)
+    if args.depth_out.is_some()
+        && matches!(
+            visibility,
+            Visibility::BackFace | Visibility::Painter | Visibility::Warnock
+        )
     {
         return Err(format!(
             "--depth-out: --visibility {} keeps no depth buffer",
@@ -1557,11 +1569,61 @@ fn finish<D: DepthValue + Into<u64>>(
     }
     if let Some(p) = &args.stats {
         let s = frame.stats;
+        let band_rows = args
+            .bands
+            .unwrap_or(if visibility == Visibility::ScanLine {
+                1
+            } else {
+                h
+            })
+            .clamp(1, h);
+        let objects = scene.core_objects(None)?;
+        let vertices: usize = objects.iter().map(|o| o.mesh.vertices().len()).sum();
+        let polygons: usize = objects.iter().map(|o| o.mesh.polygon_count()).sum();
+        // The scan-line's band depth is 32-bit (render_visible), the z-buffer's the scene's.
+        let depth_bytes = match visibility {
+            Visibility::ZBuffer => D::BITS as usize / 8,
+            _ => 4,
+        };
+        let ram_bytes = crate::core_render::ram_bytes::<SUBPIXEL_BITS>(
+            visibility,
+            (w, h),
+            band_rows,
+            (vertices, polygons),
+            depth_bytes,
+            &s,
+        );
+        let m = s.method;
+        let method = match visibility {
+            Visibility::Painter => serde_json::json!({
+                "tests": m.painter_tests,
+                "ambiguities": m.painter_ambiguities,
+                "splits": m.painter_splits,
+                "stored": m.stored,
+                "pieces": m.pieces,
+            }),
+            Visibility::ScanLine => serde_json::json!({
+                "active_peak": m.active_peak,
+                "stored": m.stored,
+            }),
+            Visibility::Warnock => serde_json::json!({
+                "windows": m.windows.total(),
+                "windows_empty": m.windows.empty,
+                "windows_one": m.windows.one,
+                "windows_front": m.windows.front,
+                "windows_pixel": m.windows.pixel,
+                "windows_split": m.windows.split,
+                "candidates_peak": m.candidates_peak,
+                "stack_peak": m.stack_peak,
+                "stored": m.stored,
+            }),
+            Visibility::BackFace | Visibility::ZBuffer => serde_json::json!({}),
+        };
         let json = serde_json::json!({
             "width": w,
             "height": h,
             "bands": frame.bands,
-            "band_rows": args.bands.unwrap_or(if visibility == Visibility::ScanLine { 1 } else { h }).clamp(1, h),
+            "band_rows": band_rows,
             "depth_bits": D::BITS,
             "visibility": visibility.name(),
             "plan_reason": reason.map(|r| r.to_string()),
@@ -1575,6 +1637,8 @@ fn finish<D: DepthValue + Into<u64>>(
             "triangles_drawn": s.triangles_drawn,
             "pixels_covered": s.pixels_covered,
             "pixels_written": s.pixels_written,
+            "ram_bytes": ram_bytes,
+            "method": method,
         });
         if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
             fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
