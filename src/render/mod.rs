@@ -41,6 +41,7 @@
 //! `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
 
 mod bands;
+mod compact;
 pub(crate) mod consumer;
 mod cull;
 mod error;
@@ -53,8 +54,9 @@ mod stats;
 mod vertex_stage;
 
 pub use crate::clip::frustum::MAX_POLYGON_VERTICES;
-pub use bands::{render_in_bands, BandScratch};
-pub use error::RenderError;
+pub use bands::{render_in_bands, render_in_compact_bands, BandScratch, CompactBandScratch};
+pub use compact::{CompactSizes, CompactVertex, PolygonTop};
+pub use error::{BandPart, RenderError};
 pub use frame::render_scene;
 pub use polygon_rows::PolygonRows;
 pub use renderer::Renderer;
