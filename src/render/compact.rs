@@ -43,7 +43,7 @@
 use core::cell::Cell;
 
 use super::consumer::{Corner, LevelWriter, TriangleConsumer};
-use super::cull::screen_area;
+use super::cull::{front_triangle, screen_area};
 use super::polygon_stage::{draw_counted, fan};
 use super::{RenderError, RenderStats, Renderer, StatsSink};
 use crate::clip::frustum::MAX_POLYGON_VERTICES;
@@ -213,6 +213,9 @@ impl<const S: u32> Renderer<S> {
     /// The vertex stage for `object` (the `index`-th of its scene) into `vertices` (and
     /// `levels` for a lit Gouraud object), each as long as its vertex table (the caller
     /// sliced them); [`RenderError::NotCompact`] names the first vertex without a compact form.
+    /// Out of line, as the two below: the frame's stack peak is then the deepest of the three
+    /// passes, not their sum (measured on the Cortex-M0 footprint firmware).
+    #[inline(never)]
     pub(super) fn prepare_compact(
         &self,
         (index, object): (usize, &Object<'_>),
@@ -243,6 +246,7 @@ impl<const S: u32> Renderer<S> {
 
     /// The table entry of each polygon of `object` into `table` (as long as its polygon
     /// table), from its compact vertices; counts `polygons_in` and `culled`.
+    #[inline(never)]
     pub(super) fn compact_table(
         &self,
         object: &Object<'_>,
@@ -253,6 +257,17 @@ impl<const S: u32> Renderer<S> {
     ) -> Result<(), RenderError> {
         let cull = object.cull_back_faces;
         let screen = |i: u16| vertices.get(i as usize).map(|v| v.screen::<S>());
+        if let PolygonSizes::Uniform(3) = object.mesh.sizes() {
+            stats.polygons_in += table.len().min(object.mesh.polygon_count()) as u32;
+            // Within a span below 2^15 on both axes every coordinate difference fits `i16`,
+            // and the cull's cross product fits `i32` (module doc).
+            if narrow_span(vertices) {
+                classify_triangles::<S, true>(object, vertices, table, rows, stats);
+            } else {
+                classify_triangles::<S, false>(object, vertices, table, rows, stats);
+            }
+            return Ok(());
+        }
         for (entry, poly) in table.iter_mut().zip(object.mesh.polygons()) {
             stats.polygons_in += 1;
             if poly.len() > MAX_POLYGON_VERTICES {
@@ -289,6 +304,7 @@ impl<const S: u32> Renderer<S> {
 
     /// Draws the polygons of `object` that meet the band's rows through the band's buffers
     /// (`frame`, `depth`), from its compact scratch and table.
+    #[inline(never)]
     pub(super) fn draw_compact_band<D: DepthValue, T: StatsSink>(
         &self,
         object: &Object<'_>,
@@ -343,6 +359,13 @@ impl<const S: u32> Renderer<S> {
                 };
                 pass.run::<S>(stats, level, writer)
             }
+            Intensities::PerVertex(t) => {
+                // Read from the table as the full frame reads its copy in the prepared vertex.
+                let level = |_, poly: &[u16], k: usize| {
+                    t.get(poly[k] as usize).copied().unwrap_or(0) as i32
+                };
+                pass.run::<S>(stats, level, writer)
+            }
             _ => pass.run::<S>(
                 stats,
                 |pi, poly: &[u16], k| object.intensity(pi, poly[k]) as i32,
@@ -376,55 +399,88 @@ impl BandPass<'_, '_> {
         // Entries `lo ..= g1` may meet the band; 254 and 255 never pass this test (g1 ≤ 253).
         let lo = g0 - spread;
         let width = (g1 - lo + 1) as u32;
-        // An entry at or after the band's first row group starts inside the band when groups
-        // are rows: drawn without reading its vertices.
-        let exact = shift == 0;
-        let mut one = |pi: usize, poly: &[u16], e: PolygonTop| -> Result<(), RenderError> {
-            let starts_inside = exact && e.0 as i32 >= g0 && e != PolygonTop::TALL;
-            if starts_inside || self.meets::<S>(poly) {
-                let corner = |k: usize| {
-                    let v = self.vertices.get(poly[k] as usize).copied();
-                    let v = v.unwrap_or_default();
-                    Corner {
-                        screen: v.screen(),
-                        depth: v.depth,
-                        view: Vec3::ZERO,
-                        attrs: [level(pi, poly, k)],
-                    }
-                };
-                if let [_, _, _] = poly {
-                    draw_counted(pi, [corner(0), corner(1), corner(2)], &mut draw, stats)?;
-                } else {
-                    fan(pi, poly.len(), corner, &mut draw, stats)?;
-                }
-            }
-            Ok(())
-        };
         let tall = self.rows.tall_seen;
-        let candidate = |e: PolygonTop| {
-            ((e.0 as i32).wrapping_sub(lo) as u32) < width || (tall && e == PolygonTop::TALL)
-        };
+        let (level, draw) = (&level, &mut draw);
         if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
-            let indices = self.object.mesh.indices();
-            for (pi, &e) in self.table.iter().enumerate() {
-                if candidate(e) {
-                    if let Some(poly) = indices.get(3 * pi..3 * pi + 3) {
-                        one(pi, poly, e)?;
-                    }
-                }
+            // The scan is the band's per-polygon cost: out of line, four entries a step, one
+            // subtraction and one comparison each; only candidates come back here.
+            let mut pi = 0;
+            loop {
+                pi = match tall {
+                    false => next_candidate::<false>(self.table, pi, lo, width),
+                    true => next_candidate::<true>(self.table, pi, lo, width),
+                };
+                let Some(&e) = self.table.get(pi) else {
+                    return Ok(());
+                };
+                self.visit_triangle::<S>(pi, e, g0, stats, level, draw)?;
+                pi += 1;
             }
-        } else {
-            for (pi, (poly, &e)) in self.object.mesh.polygons().zip(self.table).enumerate() {
-                if candidate(e) {
-                    one(pi, poly, e)?;
-                }
+        }
+        for (pi, (poly, &e)) in self.object.mesh.polygons().zip(self.table).enumerate() {
+            if is_candidate::<true>(e, lo, width) {
+                self.visit::<S>(pi, poly, e, g0, stats, level, draw)?;
             }
         }
         Ok(())
     }
 
-    /// True when the rows of `poly` (from its compact vertices) meet the band.
+    /// [`visit`](Self::visit) for triangle `pi` of a triangle mesh (out of line, so that the
+    /// scan keeps its registers).
     #[inline(never)]
+    fn visit_triangle<const S: u32>(
+        &self,
+        pi: usize,
+        e: PolygonTop,
+        g0: i32,
+        stats: &mut RenderStats,
+        level: &impl Fn(usize, &[u16], usize) -> i32,
+        draw: &mut impl TriangleConsumer<S, 1>,
+    ) -> Result<(), RenderError> {
+        match self.object.mesh.indices().get(3 * pi..3 * pi + 3) {
+            Some(poly) => self.visit::<S>(pi, poly, e, g0, stats, level, draw),
+            None => Ok(()),
+        }
+    }
+
+    /// Draws polygon `pi` (`poly`, table entry `e`) when its rows meet the band (group `g0`
+    /// is the band's first): without reading its vertices when groups are rows and it starts
+    /// inside the band, else from their rows.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn visit<const S: u32>(
+        &self,
+        pi: usize,
+        poly: &[u16],
+        e: PolygonTop,
+        g0: i32,
+        stats: &mut RenderStats,
+        level: &impl Fn(usize, &[u16], usize) -> i32,
+        draw: &mut impl TriangleConsumer<S, 1>,
+    ) -> Result<(), RenderError> {
+        let starts_inside = self.rows.shift == 0 && e.0 as i32 >= g0 && e != PolygonTop::TALL;
+        if !starts_inside && !self.meets::<S>(poly) {
+            return Ok(());
+        }
+        let corner = |k: usize| {
+            let v = self.vertices.get(poly[k] as usize).copied();
+            let v = v.unwrap_or_default();
+            Corner {
+                screen: v.screen(),
+                depth: v.depth,
+                view: Vec3::ZERO,
+                attrs: [level(pi, poly, k)],
+            }
+        };
+        if let [_, _, _] = poly {
+            draw_counted(pi, [corner(0), corner(1), corner(2)], draw, stats)
+        } else {
+            fan(pi, poly.len(), corner, draw, stats)
+        }
+    }
+
+    /// True when the rows of `poly` (from its compact vertices) meet the band.
+    #[inline(always)]
     fn meets<const S: u32>(&self, poly: &[u16]) -> bool {
         let (mut lo, mut hi) = (i32::MAX, i32::MIN);
         for &i in poly {
@@ -432,6 +488,90 @@ impl BandPass<'_, '_> {
             (lo, hi) = (lo.min(y), hi.max(y));
         }
         ceil_shift(hi, S) > self.band.0 && ceil_shift(lo, S) < self.band.1
+    }
+}
+
+/// True when the compact vertices' `x` and `y` each span less than `2^15` sub-pixel units
+/// (so every difference of two coordinates is within `±(2^15 − 1)`).
+fn narrow_span(vertices: &[CompactVertex]) -> bool {
+    let (mut x0, mut x1, mut y0, mut y1) = (i16::MAX, i16::MIN, i16::MAX, i16::MIN);
+    for v in vertices {
+        (x0, x1) = (x0.min(v.x), x1.max(v.x));
+        (y0, y1) = (y0.min(v.y), y1.max(v.y));
+    }
+    let span = |lo: i16, hi: i16| (hi as i32 - lo as i32) < 1 << 15;
+    vertices.is_empty() || span(x0, x1) && span(y0, y1)
+}
+
+/// The table entries of a triangle mesh's triangles (see `compact_table`), culled in `i32`
+/// when `NARROW` (every coordinate difference within `±(2^15 − 1)`: each product below
+/// `2^30`, their difference below `2^31`, the sign of [`front_triangle`]'s exact sum), else
+/// by [`front_triangle`]. Counts `culled`.
+#[inline(always)]
+fn classify_triangles<const S: u32, const NARROW: bool>(
+    object: &Object<'_>,
+    vertices: &[CompactVertex],
+    table: &mut [PolygonTop],
+    rows: &mut Rows,
+    stats: &mut RenderStats,
+) {
+    let cull = object.cull_back_faces;
+    let front = |a: CompactVertex, b: CompactVertex, c: CompactVertex| {
+        if NARROW {
+            let (bx, by) = (b.x as i32 - a.x as i32, b.y as i32 - a.y as i32);
+            let (cx, cy) = (c.x as i32 - a.x as i32, c.y as i32 - a.y as i32);
+            bx * cy - by * cx < 0
+        } else {
+            front_triangle::<S>(a.screen(), b.screen(), c.screen())
+        }
+    };
+    let vertex = |i: u16| vertices.get(i as usize).copied();
+    for (entry, t) in table.iter_mut().zip(object.mesh.indices().chunks_exact(3)) {
+        *entry = match (vertex(t[0]), vertex(t[1]), vertex(t[2])) {
+            (Some(a), Some(b), Some(c)) => {
+                if cull && !front(a, b, c) {
+                    stats.culled += 1;
+                    PolygonTop::NEVER
+                } else {
+                    let (lo, hi) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
+                    rows.entry(ceil_shift(lo as i32, S), ceil_shift(hi as i32, S))
+                }
+            }
+            _ => PolygonTop::NEVER,
+        };
+    }
+}
+
+/// True when entry `e` may meet a band whose candidates are the groups `lo .. lo + width` (or
+/// the tall code, when `TALL`). `e − lo` is taken in `u32`: below `lo` it wraps above `width`.
+#[inline(always)]
+fn is_candidate<const TALL: bool>(e: PolygonTop, lo: i32, width: u32) -> bool {
+    ((e.0 as i32).wrapping_sub(lo) as u32) < width || (TALL && e == PolygonTop::TALL)
+}
+
+/// The index of the first entry of `table` from `from` on that is a candidate
+/// ([`is_candidate`]), or the table's length. Four entries a step, with no other value live
+/// than the bounds: on a Cortex-M0 about five instructions per entry.
+#[inline(never)]
+fn next_candidate<const TALL: bool>(
+    table: &[PolygonTop],
+    from: usize,
+    lo: i32,
+    width: u32,
+) -> usize {
+    let hit = |e: &PolygonTop| is_candidate::<TALL>(*e, lo, width);
+    let mut at = from.min(table.len());
+    let mut steps = table[at..].chunks_exact(4);
+    for c in &mut steps {
+        if hit(&c[0]) || hit(&c[1]) || hit(&c[2]) || hit(&c[3]) {
+            break;
+        }
+        at += 4;
+    }
+    // Within the step that hit, or the last entries.
+    match table[at..].iter().position(hit) {
+        Some(k) => at + k,
+        None => table.len(),
     }
 }
 
@@ -444,6 +584,84 @@ mod tests {
     fn compact_sizes_are_eight_and_one_bytes() {
         assert_eq!(core::mem::size_of::<CompactVertex>(), 8);
         assert_eq!(core::mem::size_of::<PolygonTop>(), 1);
+    }
+
+    /// The scan finds exactly the candidates, from any start, with or without the tall code.
+    #[test]
+    fn next_candidate_finds_each_candidate_in_order() {
+        let codes: [u8; 23] = [
+            255, 3, 254, 7, 9, 255, 0, 8, 253, 255, 255, 255, 255, 6, 254, 10, 12, 255, 5, 5, 1,
+            255, 9,
+        ];
+        let table = codes.map(PolygonTop);
+        for (lo, width) in [(5, 4), (-3, 5), (0, 254), (11, 3), (250, 4)] {
+            for tall in [false, true] {
+                let expect: heapless::Vec<usize, 32> = (0..table.len())
+                    .filter(|&i| {
+                        let e = codes[i] as i32;
+                        (lo..lo + width as i32).contains(&e) && e < 254 || tall && e == 254
+                    })
+                    .collect();
+                let mut found = heapless::Vec::<usize, 32>::new();
+                let mut at = 0;
+                loop {
+                    at = match tall {
+                        false => next_candidate::<false>(&table, at, lo, width),
+                        true => next_candidate::<true>(&table, at, lo, width),
+                    };
+                    if at == table.len() {
+                        break;
+                    }
+                    found.push(at).unwrap();
+                    at += 1;
+                }
+                assert_eq!(found, expect, "lo {lo} width {width} tall {tall}");
+            }
+        }
+    }
+
+    /// The `i32` cull of narrow spans agrees with `front_triangle` at the range's extremes and
+    /// on random triangles; a span of `2^15` is not narrow.
+    #[test]
+    fn narrow_cull_agrees_with_front_triangle() {
+        let mut rng = crate::test_rng::XorShift(0x5EED_0F_C0_4AC7u64);
+        let v = |x: i32, y: i32| CompactVertex {
+            x: x as i16,
+            y: y as i16,
+            depth: 0,
+        };
+        let mut agree = 0;
+        for n in 0..20_000 {
+            let (base, span) = if n % 2 == 0 {
+                (-16384, 32767)
+            } else {
+                (-40, 80)
+            };
+            let mut c = || base + (rng.next_u64() % (span as u64 + 1)) as i32;
+            let mut t = [v(c(), c()), v(c(), c()), v(c(), c())];
+            if n < 8 {
+                let (lo, hi) = (-16384, 16383);
+                t = [
+                    v(lo, lo),
+                    v(hi, [lo, hi][n % 2]),
+                    v([lo, hi][n / 2 % 2], hi),
+                ];
+                if n >= 4 {
+                    t.swap(1, 2);
+                }
+            }
+            assert!(narrow_span(&t));
+            let (a, b, c2) = (t[0], t[1], t[2]);
+            let (bx, by) = (b.x as i32 - a.x as i32, b.y as i32 - a.y as i32);
+            let (cx, cy) = (c2.x as i32 - a.x as i32, c2.y as i32 - a.y as i32);
+            let narrow = bx * cy - by * cx < 0;
+            let exact = front_triangle::<4>(a.screen(), b.screen(), c2.screen());
+            assert_eq!(narrow, exact, "{t:?}");
+            agree += exact as u32;
+        }
+        assert!((5_000..15_000).contains(&agree), "{agree}");
+        assert!(!narrow_span(&[v(-16384, 0), v(16384, 0)]));
+        assert!(narrow_span(&[v(-16384, 0), v(16383, 0)]));
     }
 
     /// The row-group shift keeps every top row of the picture below the codes, and a polygon
