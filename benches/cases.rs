@@ -768,7 +768,7 @@ pub mod scene {
     const COMPACT_BAND: usize = super::WIDTH as usize * COMPACT_ROWS as usize;
 
     /// The memory of a compact banded frame of any standard scene: one band of pixels and
-    /// 16-bit depths, 8 bytes per vertex, 1 per polygon (`CompactSizes::bytes`: 29,906 bytes
+    /// 16-bit depths, 8 bytes per vertex, 1 per polygon (`CompactSizes::bytes`: 28,946 bytes
     /// for the bunny).
     pub struct CompactMemory {
         /// The band's pixels.

@@ -417,11 +417,22 @@ fn short_memory_is_named_and_the_formula_adds_up() {
             + sizes.levels
             + sizes.polygons * size_of::<PolygonTop>()
     );
-    // The bunny of the module doc: 320 × 240 in bands of 12 rows, 16-bit depth.
+    // The bunny of the module doc: 320 × 240 in bands of 11 rows, 16-bit depth.
     let bunny = CompactSizes {
         vertices: 1839,
         levels: 0,
         polygons: 3674,
     };
-    assert_eq!(bunny.bytes(320, 12, 2), 29_906);
+    assert_eq!(bunny.bytes(320, 11, 2), 28_946);
+    // The tallest band within a budget: the bunny's 28,946 bytes hold 11 rows, one byte less
+    // 10; below the scratch alone, none; a large budget, the whole picture.
+    assert_eq!(bunny.band_rows_within(28_946, 320, 240, 2), 11);
+    assert_eq!(bunny.band_rows_within(28_945, 320, 240, 2), 10);
+    assert_eq!(bunny.band_rows_within(18_385, 320, 240, 2), 0);
+    assert_eq!(bunny.band_rows_within(1 << 20, 320, 240, 2), 240);
+    for budget in [18_386, 20_000, 25_000, 40_000] {
+        let rows = bunny.band_rows_within(budget, 320, 240, 2);
+        assert!(bunny.bytes(320, rows, 2) <= budget, "{budget}");
+        assert!(rows == 240 || bunny.bytes(320, rows + 1, 2) > budget, "{budget}");
+    }
 }

@@ -13,8 +13,9 @@
 //!
 //! Once per frame, for each object: the vertex stage into [`CompactVertex`]es (and, for lit
 //! Gouraud objects only, one level byte per vertex), then one pass over the polygons that
-//! culls them (the exact projected signed area of `cull.rs`) and stores each front polygon's
-//! top row in one byte. For each band: the table is scanned, and the polygons whose rows meet
+//! culls them (the exact projected signed area of `cull.rs`; for triangles in `i32` when the
+//! vertices span less than `2^15` sub-pixel units, where that is exact) and stores each front
+//! polygon's top row in one byte. For each band: the table is scanned, and the polygons whose rows meet
 //! the band are drawn from the compact vertices as fans through the one seam (`Corner`s to a
 //! [`LevelWriter`]), in mesh order, so that every pixel sees its polygons in the order the full
 //! frame draws them: the same pixels, depths and counts.
@@ -27,7 +28,16 @@
 //!
 //! ([`CompactSizes::of`] counts `V`, `L` and `P` for a scene, [`CompactSizes::bytes`] adds
 //! them up.) The standard bunny (1,839 vertices, 3,674 triangles, levels given per vertex) at
-//! 320 × 240 in bands of 12 rows with 16-bit depth: 11,520 + 14,712 + 3,674 = 29,906 bytes.
+//! 320 × 240 in bands of 11 rows with 16-bit depth: 10,560 + 14,712 + 3,674 = 28,946 bytes
+//! (`scripts/footprint.sh` draws it so in 32 KB of RAM, the stack included).
+//!
+//! # Cost
+//! Beside the full frame's work: each band scans the whole table (out of line, about five
+//! Cortex-M0 instructions per entry), and a polygon that crosses a band boundary is set up
+//! again by the writer in every band it reaches (rows outside the band are not walked). On
+//! the standard bunny in 22 bands of 11 rows (Cortex-M0): 540 of the 1,903 triangle set-ups
+//! are repeats, about 1.0 M instructions, and the scans about 0.5 M; the vertex stage and the
+//! culling run once, as in the full frame (`docs/BENCHMARKS.md`, "32 KB footprint").
 //!
 //! # Numeric contract
 //! A [`CompactVertex`] holds the projector's sub-pixel position as `i16` (checked per vertex)
@@ -145,6 +155,30 @@ impl CompactSizes {
             + core::mem::size_of::<CompactVertex>() * self.vertices
             + self.levels
             + self.polygons
+    }
+
+    /// The tallest band (at most `height` rows) whose frame fits `budget` bytes by
+    /// [`bytes`](Self::bytes), or 0 when not even one row fits. The budget is the caller
+    /// memory only: a device keeps room for its stack beside it (the footprint firmware's
+    /// stack needs 3.3 KB more on a Cortex-M0, `docs/BENCHMARKS.md`).
+    pub const fn band_rows_within(
+        &self,
+        budget: usize,
+        width: u16,
+        height: u16,
+        depth_bytes: usize,
+    ) -> u16 {
+        let fixed = self.bytes(width, 0, depth_bytes);
+        let row = width as usize * (1 + depth_bytes);
+        if budget < fixed || row == 0 {
+            return if budget >= fixed { height } else { 0 };
+        }
+        let rows = (budget - fixed) / row;
+        if rows > height as usize {
+            height
+        } else {
+            rows as u16
+        }
     }
 }
 

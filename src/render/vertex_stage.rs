@@ -3,7 +3,9 @@
 //! and, when it is inside the frustum (near, far and the guard band), its projection
 //! (sub-pixel screen position and normalised depth); for lit Gouraud objects its lit level,
 //! for levels given per vertex a copy of that level. Results go to caller scratch, one
-//! [`PreparedVertex`] (28 bytes) per mesh vertex.
+//! [`PreparedVertex`] (28 bytes) per mesh vertex, or, through the same loop
+//! (`Renderer::prepare_with`, which hands each vertex to a store of the caller's), to the
+//! 8-byte [`CompactVertex`](super::CompactVertex) of compact bands (`compact.rs`).
 //!
 //! Numeric contract: mesh coordinates `|c| ≤ 1024`
 //! ([`MAX_MESH_COORD_BITS`](crate::geometry::mesh::MAX_MESH_COORD_BITS)); observer-frame
