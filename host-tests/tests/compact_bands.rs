@@ -433,6 +433,9 @@ fn short_memory_is_named_and_the_formula_adds_up() {
     for budget in [18_386, 20_000, 25_000, 40_000] {
         let rows = bunny.band_rows_within(budget, 320, 240, 2);
         assert!(bunny.bytes(320, rows, 2) <= budget, "{budget}");
-        assert!(rows == 240 || bunny.bytes(320, rows + 1, 2) > budget, "{budget}");
+        assert!(
+            rows == 240 || bunny.bytes(320, rows + 1, 2) > budget,
+            "{budget}"
+        );
     }
 }
