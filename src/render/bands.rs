@@ -284,29 +284,16 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
     let band_rows = band_rows.clamp(1, height.max(1));
     let sizes = CompactSizes::of(scene);
     let band = width as usize * band_rows as usize;
-    let parts = [
-        (BandPart::Pixels, pixels.len(), band),
-        (BandPart::Depths, depths.len(), band),
-        (BandPart::Vertices, vertices.len(), sizes.vertices),
-        (BandPart::Levels, levels.len(), sizes.levels),
-        (BandPart::Polygons, polygons.len(), sizes.polygons),
-    ];
-    for (part, given, needed) in parts {
-        if given < needed {
-            return Err(RenderError::BandMemoryTooSmall {
-                part,
-                given,
-                needed,
-            }
-            .into());
-        }
-    }
-    let phong = |o: &Object<'_>| {
-        matches!(o.intensities, Intensities::Lit { .. }) && o.shade == ShadeMode::Phong
-    };
-    if scene.objects.iter().any(phong) {
-        return Err(RenderError::PhongUnsupported.into());
-    }
+    check_compact_memory(
+        scene,
+        [
+            (BandPart::Pixels, pixels.len(), band),
+            (BandPart::Depths, depths.len(), band),
+            (BandPart::Vertices, vertices.len(), sizes.vertices),
+            (BandPart::Levels, levels.len(), sizes.levels),
+            (BandPart::Polygons, polygons.len(), sizes.polygons),
+        ],
+    )?;
     // Once per frame: the vertex stage and each polygon's table entry.
     let mut rows = Rows::new(height, band_rows);
     let (mut at, mut lat, mut pat) = (0, 0, 0);
@@ -352,4 +339,28 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
         },
         band_done,
     )
+}
+
+/// Refuses a compact frame before any work: a part of its memory shorter than the scene
+/// needs (`(part, given, needed)`), or a Phong object (its normals have no compact form).
+fn check_compact_memory(
+    scene: &Scene<'_>,
+    parts: [(BandPart, usize, usize); 5],
+) -> Result<(), RenderError> {
+    for (part, given, needed) in parts {
+        if given < needed {
+            return Err(RenderError::BandMemoryTooSmall {
+                part,
+                given,
+                needed,
+            });
+        }
+    }
+    let phong = |o: &Object<'_>| {
+        matches!(o.intensities, Intensities::Lit { .. }) && o.shade == ShadeMode::Phong
+    };
+    if scene.objects.iter().any(phong) {
+        return Err(RenderError::PhongUnsupported);
+    }
+    Ok(())
 }

@@ -502,6 +502,8 @@ impl BandPass<'_, '_> {
             Corner {
                 screen: v.screen(),
                 depth: v.depth,
+                // The level writer reads no observer position (only Phong and the clipper do,
+                // and neither runs here).
                 view: Vec3::ZERO,
                 attrs: [level(pi, poly, k)],
             }
