@@ -50,6 +50,8 @@ pub struct Storage {
     pub active: [u32; scene::MAX_STORED],
     /// The painter's plane normals (24 bytes per front triangle).
     pub normals: [zscan::visibility::Normal; scene::MAX_STORED],
+    /// The compact banded frame's memory (band, compact vertices, polygon table).
+    pub compact: scene::CompactMemory,
 }
 
 impl Storage {
@@ -62,6 +64,7 @@ impl Storage {
             order: [0; scene::MAX_STORED],
             active: [0; scene::MAX_STORED],
             normals: [zscan::visibility::Normal::DEFAULT; scene::MAX_STORED],
+            compact: scene::CompactMemory::new(),
         }
     }
 }
@@ -201,6 +204,10 @@ pub const CASES: &[Case] = &[
         run: |fb, st| scene::frame_in_bands(fb, st, &scene::BUNNY, 16),
     },
     Case {
+        name: "frame_bunny_compact",
+        run: |fb, st| scene::frame_compact(fb, st, &scene::BUNNY),
+    },
+    Case {
         name: "frame_quad_backface",
         run: |fb, st| scene::back_faces(fb, st, &scene::QUAD),
     },
@@ -324,7 +331,15 @@ pub const CASES: &[Case] = &[
 
 /// FNV-1a (32-bit) of a byte slice: the framebuffer checksum every platform prints.
 pub fn fnv1a(bytes: &[u8]) -> u32 {
-    let mut h: u32 = 0x811c_9dc5;
+    fnv1a_from(FNV1A_START, bytes)
+}
+
+/// FNV-1a's starting value (the hash of no bytes).
+pub const FNV1A_START: u32 = 0x811c_9dc5;
+
+/// FNV-1a continued from the hash `h` of the bytes before `bytes`: a picture streamed band by
+/// band, `fnv1a_from(fnv1a_from(FNV1A_START, band0), band1)…`, hashes to its [`fnv1a`].
+pub fn fnv1a_from(mut h: u32, bytes: &[u8]) -> u32 {
     for &b in bytes {
         h ^= b as u32;
         h = h.wrapping_mul(0x0100_0193);
@@ -462,7 +477,7 @@ pub mod scene {
     /// Largest vertex table of the scenes (the bunny's).
     pub const MAX_VERTICES: usize = 1839;
     /// Largest polygon table of the scenes (the bunny's).
-    const MAX_POLYGONS: usize = 3674;
+    pub const MAX_POLYGONS: usize = 3674;
     /// Stored triangles of the visibility methods: every bunny triangle, or the quad's and
     /// cube's clipped fans and the painter's pieces.
     pub const MAX_STORED: usize = 4096;
@@ -789,6 +804,92 @@ pub mod scene {
             });
         }
         written
+    }
+
+    /// Rows of a compact band ([`frame_compact`]): the tallest band whose memory, with the
+    /// bunny's compact scratch, leaves room for the stack in 32 KB of RAM
+    /// (`scripts/footprint.sh`).
+    pub const COMPACT_ROWS: u16 = 11;
+    const COMPACT_BAND: usize = super::WIDTH as usize * COMPACT_ROWS as usize;
+
+    /// The memory of a compact banded frame of any standard scene: one band of pixels and
+    /// 16-bit depths, 8 bytes per vertex, 1 per polygon (`CompactSizes::bytes`: 28,946 bytes
+    /// for the bunny).
+    pub struct CompactMemory {
+        /// The band's pixels.
+        pub pixels: [u8; COMPACT_BAND],
+        /// The band's depth samples.
+        pub depths: [u16; COMPACT_BAND],
+        /// Compact vertices.
+        pub vertices: [zscan::render::CompactVertex; MAX_VERTICES],
+        /// The polygon table.
+        pub polygons: [zscan::render::PolygonTop; MAX_POLYGONS],
+    }
+
+    impl CompactMemory {
+        /// Zeroed buffers.
+        pub fn new() -> CompactMemory {
+            CompactMemory {
+                pixels: [0; COMPACT_BAND],
+                depths: [0; COMPACT_BAND],
+                vertices: [zscan::render::CompactVertex::default(); MAX_VERTICES],
+                polygons: [zscan::render::PolygonTop::default(); MAX_POLYGONS],
+            }
+        }
+    }
+
+    impl Default for CompactMemory {
+        fn default() -> CompactMemory {
+            CompactMemory::new()
+        }
+    }
+
+    /// SCENES.md's frame of `s` (exact Gouraud, 16-bit depth) drawn in compact bands of
+    /// [`COMPACT_ROWS`] rows through `m` ([`zscan::render::render_in_compact_bands`]), each
+    /// finished band handed to `band_done` where a device would flush it. Written pixels are
+    /// not counted, as in [`frame`]; returns the pixels covered.
+    pub fn compact_bands<E: From<zscan::render::RenderError>>(
+        s: &StandardScene,
+        m: &mut CompactMemory,
+        band_done: impl FnMut(&mut Framebuffer<'_>) -> Result<(), E>,
+    ) -> Result<u32, E> {
+        use zscan::render::{render_in_compact_bands, CompactBandScratch};
+        let Some(camera) = camera() else { return Ok(0) };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return Ok(0);
+        };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = core_scene(&r, &objects);
+        let mut stats = StatsWithoutWritten::default();
+        let mut band_done = band_done;
+        render_in_compact_bands(
+            &r,
+            &scene,
+            (&mut m.pixels, &mut m.depths),
+            (super::WIDTH, super::HEIGHT, COMPACT_ROWS),
+            CompactBandScratch {
+                vertices: &mut m.vertices,
+                levels: &mut [],
+                polygons: &mut m.polygons,
+            },
+            &mut stats,
+            |frame, _| band_done(frame),
+        )?;
+        Ok(stats.0.pixels_covered)
+    }
+
+    /// [`compact_bands`] with the harness's compact memory, each band copied into `fb`;
+    /// returns the pixels covered.
+    pub fn frame_compact(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
+        let drawn = compact_bands(s, &mut st.compact, |frame| {
+            for (y, row) in frame.rows() {
+                if let Some(out) = fb.row_mut(y) {
+                    out.copy_from_slice(row);
+                }
+            }
+            Ok::<(), zscan::render::RenderError>(())
+        });
+        drawn.unwrap_or(0)
     }
 
     /// The same frame drawn through one 320×`rows` band buffer pair with

@@ -542,9 +542,21 @@ mod tests {
             })),
             RenderError::BufferTooSmall,
             RenderError::Lighting(LightingError::TooManyLights),
+            RenderError::BandMemoryTooSmall {
+                part: crate::render::BandPart::Vertices,
+                given: 100,
+                needed: 1839,
+            },
+            RenderError::NotCompact {
+                object: 2,
+                vertex: 17,
+            },
         ]);
         assert!(t[0].contains("482"), "{}", t[0]);
         assert!(t[2].contains("24"), "{}", t[2]);
+        let sizes = ["100", "1839", "compact vertices"];
+        assert!(sizes.iter().all(|w| t[9].contains(w)), "{}", t[9]);
+        assert!(t[10].contains("vertex 17 of object 2"), "{}", t[10]);
     }
 
     /// `?` goes from a stage error into [`Error`] and from both into a boxed error.

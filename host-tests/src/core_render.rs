@@ -420,3 +420,81 @@ pub fn render_visible<const SB: u32>(
         }
     }
 }
+
+/// Renders `scene` into a whole `w × h` picture with the core's
+/// [`render_in_compact_bands`](zscan::render::render_in_compact_bands) in bands of
+/// `band_rows` rows, with exactly the memory [`CompactSizes::of`](zscan::render::CompactSizes)
+/// gives; each finished band is copied out where a device would flush it. Returns the
+/// picture's indices and depths, row-major, and the summed statistics.
+pub fn render_compact_picture<D: DepthValue, const SB: u32>(
+    renderer: &Renderer<SB>,
+    scene: &CoreScene<'_>,
+    (w, h): (u16, u16),
+    band_rows: u16,
+) -> Result<(Vec<u8>, Vec<D>, RenderStats), RenderError> {
+    use zscan::render::{
+        render_in_compact_bands, CompactBandScratch, CompactSizes, CompactVertex, PolygonTop,
+    };
+    let sizes = CompactSizes::of(scene);
+    let n = w as usize * band_rows.clamp(1, h.max(1)) as usize;
+    let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
+    let mut vertices = vec![CompactVertex::default(); sizes.vertices];
+    let mut levels = vec![0u8; sizes.levels];
+    let mut polygons = vec![PolygonTop::default(); sizes.polygons];
+    let total = w as usize * h as usize;
+    let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
+    let mut stats = RenderStats::default();
+    render_in_compact_bands(
+        renderer,
+        scene,
+        (&mut band_pixels, &mut band_depths),
+        (w, h, band_rows),
+        CompactBandScratch {
+            vertices: &mut vertices,
+            levels: &mut levels,
+            polygons: &mut polygons,
+        },
+        &mut stats,
+        |frame, zb| {
+            for (y, row) in frame.rows() {
+                let at = y as usize * w as usize;
+                pixels[at..at + w as usize].copy_from_slice(row);
+                if let Some(zrow) = zb.row(y) {
+                    depth[at..at + w as usize].copy_from_slice(zrow);
+                }
+            }
+            Ok::<(), RenderError>(())
+        },
+    )?;
+    Ok((pixels, depth, stats))
+}
+
+impl CoreMesh {
+    /// The frame in compact bands of `band_rows` rows
+    /// ([`render_compact_picture`]).
+    pub fn render_compact<D: DepthValue>(
+        &self,
+        shade: ShadeMode,
+        band_rows: u16,
+    ) -> Result<CoreFrame<D>, String> {
+        let vp = *self.camera.viewport();
+        let object = self.object(shade)?;
+        let objects = [object];
+        let scene = CoreScene {
+            camera: self.camera,
+            objects: &objects,
+            background: 0,
+            ambient: 0,
+            lights: &[],
+        };
+        let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
+        let (pixels, depth, stats) =
+            render_compact_picture(&renderer, &scene, (vp.width, vp.height), band_rows)
+                .map_err(|e| e.to_string())?;
+        Ok(CoreFrame {
+            pixels,
+            depth,
+            stats,
+        })
+    }
+}

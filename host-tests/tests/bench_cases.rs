@@ -108,3 +108,26 @@ fn warnock_cases_draw_the_z_buffer_frames() {
         assert!(px > 0, "{scene}");
     }
 }
+
+/// The compact banded bunny is the full frame's picture, and streaming FNV-1a band by band
+/// (as the footprint firmware does) gives the whole frame's checksum.
+#[test]
+fn compact_bunny_is_the_frame_and_streams_its_checksum() {
+    let (px, frame) = draw(case("frame_bunny"));
+    let (cpx, compact) = draw(case("frame_bunny_compact"));
+    assert!(px > 10_000 && cpx == px, "{cpx} against {px}");
+    assert!(compact == frame);
+    let mut memory = Box::new(cases::scene::CompactMemory::new());
+    let mut h = cases::FNV1A_START;
+    let mut bands = 0;
+    let covered = cases::scene::compact_bands(&cases::scene::BUNNY, &mut memory, |band| {
+        for (_, row) in band.rows() {
+            h = cases::fnv1a_from(h, row);
+        }
+        bands += 1;
+        Ok::<(), zscan::render::RenderError>(())
+    });
+    assert_eq!(covered, Ok(px));
+    assert_eq!(bands, 240 / cases::scene::COMPACT_ROWS as usize);
+    assert_eq!(h, cases::fnv1a(&frame));
+}

@@ -5,14 +5,17 @@
 //! Numeric contract: band rows are `0..=65535` (a viewport's height is a `u16`); see
 //! `polygon_rows.rs` for the table entries.
 
+use super::compact::{vertex_lit, CompactObject, Rows};
 use super::cull::front_triangle;
 use super::polygon_rows::triangle_rows;
 use super::polygon_stage::{Path, PolygonStage};
 use super::{
-    render_scene, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
+    render_scene, BandPart, CompactSizes, CompactVertex, PolygonRows, PolygonTop, PreparedVertex,
+    RenderError, RenderStats, Renderer, StatsSink,
 };
 use crate::geometry::mesh::PolygonSizes;
-use crate::scene::{Object, Scene};
+use crate::scene::{Intensities, Object, Scene};
+use crate::shade::span_writer::ShadeMode;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
@@ -168,7 +171,7 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
     (width, height, band_rows): (u16, u16, u16),
     scratch: BandScratch<'_, S>,
     stats: &mut impl StatsSink,
-    mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
+    band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
     let BandScratch { vertices, polygons } = scratch;
     if band_rows == 0 {
@@ -192,6 +195,44 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
             (at, pat) = (at + n, pat + np);
         }
     }
+    each_band(
+        (pixels, depths),
+        (width, height, band_rows),
+        |frame, depth| {
+            if prepare_once {
+                frame.clear(scene.background);
+                depth.clear();
+                let (mut at, mut pat) = (0, 0);
+                for object in scene.objects {
+                    let (n, np) = (object.mesh.vertices().len(), object.mesh.polygon_count());
+                    let prepared = &vertices[at..at + n];
+                    let st = &mut *stats;
+                    if table {
+                        let t = &polygons[pat..pat + np];
+                        renderer.rasterize_rows(object, prepared, t, frame, depth, st)?;
+                    } else {
+                        renderer.rasterize(object, prepared, frame, depth, st)?;
+                    }
+                    (at, pat) = (at + n, pat + np);
+                }
+                Ok(())
+            } else {
+                render_scene(renderer, scene, frame, depth, vertices, stats)
+            }
+        },
+        band_done,
+    )
+}
+
+/// The band loop of both banded entries: for each band of `band_rows` rows of a `width ×
+/// height` picture (the last may be shorter), the band's buffers from the front of `pixels`
+/// and `depths`, drawn by `draw` (which clears them), then handed to `band_done`.
+pub(super) fn each_band<D: DepthValue, E: From<RenderError>>(
+    (pixels, depths): (&mut [u8], &mut [D]),
+    (width, height, band_rows): (u16, u16, u16),
+    mut draw: impl FnMut(&mut Framebuffer<'_>, &mut DepthBuffer<'_, D>) -> Result<(), RenderError>,
+    mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
+) -> Result<(), E> {
     let mut top = 0u16;
     while top < height {
         let rows = band_rows.min(height - top);
@@ -201,27 +242,132 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
             .map_err(|_| too_small)?;
         let mut depth = DepthBuffer::band(depths.get_mut(..n).ok_or(too_small)?, width, rows, top)
             .map_err(|_| too_small)?;
-        if prepare_once {
-            frame.clear(scene.background);
-            depth.clear();
-            let (mut at, mut pat) = (0, 0);
-            for object in scene.objects {
-                let (n, np) = (object.mesh.vertices().len(), object.mesh.polygon_count());
-                let prepared = &vertices[at..at + n];
-                let (f, z, st) = (&mut frame, &mut depth, &mut *stats);
-                if table {
-                    let t = &polygons[pat..pat + np];
-                    renderer.rasterize_rows(object, prepared, t, f, z, st)?;
-                } else {
-                    renderer.rasterize(object, prepared, f, z, st)?;
-                }
-                (at, pat) = (at + n, pat + np);
-            }
-        } else {
-            render_scene(renderer, scene, &mut frame, &mut depth, vertices, stats)?;
-        }
+        draw(&mut frame, &mut depth)?;
         band_done(&mut frame, &depth)?;
         top += rows;
+    }
+    Ok(())
+}
+
+/// Caller memory of [`render_in_compact_bands`] besides the band's buffers; sizes from
+/// [`CompactSizes::of`] (the `compact.rs` module doc gives the formula).
+#[derive(Debug)]
+pub struct CompactBandScratch<'a> {
+    /// Every object's vertices, 8 bytes each.
+    pub vertices: &'a mut [CompactVertex],
+    /// One level byte per vertex of the lit Gouraud objects (may be empty otherwise).
+    pub levels: &'a mut [u8],
+    /// Every object's polygons, one byte each.
+    pub polygons: &'a mut [PolygonTop],
+}
+
+/// [`render_in_bands`] in the least memory: the vertex stage runs once per frame into
+/// [`CompactVertex`]es (8 bytes per vertex instead of 28) and each polygon's rows into a
+/// one-byte [`PolygonTop`] (instead of 4), so that each band visits only the polygons that
+/// reach it; the pixels and counts are the full frame's (and `render_in_bands`'s). The memory
+/// is `width·band_rows·(1 + size_of::<D>()) + 8·V + L + P` bytes ([`CompactSizes::bytes`]):
+/// the standard bunny at 320 × 240 in bands of 11 rows with 16-bit depth takes 28,946 bytes.
+///
+/// It applies when every vertex projects inside the frustum's guard band within the 16-bit
+/// sub-pixel range (the vertex stage checks it: [`RenderError::NotCompact`] names the first
+/// object and vertex that does not; draw that frame with `render_in_bands`), and not to Phong
+/// objects ([`RenderError::PhongUnsupported`]). Buffers shorter than the scene needs are
+/// [`RenderError::BandMemoryTooSmall`], naming the part and both sizes; nothing is drawn
+/// then. `polygons_in` and `culled` are counted once per frame.
+pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    (pixels, depths): (&mut [u8], &mut [D]),
+    (width, height, band_rows): (u16, u16, u16),
+    scratch: CompactBandScratch<'_>,
+    stats: &mut impl StatsSink,
+    band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
+) -> Result<(), E> {
+    let CompactBandScratch {
+        vertices,
+        levels,
+        polygons,
+    } = scratch;
+    let band_rows = band_rows.clamp(1, height.max(1));
+    let sizes = CompactSizes::of(scene);
+    let band = width as usize * band_rows as usize;
+    check_compact_memory(
+        scene,
+        [
+            (BandPart::Pixels, pixels.len(), band),
+            (BandPart::Depths, depths.len(), band),
+            (BandPart::Vertices, vertices.len(), sizes.vertices),
+            (BandPart::Levels, levels.len(), sizes.levels),
+            (BandPart::Polygons, polygons.len(), sizes.polygons),
+        ],
+    )?;
+    // Once per frame: the vertex stage and each polygon's table entry.
+    let mut rows = Rows::new(height, band_rows);
+    let (mut at, mut lat, mut pat) = (0, 0, 0);
+    for (index, object) in scene.objects.iter().enumerate() {
+        let n = object.mesh.vertices().len();
+        let nl = if sizes.levels > 0 && vertex_lit(object) {
+            n
+        } else {
+            0
+        };
+        let np = object.mesh.polygon_count();
+        let v = &mut vertices[at..at + n];
+        renderer.prepare_compact((index, object), v, &mut levels[lat..lat + nl])?;
+        let (t, st) = (&mut polygons[pat..pat + np], stats.counts());
+        renderer.compact_table(object, v, t, &mut rows, st)?;
+        (at, lat, pat) = (at + n, lat + nl, pat + np);
+    }
+    let rows = rows;
+    each_band(
+        (pixels, depths),
+        (width, height, band_rows),
+        |frame, depth| {
+            frame.clear(scene.background);
+            depth.clear();
+            let (mut at, mut lat, mut pat) = (0, 0, 0);
+            for object in scene.objects {
+                let n = object.mesh.vertices().len();
+                let nl = if sizes.levels > 0 && vertex_lit(object) {
+                    n
+                } else {
+                    0
+                };
+                let np = object.mesh.polygon_count();
+                let scratch = CompactObject {
+                    vertices: &vertices[at..at + n],
+                    levels: &levels[lat..lat + nl],
+                };
+                let table = (&polygons[pat..pat + np], &rows);
+                renderer.draw_compact_band(object, &scratch, table, frame, depth, stats)?;
+                (at, lat, pat) = (at + n, lat + nl, pat + np);
+            }
+            Ok(())
+        },
+        band_done,
+    )
+}
+
+/// Refuses a compact frame before any work: a part of its memory shorter than the scene
+/// needs (`(part, given, needed)`), or a Phong object (its normals have no compact form).
+fn check_compact_memory(
+    scene: &Scene<'_>,
+    parts: [(BandPart, usize, usize); 5],
+) -> Result<(), RenderError> {
+    for (part, given, needed) in parts {
+        if given < needed {
+            return Err(RenderError::BandMemoryTooSmall {
+                part,
+                given,
+                needed,
+            });
+        }
+    }
+    let phong = |o: &Object<'_>| {
+        matches!(o.intensities, Intensities::Lit { .. }) && o.shade == ShadeMode::Phong
+    };
+    if scene.objects.iter().any(phong) {
+        return Err(RenderError::PhongUnsupported);
     }
     Ok(())
 }

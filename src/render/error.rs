@@ -78,6 +78,53 @@ pub enum RenderError {
         /// The rows asked for.
         band_rows: u16,
     },
+    /// A part of a compact banded frame's caller memory
+    /// ([`render_in_compact_bands`](super::render_in_compact_bands)) holds fewer elements
+    /// than the scene needs.
+    BandMemoryTooSmall {
+        /// Which part.
+        part: BandPart,
+        /// Elements it holds.
+        given: usize,
+        /// Elements the scene needs.
+        needed: usize,
+    },
+    /// A vertex has no compact form (it lies outside the frustum's guard band, so a polygon
+    /// needs the clipper, or its sub-pixel position leaves 16 bits): compact bands cannot draw
+    /// the frame; `render_in_bands` with its full scratch can.
+    NotCompact {
+        /// The object's index in the scene.
+        object: usize,
+        /// The vertex's index in its mesh.
+        vertex: usize,
+    },
+}
+
+/// A part of a compact banded frame's caller memory ([`RenderError::BandMemoryTooSmall`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BandPart {
+    /// The band's pixels (`width × band_rows`).
+    Pixels,
+    /// The band's depth samples (`width × band_rows`).
+    Depths,
+    /// The compact vertices (every object's vertices).
+    Vertices,
+    /// The level bytes (the vertices of lit Gouraud objects).
+    Levels,
+    /// The polygon table (every object's polygons).
+    Polygons,
+}
+
+impl core::fmt::Display for BandPart {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            BandPart::Pixels => "band pixels",
+            BandPart::Depths => "band depth samples",
+            BandPart::Vertices => "compact vertices",
+            BandPart::Levels => "vertex levels",
+            BandPart::Polygons => "polygon table entries",
+        })
+    }
 }
 
 impl core::fmt::Display for RenderError {
@@ -133,6 +180,17 @@ impl core::fmt::Display for RenderError {
             RenderError::BadBandRows { band_rows } => {
                 write!(f, "bands of {band_rows} rows: a band needs at least 1 row")
             }
+            RenderError::BandMemoryTooSmall {
+                part,
+                given,
+                needed,
+            } => write!(f, "{given} {part} given, the frame needs {needed}"),
+            RenderError::NotCompact { object, vertex } => write!(
+                f,
+                "vertex {vertex} of object {object} needs clipping or leaves the 16-bit screen \
+                 range: compact bands need every vertex inside the guard band \
+                 (use render_in_bands)"
+            ),
         }
     }
 }

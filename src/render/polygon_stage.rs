@@ -496,7 +496,7 @@ fn failed_at(
 /// Draws polygon corners `0..n` as a fan of triangles from corner 0 (exact for convex
 /// polygons, whose fan triangles tile them under the fill rule), counting into `stats`.
 #[inline(always)]
-fn fan<const S: u32, const N: usize>(
+pub(super) fn fan<const S: u32, const N: usize>(
     pi: usize,
     n: usize,
     corner: impl Fn(usize) -> Corner<S, N>,
@@ -516,7 +516,7 @@ fn fan<const S: u32, const N: usize>(
 
 /// Draws one triangle, counting it into `stats` when it covered or wrote pixels.
 #[inline(always)]
-fn draw_counted<const S: u32, const N: usize>(
+pub(super) fn draw_counted<const S: u32, const N: usize>(
     pi: usize,
     tri: [Corner<S, N>; 3],
     draw: &mut impl TriangleConsumer<S, N>,

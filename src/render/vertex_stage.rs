@@ -3,7 +3,9 @@
 //! and, when it is inside the frustum (near, far and the guard band), its projection
 //! (sub-pixel screen position and normalised depth); for lit Gouraud objects its lit level,
 //! for levels given per vertex a copy of that level. Results go to caller scratch, one
-//! [`PreparedVertex`] (28 bytes) per mesh vertex.
+//! [`PreparedVertex`] (28 bytes) per mesh vertex, or, through the same loop
+//! (`Renderer::prepare_with`, which hands each vertex to a store of the caller's), to the
+//! 8-byte [`CompactVertex`](super::CompactVertex) of compact bands (`compact.rs`).
 //!
 //! Numeric contract: mesh coordinates `|c| ≤ 1024`
 //! ([`MAX_MESH_COORD_BITS`](crate::geometry::mesh::MAX_MESH_COORD_BITS)); observer-frame
@@ -61,12 +63,25 @@ impl<const S: u32> Renderer<S> {
         object: &Object<'_>,
         scratch: &mut [PreparedVertex<S>],
     ) -> Result<(), RenderError> {
-        let vertices = object.mesh.vertices();
+        let needed = object.mesh.vertices().len();
         let scratch = scratch
-            .get_mut(..vertices.len())
-            .ok_or(RenderError::ScratchTooSmall {
-                needed: vertices.len(),
-            })?;
+            .get_mut(..needed)
+            .ok_or(RenderError::ScratchTooSmall { needed })?;
+        self.prepare_with(object, scratch, &mut |_, out, p| *out = p)
+    }
+
+    /// The vertex stage for `object` into `out` (as long as its vertex table; the caller
+    /// checked): each vertex `i` is handed to `emit(i, &mut out[i], prepared)`, which stores
+    /// it in its own form (the [`PreparedVertex`] itself, or the compact form of
+    /// `compact.rs`). One stage for both: inlined, the full form's loop is unchanged.
+    #[inline(always)]
+    pub(super) fn prepare_with<T>(
+        &self,
+        object: &Object<'_>,
+        out: &mut [T],
+        emit: &mut impl FnMut(usize, &mut T, PreparedVertex<S>),
+    ) -> Result<(), RenderError> {
+        let vertices = object.mesh.vertices();
         let m = self.model_view(object)?;
         // Lit Gouraud objects are lit here, once per vertex, in the observer frame.
         let lit = match object.intensities {
@@ -102,11 +117,11 @@ impl<const S: u32> Renderer<S> {
                     let n = [n[0] as i64, n[1] as i64, n[2] as i64];
                     self.illumination.intensity(&material, view, n)
                 };
-                self.prepare_vertices(narrow, &m, vertices, scratch, &level);
+                self.prepare_vertices(narrow, &m, vertices, out, &level, emit);
             }
             None => {
                 let level = |i: usize, _: Vec3| given.get(i).copied().unwrap_or(0);
-                self.prepare_vertices(narrow, &m, vertices, scratch, &level);
+                self.prepare_vertices(narrow, &m, vertices, out, &level, emit);
             }
         }
         Ok(())
@@ -115,18 +130,19 @@ impl<const S: u32> Renderer<S> {
     /// [`prepare_loop`](Self::prepare_loop) without saturation and with the 32-bit outcode
     /// when `narrow` (the object's bound passed [`Frustum::narrow_fits`](crate::clip::frustum::Frustum::narrow_fits)), else the general one.
     #[inline(always)]
-    fn prepare_vertices(
+    fn prepare_vertices<T>(
         &self,
         narrow: bool,
         m: &Affine3,
         vertices: &[Vec3],
-        scratch: &mut [PreparedVertex<S>],
+        out: &mut [T],
         level: &impl Fn(usize, Vec3) -> u8,
+        emit: &mut impl FnMut(usize, &mut T, PreparedVertex<S>),
     ) {
         if narrow {
-            self.prepare_loop::<true>(m, vertices, scratch, level);
+            self.prepare_loop::<true, T>(m, vertices, out, level, emit);
         } else {
-            self.prepare_loop::<false>(m, vertices, scratch, level);
+            self.prepare_loop::<false, T>(m, vertices, out, level, emit);
         }
     }
 
@@ -134,16 +150,17 @@ impl<const S: u32> Renderer<S> {
     /// passed [`Frustum::narrow_fits`](crate::clip::frustum::Frustum::narrow_fits) ([`Affine3::transform_point_wrapping`] and
     /// [`Frustum::outcode_narrow`](crate::clip::frustum::Frustum::outcode_narrow), equal to the saturating transform and the 64-bit outcode
     /// within that bound), else the general transform and outcode.
-    /// `level(i, view)` gives vertex `i`'s level.
+    /// `level(i, view)` gives vertex `i`'s level; `emit` stores the vertex in `out`.
     #[inline(always)]
-    fn prepare_loop<const NARROW: bool>(
+    fn prepare_loop<const NARROW: bool, T>(
         &self,
         m: &Affine3,
         vertices: &[Vec3],
-        scratch: &mut [PreparedVertex<S>],
+        out: &mut [T],
         level: &impl Fn(usize, Vec3) -> u8,
+        emit: &mut impl FnMut(usize, &mut T, PreparedVertex<S>),
     ) {
-        for (i, (out, v)) in scratch.iter_mut().zip(vertices).enumerate() {
+        for (i, (out, v)) in out.iter_mut().zip(vertices).enumerate() {
             let (view, mut outcode);
             if NARROW {
                 view = m.transform_point_wrapping(*v);
@@ -159,13 +176,14 @@ impl<const S: u32> Renderer<S> {
                     Err(_) => outcode = UNPROJECTED,
                 }
             }
-            *out = PreparedVertex {
+            let prepared = PreparedVertex {
                 view,
                 screen,
                 depth,
                 outcode,
                 level: level(i, view),
             };
+            emit(i, out, prepared);
         }
     }
 }
@@ -241,10 +259,11 @@ mod tests {
             let mut b = [PreparedVertex::<4>::default(); 64];
             r.prepare(&obj, &mut a).unwrap();
             let level = |i: usize, _: Vec3| levels.get(i).copied().unwrap_or(0);
-            r.prepare_loop::<false>(&m, &vs, &mut b, &level);
+            let emit = &mut |_, o: &mut PreparedVertex<4>, p| *o = p;
+            r.prepare_loop::<false, _>(&m, &vs, &mut b, &level, emit);
             assert_eq!(a, b, "n={n} narrow={narrow}");
             if narrow {
-                r.prepare_loop::<true>(&m, &vs, &mut a, &level);
+                r.prepare_loop::<true, _>(&m, &vs, &mut a, &level, emit);
                 assert_eq!(a, b, "n={n}");
                 for v in &a {
                     codes[(v.outcode != 0) as usize] += 1;
