@@ -31,14 +31,19 @@
 //! 192-bit) products, bounded in `painter.rs`.
 
 mod backface;
+mod facts;
 mod painter;
 mod plan;
 mod scanline;
 mod store;
 
-pub use backface::render_back_faces;
+pub use backface::{render_back_faces, render_back_faces_in_order};
+pub use facts::{Convexity, Creases, MeshFacts};
 pub use painter::{render_painter, PainterMemory, SplitPolicy, MAX_CUTS};
-pub use plan::{plan, Plan, PlanReason};
+pub use plan::{
+    plan, Buffers, DepthReason, DepthWidth, LayoutReason, MethodReason, Plan, PlanError,
+    DEPTH_MARGIN, SCREEN_MARGIN,
+};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 
