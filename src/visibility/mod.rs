@@ -16,8 +16,12 @@
 //! | [`ScanLine`](Visibility::ScanLine) (`scanline.rs`) | a stored triangle and an index per front triangle, a band of rows and its depth | any scene (exact depth per row) |
 //! | [`ZBuffer`](Visibility::ZBuffer) (`render/`) | a depth sample per pixel (or per band pixel) | any scene |
 //!
-//! [`plan`] picks the cheapest method a scene allows from what is cheap to know (today: one
-//! culled object with an exactly convex mesh needs no depth buffer; `plan.rs`).
+//! [`plan`] picks the cheapest method a scene allows within a RAM budget, from what is cheap
+//! to know (`plan.rs`): each mesh's [`MeshFacts`] (bounds and convexity certificate, computed
+//! once, `facts.rs`), the objects' depth ranges and screen boxes. Convex (or creased, in views
+//! where the creases hold), culled, separable objects need no depth buffer
+//! ([`render_back_faces_in_order`], far to near); other scenes take the z-buffer, whole or in
+//! bands, 32-bit unless only 16-bit fits.
 //!
 //! Shared conventions: triangles are collected in scene order; a stored triangle keeps its
 //! corners exactly as the polygon stage handed them (sub-pixel position, 32-bit depth, level),
