@@ -440,7 +440,7 @@ fn trap_a_cycle_of_three_bars() {
                 levels: vec![60 + 70 * k as u8; 8],
                 transform: Affine3::builder()
                     .rotate_y(Angle::from_degrees(if k % 2 == 0 { 12 } else { -12 }))
-                    .rotate_z(Angle::from_degrees(120 * k as i32))
+                    .rotate_z(Angle::from_degrees(120 * k))
                     .translate(Vec3::new(c(0.0), c(0.0), c(0.1 * k as f64)))
                     .build()
                     .unwrap(),

@@ -52,14 +52,15 @@ use crate::geometry::mesh::{Mesh, PolygonSizes};
 use crate::project::Projector;
 use crate::raster::SubpixelPoint;
 
-/// A mesh's convexity certificate ([module doc](self)).
+/// A mesh's convexity certificate (the module doc of `visibility/facts.rs` gives the
+/// argument).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Convexity<'a> {
     /// Every vertex on or behind every face plane: back faces alone draw it right from any
     /// view.
     Convex,
     /// A closed triangle mesh convex but for creases: back faces alone draw it right in the
-    /// views where [`Creases::hold`] says so.
+    /// views where its creases hold (checked per frame by the planner).
     Creased(Creases<'a>),
     /// Neither (or the certificate did not fit its buffer, or the mesh is not a closed,
     /// consistently oriented triangle mesh): front faces may overlap.

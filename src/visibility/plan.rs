@@ -172,7 +172,7 @@ pub enum LayoutReason {
     BandsVertexStagePerBand,
 }
 
-/// A plan ([module doc](self)).
+/// A plan (the module doc of `visibility/plan.rs` gives the rules).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Plan {
     /// The method.
