@@ -523,3 +523,32 @@ fn known_limit_triangles_below_the_rounding_fold() {
         }
     }
 }
+
+/// A mirroring transform turns a mesh inside out: the creased box keeps the depth buffer there
+/// (the certificate's argument needs the solid outside the eye), and the picture is the
+/// z-buffer's; unmirrored, the same box needs none.
+#[test]
+fn a_mirrored_creased_mesh_keeps_the_depth_buffer() {
+    let (vs, is) = turned_box([0.8, 0.5, 0.6], 0.5, 0.3);
+    let mesh = Mesh::new(&vs, &is, PolygonSizes::Uniform(3)).unwrap();
+    let mut pairs = vec![[0u32; 2]; 256];
+    assert!(matches!(
+        MeshFacts::of(&mesh, &mut pairs).convexity,
+        Convexity::Creased(_)
+    ));
+    for (sx, method) in [(1.0, Visibility::BackFace), (-1.0, Visibility::ZBuffer)] {
+        let t = Tables {
+            vertices: vs.clone(),
+            indices: is.clone(),
+            levels: (0..8).map(|i| 30 * i as u8).collect(),
+            transform: Affine3::builder()
+                .scale3(c(sx), c(1.0), c(1.0))
+                .build()
+                .unwrap(),
+        };
+        let objects = [object(&t)];
+        let (plan, wrong) = check(&scene_of(&objects), usize::MAX).unwrap();
+        assert_eq!(plan.visibility, method, "{plan}");
+        assert_eq!(wrong, 0);
+    }
+}

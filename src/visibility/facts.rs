@@ -35,6 +35,9 @@
 //! An exactly convex mesh has no mutual pair; the rounded standard cube has 6 (the diagonals of
 //! its faces, creased a rounding step in or out, and 2 more), the sphere 296.
 //!
+//! The planner does not use a certificate under a mirroring transform (negative determinant):
+//! it turns the mesh inside out, and step 2's solid would hold the eye.
+//!
 //! What the argument takes as given (as [`Mesh::is_convex`] does): the mesh as its vertex
 //! table places it, mapped by the object's transform and projected exactly. The renderer rounds
 //! the observer-frame positions to I16F16 and the screen positions to `2^-S` pixel; the

@@ -522,7 +522,10 @@ fn back_faces_allowed<const S: u32>(
                     frustum,
                     projector,
                 });
-                if view.is_some_and(|v| creases.hold(&object.mesh, &v)) {
+                // The certificate's argument takes the solid outside the eye: a mirroring
+                // transform turns the mesh inside out, so it is not used there.
+                let mirrored = determinant(object.transform.linear_bits()) < 0;
+                if !mirrored && view.is_some_and(|v| creases.hold(&object.mesh, &v)) {
                     continue;
                 }
                 MethodReason::CreasesOverlap { object: i }
@@ -558,6 +561,15 @@ fn back_faces_allowed<const S: u32>(
         }
     }
     Ok(MethodReason::ConvexAndSeparable)
+}
+
+/// The sign-exact determinant of a linear part (raw entries `|e| < 2^31`: each product of
+/// three below `2^93`, `i128`).
+fn determinant(m: [[i32; 3]; 3]) -> i128 {
+    let e = |r: usize, c: usize| m[r][c] as i128;
+    e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1))
+        - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))
+        + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0))
 }
 
 /// True when two screen boxes are disjoint.
