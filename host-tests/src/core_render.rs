@@ -498,3 +498,113 @@ impl CoreMesh {
         })
     }
 }
+
+/// Face pairs a mesh's convexity certificate may hold on the host (the standard sphere needs
+/// about 2,500; longer certificates make the mesh "not convex", which is conservative).
+pub const FACT_PAIRS: usize = 8192;
+
+/// Each object's [`MeshFacts`](zscan::visibility::MeshFacts), computed once, with the
+/// buffers its certificate borrows (`pairs[i]` for object `i`).
+pub fn mesh_facts<'p>(
+    scene: &CoreScene<'_>,
+    pairs: &'p mut Vec<Vec<[u32; 2]>>,
+) -> Vec<zscan::visibility::MeshFacts<'p>> {
+    *pairs = vec![vec![[0; 2]; FACT_PAIRS]; scene.objects.len()];
+    scene
+        .objects
+        .iter()
+        .zip(pairs.iter_mut())
+        .map(|(o, p)| zscan::visibility::MeshFacts::of(&o.mesh, p))
+        .collect()
+}
+
+/// A frame drawn as its plan says, with the buffers the plan sized (the depth width, bands and
+/// vertex scratch of [`Plan`](zscan::visibility::Plan)).
+#[derive(Debug, Clone)]
+pub struct PlannedFrame {
+    /// The plan.
+    pub plan: zscan::visibility::Plan,
+    /// The drawing order the plan wrote.
+    pub order: Vec<u16>,
+    /// Palette indices, row-major.
+    pub pixels: Vec<u8>,
+    /// The frame's counts.
+    pub stats: RenderStats,
+}
+
+/// Plans `scene` within `budget` bytes ([`zscan::visibility::plan`]) and draws it so
+/// ([`draw_plan`]).
+pub fn render_planned<const SB: u32>(
+    renderer: &Renderer<SB>,
+    scene: &CoreScene<'_>,
+    facts: &[zscan::visibility::MeshFacts<'_>],
+    budget: usize,
+) -> Result<PlannedFrame, String> {
+    let mut order = vec![0u16; scene.objects.len()];
+    let plan = zscan::visibility::plan::<SB>(scene, facts, budget, &mut order)
+        .map_err(|e| e.to_string())?;
+    let (pixels, stats) = draw_plan(renderer, scene, &plan, &order).map_err(|e| e.to_string())?;
+    Ok(PlannedFrame {
+        plan,
+        order,
+        pixels,
+        stats,
+    })
+}
+
+/// Draws `scene` as `plan` says (objects in `order`), with buffers of the plan's sizes;
+/// returns the whole picture (bands copied out as a display flush would take them).
+pub fn draw_plan<const SB: u32>(
+    renderer: &Renderer<SB>,
+    scene: &CoreScene<'_>,
+    plan: &zscan::visibility::Plan,
+    order: &[u16],
+) -> Result<(Vec<u8>, RenderStats), RenderError> {
+    use zscan::visibility::{render_back_faces_in_order, DepthWidth};
+    let vp = *scene.camera.viewport();
+    let (w, h) = (vp.width, vp.height);
+    let largest = scene.objects.iter().map(|o| o.mesh.vertices().len());
+    let all: usize = largest.clone().sum();
+    let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
+    let (nv, np) = if plan.vertex_stage_once {
+        (all, polygons)
+    } else {
+        (largest.max().unwrap_or(0), 0)
+    };
+    let mut scratch = vec![PreparedVertex::<SB>::default(); nv.max(1)];
+    let mut stats = RenderStats::default();
+    let pixels = match plan.depth {
+        DepthWidth::None => {
+            let mut pixels = vec![0u8; w as usize * h as usize];
+            let mut frame =
+                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            render_back_faces_in_order(
+                renderer,
+                scene,
+                order,
+                &mut frame,
+                &mut scratch,
+                &mut stats,
+            )?;
+            pixels
+        }
+        depth => {
+            let mut table = vec![PolygonRows::default(); np];
+            let band = BandScratch {
+                vertices: &mut scratch,
+                polygons: &mut table,
+            };
+            let rows = Some(plan.band_rows);
+            let (pixels, s) = if depth == DepthWidth::U16 {
+                let (p, _, s) = render_picture::<u16, SB>(renderer, scene, (w, h), rows, band)?;
+                (p, s)
+            } else {
+                let (p, _, s) = render_picture::<u32, SB>(renderer, scene, (w, h), rows, band)?;
+                (p, s)
+            };
+            stats = s;
+            pixels
+        }
+    };
+    Ok((pixels, stats))
+}

@@ -25,9 +25,46 @@ pub fn render_back_faces<const S: u32>(
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
+    draw_objects(
+        renderer,
+        scene,
+        0..scene.objects.len(),
+        frame,
+        scratch,
+        stats,
+    )
+}
+
+/// [`render_back_faces`] with the objects drawn in `order` (indices into the scene's objects,
+/// e.g. far to near as [`plan`](super::plan) sorts separable objects: Schumacker's clusters).
+/// An index past the scene's objects is [`RenderError::TooManyObjects`].
+pub fn render_back_faces_in_order<const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    order: &[u16],
+    frame: &mut Framebuffer<'_>,
+    scratch: &mut [PreparedVertex<S>],
+    stats: &mut impl StatsSink,
+) -> Result<(), RenderError> {
+    if order.iter().any(|&i| i as usize >= scene.objects.len()) {
+        return Err(RenderError::TooManyObjects);
+    }
+    let order = order.iter().map(|&i| i as usize);
+    draw_objects(renderer, scene, order, frame, scratch, stats)
+}
+
+/// Clears `frame` and draws the objects `order` names, with no depth buffer.
+fn draw_objects<const S: u32>(
+    renderer: &Renderer<S>,
+    scene: &Scene<'_>,
+    order: impl Iterator<Item = usize>,
+    frame: &mut Framebuffer<'_>,
+    scratch: &mut [PreparedVertex<S>],
+    stats: &mut impl StatsSink,
+) -> Result<(), RenderError> {
     frame.clear(scene.background);
     without_depth(frame, |frame, depth| {
-        for object in scene.objects {
+        for object in order.filter_map(|i| scene.objects.get(i)) {
             renderer.draw_object(object, scratch, frame, depth, stats)?;
         }
         Ok(())

@@ -29,8 +29,12 @@
 //! exhausted (store, split budget, active table, Warnock's stacks) is an error, never a
 //! picture.
 //!
-//! [`plan`] picks the cheapest method a scene allows from what is cheap to know (today: one
-//! culled object with an exactly convex mesh needs no depth buffer; `plan.rs`).
+//! [`plan`] picks the cheapest method a scene allows within a RAM budget, from what is cheap
+//! to know (`plan.rs`): each mesh's [`MeshFacts`] (bounds and convexity certificate, computed
+//! once, `facts.rs`), the objects' depth ranges and screen boxes. Convex (or creased, in views
+//! where the creases hold), culled, separable objects need no depth buffer
+//! ([`render_back_faces_in_order`], far to near); other scenes take the z-buffer, whole or in
+//! bands, 32-bit unless only 16-bit fits.
 //!
 //! Every method's own counts (Newell's tests by number, splits; the active table's peak;
 //! Warnock's windows by verdict and stack peaks) go to [`RenderStats::method`](crate::render::RenderStats),
@@ -48,15 +52,20 @@
 //! 192-bit) products, bounded in `painter.rs`.
 
 mod backface;
+mod facts;
 mod painter;
 mod plan;
 mod scanline;
 mod store;
 mod warnock;
 
-pub use backface::render_back_faces;
+pub use backface::{render_back_faces, render_back_faces_in_order};
+pub use facts::{Convexity, Creases, MeshFacts};
 pub use painter::{render_painter, Normal, PainterMemory, SplitPolicy, MAX_CUTS};
-pub use plan::{plan, Plan, PlanReason};
+pub use plan::{
+    plan, Buffers, DepthReason, DepthWidth, LayoutReason, MethodReason, Plan, PlanError,
+    DEPTH_MARGIN, SCREEN_MARGIN,
+};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 pub use warnock::{render_warnock, Area, WarnockMemory, WindowCounts};

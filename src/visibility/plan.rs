@@ -1,62 +1,664 @@
-//! The first step of "model no more than a scene needs": which hidden-surface method a scene
-//! allows, from what is cheap to know about it.
+//! The scene planner: "model no more than a scene needs". From a scene, what is known of its
+//! meshes ([`MeshFacts`], computed once) and a memory budget in bytes, a [`Plan`]: the
+//! hidden-surface method, the depth width, the band height, the size of every caller buffer,
+//! and the reason for each choice. No heap: the drawing order goes to a caller slice.
 //!
-//! Today's rule: one object with back-face culling whose mesh is convex
-//! ([`Mesh::is_convex`](crate::geometry::mesh::Mesh::is_convex), computed once and passed in)
-//! needs no depth buffer ([`Visibility::BackFace`]); every other scene takes the z-buffer.
-//! The painter and the scan-line are never picked yet (the painter costs more than the
-//! z-buffer beyond a few dozen triangles, the scan-line more than bands of the z-buffer: see
-//! `docs/BENCHMARKS.md`); separable objects, depth precision and memory budgets are the
-//! planner issue's.
+//! ## What is cheap to know, per frame
+//! - Each mesh's convexity certificate ([`Convexity`], stored with the mesh), and for a creased
+//!   mesh whether its creases hold in this view ([`Creases`]: a few face pairs projected).
+//! - Each object's bounding box (stored with the mesh), its 8 corners taken to the observer
+//!   frame by the object's own model-view transform: the vertex stage rounds every vertex to
+//!   nearest, which is monotone, so every vertex the renderer places lies within the box of the
+//!   rounded corners, and every clipped corner (on an edge between two vertices) too. From it:
+//!   the object's depth range, `D(z)` at its nearest and farthest `z` through the renderer's
+//!   projector widened by [`DEPTH_MARGIN`] units on each side (the projector's `D` is within 6
+//!   units of the exact one, `project.rs`), and its screen box (the box's corners projected,
+//!   widened by [`SCREEN_MARGIN`] sub-pixel units for the projection's rounding).
+//! - Vertex and polygon counts, for the buffers' sizes.
+//!
+//! ## The rules, and why each keeps the picture
+//! 1. **Back faces alone** ([`Visibility::BackFace`], no depth buffer) when every object culls
+//!    its back faces, its mesh is [`Convexity::Convex`] or creased with creases holding in this
+//!    view, and the objects are **separable**: any two whose screen boxes overlap have depth
+//!    ranges that do not (Schumacker's clusters). Objects are drawn far to near (`order`).
+//!    Within an object no two front faces overlap (`facts.rs`), so each pixel an object draws
+//!    is the one surface it shows there. Two objects that both draw a pixel overlap on screen,
+//!    so their depth ranges are disjoint: the nearer one's stored depth is below the farther
+//!    one's (a triangle's depth at a pixel lies between its corners' depths), the z-buffer
+//!    keeps it, and drawn last it stays. The frame must be whole (objects draw over each
+//!    other in any rows), so this needs the budget for a whole frame.
+//! 2. Otherwise the **z-buffer**, in the first layout that fits the budget, tried in this
+//!    order: the whole frame; bands of `H` rows (`H` as tall as fits) with the vertex stage
+//!    run once per frame and the polygon table ([`BandScratch`](crate::render::BandScratch)
+//!    holding every object's vertices and polygons); bands with the vertex stage run again per
+//!    band (scratch for the largest mesh only). Every layout gives the same pixels
+//!    (`render_in_bands`).
+//! 3. **Depth width**: `u32` in the first layout that fits with it; `u16` only when no `u32`
+//!    layout fits. The picture is then the 16-bit z-buffer's (not always the 32-bit one's: two
+//!    surfaces closer than the 16-bit step `Δz ≈ z²·(far − near)/(far·near·2^16)` may swap);
+//!    the plan reports that step at the scene's farthest depth.
+//! 4. No layout fits: [`PlanError::OverBudget`] with the bytes of the smallest plan.
+//!
+//! The painter and the scan-line are never picked: their tables cost more memory than bands of
+//! the z-buffer and their frames more instructions (`docs/BENCHMARKS.md`, "Visibility
+//! methods"). The compact banded mode of issue 18 (compact vertex scratch, polygons binned by
+//! band) is not planned yet: its layout joins the list in [`zbuffer_layouts`] when it exists.
+//!
+//! Numeric contract: sizes in bytes as `usize` (saturating: a size that does not fit a
+//! `usize` is over any budget); observer-frame bounds are I16F16 (saturating, as the vertex
+//! stage); depths `u32`; screen boxes in `i64` sub-pixel units.
 
+use super::facts::{Convexity, MeshFacts, View};
 use super::Visibility;
-use crate::scene::Scene;
+use crate::clip::frustum::Frustum;
+use crate::geometry::fixed::Coord;
+use crate::geometry::vector::Vec3;
+use crate::project::Projector;
+use crate::render::{PolygonRows, PreparedVertex, RenderError};
+use crate::scene::{Object, Scene};
 
-/// Why [`plan`] chose its method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PlanReason {
-    /// One object, culled, convex: its front faces never overlap.
-    OneConvexObject,
-    /// More than one object: their faces may overlap.
-    SeveralObjects,
-    /// The object's mesh is not convex (or its convexity is not known).
-    NotConvex,
-    /// The object draws its back faces too.
-    BackFacesDrawn,
-    /// Nothing to draw.
-    Empty,
+/// Units of the 2^32 depth range each object's depth range is widened by on each side.
+pub const DEPTH_MARGIN: u32 = 16;
+/// Sub-pixel units each object's screen box is widened by on each side.
+pub const SCREEN_MARGIN: i64 = 8;
+
+/// The depth buffer's sample width.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DepthWidth {
+    /// No depth buffer.
+    None,
+    /// 16-bit samples.
+    U16,
+    /// 32-bit samples.
+    U32,
 }
 
-impl core::fmt::Display for PlanReason {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(match self {
-            PlanReason::OneConvexObject => "one convex object with back faces culled",
-            PlanReason::SeveralObjects => "several objects may overlap",
-            PlanReason::NotConvex => "the mesh is not convex",
-            PlanReason::BackFacesDrawn => "the object draws its back faces",
-            PlanReason::Empty => "no object",
-        })
+impl DepthWidth {
+    /// Bytes per sample.
+    pub const fn bytes(self) -> usize {
+        match self {
+            DepthWidth::None => 0,
+            DepthWidth::U16 => 2,
+            DepthWidth::U32 => 4,
+        }
     }
 }
 
-/// A method and the reason for it.
+/// The size in bytes of every caller buffer a plan draws with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Buffers {
+    /// Frame pixels (whole frame, or one band), one byte each.
+    pub frame: usize,
+    /// Depth samples (whole frame, or one band).
+    pub depth: usize,
+    /// Vertex scratch ([`PreparedVertex`], 28 bytes each).
+    pub vertices: usize,
+    /// Polygon table ([`PolygonRows`], 4 bytes each).
+    pub polygons: usize,
+    /// A method's own tables (none for the methods planned today).
+    pub tables: usize,
+}
+
+impl Buffers {
+    /// Their sum.
+    pub fn total(&self) -> usize {
+        [self.depth, self.vertices, self.polygons, self.tables]
+            .iter()
+            .fold(self.frame, |a, &b| a.saturating_add(b))
+    }
+}
+
+/// Why the plan took its method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MethodReason {
+    /// No object.
+    Empty,
+    /// Every object convex (or creased, creases holding in this view) and culled, and the
+    /// objects separable: back faces alone, far to near.
+    ConvexAndSeparable,
+    /// This object draws its back faces.
+    BackFacesDrawn {
+        /// Its index.
+        object: usize,
+    },
+    /// This object's mesh is not convex.
+    NotConvex {
+        /// Its index.
+        object: usize,
+    },
+    /// This object's mesh is creased and two of its front faces may overlap in this view.
+    CreasesOverlap {
+        /// Its index.
+        object: usize,
+    },
+    /// These two objects overlap on screen and in depth.
+    ObjectsOverlap {
+        /// The one.
+        a: usize,
+        /// The other.
+        b: usize,
+    },
+    /// Back faces alone would do but need a whole frame: these bytes, over the budget.
+    WholeFrameOverBudget {
+        /// Bytes back faces alone need.
+        needed: usize,
+    },
+}
+
+/// Why the plan took its depth width.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DepthReason {
+    /// The method needs no depth buffer.
+    NoDepthBuffer,
+    /// A 32-bit layout fits the budget.
+    U32Fits,
+    /// No 32-bit layout fits; the 16-bit one resolves depths `resolution` apart at the scene's
+    /// farthest point (observer-frame units).
+    OnlyU16Fits {
+        /// `Δz ≈ z²·(far − near)/(far·near·2^16)` at the scene's largest `z`.
+        resolution: Coord,
+    },
+}
+
+/// Why the plan took its layout (whole frame or bands, and the vertex scratch).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LayoutReason {
+    /// The whole frame fits.
+    WholeFrame,
+    /// The whole frame does not fit; bands of the plan's height do, with the vertex stage run
+    /// once per frame and the polygon table.
+    BandsVertexStageOnce,
+    /// Neither fits; bands of the plan's height do, with the vertex stage run again per band.
+    BandsVertexStagePerBand,
+}
+
+/// A plan (the module doc of `visibility/plan.rs` gives the rules).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Plan {
     /// The method.
     pub visibility: Visibility,
-    /// Why.
-    pub reason: PlanReason,
+    /// The depth buffer's width.
+    pub depth: DepthWidth,
+    /// Rows per band (the frame's height for a whole frame).
+    pub band_rows: u16,
+    /// The vertex scratch holds every object's vertices and the polygon table every object's
+    /// polygons ([`BandScratch`](crate::render::BandScratch)); else it holds the largest
+    /// mesh's vertices and there is no table.
+    pub vertex_stage_once: bool,
+    /// Every caller buffer's size.
+    pub buffers: Buffers,
+    /// Why this method.
+    pub method_reason: MethodReason,
+    /// Why this depth width.
+    pub depth_reason: DepthReason,
+    /// Why this layout.
+    pub layout_reason: LayoutReason,
 }
 
-/// The cheapest method that draws `scene` exactly as the z-buffer does, given `convex[i]`,
-/// whether object `i`'s mesh is convex (missing entries count as not convex).
-pub fn plan(scene: &Scene<'_>, convex: &[bool]) -> Plan {
-    let (visibility, reason) = match scene.objects {
-        [] => (Visibility::BackFace, PlanReason::Empty),
-        [one] if !one.cull_back_faces => (Visibility::ZBuffer, PlanReason::BackFacesDrawn),
-        [_] if convex.first() == Some(&true) => (Visibility::BackFace, PlanReason::OneConvexObject),
-        [_] => (Visibility::ZBuffer, PlanReason::NotConvex),
-        _ => (Visibility::ZBuffer, PlanReason::SeveralObjects),
+impl Plan {
+    /// Every caller buffer, in bytes.
+    pub fn ram_bytes(&self) -> usize {
+        self.buffers.total()
+    }
+}
+
+/// Why no plan was made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlanError {
+    /// The smallest plan needs `needed` bytes, over the budget.
+    OverBudget {
+        /// Bytes of the smallest plan.
+        needed: usize,
+        /// The budget.
+        budget: usize,
+    },
+    /// The order slice is shorter than the scene's objects (or a fact is missing for one).
+    TooFewSlots {
+        /// Objects in the scene.
+        objects: usize,
+    },
+    /// The camera cannot be projected for.
+    Camera(RenderError),
+}
+
+impl core::fmt::Display for PlanError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            PlanError::OverBudget { needed, budget } => write!(
+                f,
+                "the smallest plan needs {needed} bytes of caller memory, over the budget of \
+                 {budget} bytes"
+            ),
+            PlanError::TooFewSlots { objects } => write!(
+                f,
+                "the scene has {objects} objects: the order slice and the facts need one entry \
+                 each"
+            ),
+            PlanError::Camera(e) => write!(f, "camera: {e}"),
+        }
+    }
+}
+
+impl core::error::Error for PlanError {}
+
+impl core::fmt::Display for MethodReason {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            MethodReason::Empty => write!(f, "no object"),
+            MethodReason::ConvexAndSeparable => write!(
+                f,
+                "every object is convex and culled, and objects that overlap on screen are \
+                 apart in depth: no two front faces overlap"
+            ),
+            MethodReason::BackFacesDrawn { object } => {
+                write!(f, "object {} draws its back faces", object + 1)
+            }
+            MethodReason::NotConvex { object } => {
+                write!(f, "object {}'s mesh is not convex", object + 1)
+            }
+            MethodReason::CreasesOverlap { object } => write!(
+                f,
+                "object {}'s creased mesh may show two front faces at one pixel in this view",
+                object + 1
+            ),
+            MethodReason::ObjectsOverlap { a, b } => write!(
+                f,
+                "objects {} and {} overlap on screen and in depth",
+                a + 1,
+                b + 1
+            ),
+            MethodReason::WholeFrameOverBudget { needed } => write!(
+                f,
+                "back faces alone would do but need a whole frame ({needed} bytes)"
+            ),
+        }
+    }
+}
+
+impl core::fmt::Display for DepthReason {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            DepthReason::NoDepthBuffer => write!(f, "no depth buffer"),
+            DepthReason::U32Fits => write!(f, "32-bit depth fits the budget"),
+            DepthReason::OnlyU16Fits { resolution } => write!(
+                f,
+                "only 16-bit depth fits; it resolves {resolution} at the scene's far end \
+                 (the picture is the 16-bit z-buffer's)"
+            ),
+        }
+    }
+}
+
+impl core::fmt::Display for LayoutReason {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            LayoutReason::WholeFrame => "the whole frame fits",
+            LayoutReason::BandsVertexStageOnce => {
+                "bands, the vertex stage once per frame with the polygon table"
+            }
+            LayoutReason::BandsVertexStagePerBand => "bands, the vertex stage again per band",
+        })
+    }
+}
+
+impl core::fmt::Display for Plan {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let b = &self.buffers;
+        let depth = match self.depth {
+            DepthWidth::None => "none",
+            DepthWidth::U16 => "u16",
+            DepthWidth::U32 => "u32",
+        };
+        writeln!(f, "method {} ({})", self.visibility, self.method_reason)?;
+        writeln!(f, "depth {depth} ({})", self.depth_reason)?;
+        writeln!(f, "band rows {} ({})", self.band_rows, self.layout_reason)?;
+        write!(
+            f,
+            "bytes: frame {}, depth {}, vertices {}, polygons {}, tables {}, total {}",
+            b.frame,
+            b.depth,
+            b.vertices,
+            b.polygons,
+            b.tables,
+            b.total()
+        )
+    }
+}
+
+/// What the planner computes of one object in this view.
+struct Placed {
+    /// Depth range, widened by [`DEPTH_MARGIN`].
+    depth: (u32, u32),
+    /// Screen box `[x0, y0, x1, y1]` in sub-pixel units, widened; `None` when a corner does
+    /// not project (the object may be anywhere on screen).
+    screen: Option<[i64; 4]>,
+    /// Largest observer-frame `z` (raw).
+    far_z: i32,
+}
+
+/// The plan of `scene` at `S` sub-pixel bits within `budget` bytes, given `facts[i]` for
+/// object `i`'s mesh; `order[..objects]` receives the drawing order (far to near for back
+/// faces alone, the scene's order otherwise).
+pub fn plan<const S: u32>(
+    scene: &Scene<'_>,
+    facts: &[MeshFacts<'_>],
+    budget: usize,
+    order: &mut [u16],
+) -> Result<Plan, PlanError> {
+    let n = scene.objects.len();
+    if order.len() < n || facts.len() < n || n > u16::MAX as usize + 1 {
+        return Err(PlanError::TooFewSlots { objects: n });
+    }
+    let camera = &scene.camera;
+    let projector =
+        Projector::<S>::new(camera).map_err(|e| PlanError::Camera(RenderError::Projection(e)))?;
+    let frustum = Frustum::new::<S>(camera, Frustum::DEFAULT_GUARD)
+        .map_err(|e| PlanError::Camera(RenderError::Clip(e)))?;
+    for (i, o) in order[..n].iter_mut().enumerate() {
+        *o = i as u16;
+    }
+    let vp = camera.viewport();
+    let (w, h) = (vp.width as usize, vp.height as usize);
+    let vertex_bytes = core::mem::size_of::<PreparedVertex<S>>();
+    let meshes = scene.objects.iter().map(|o| o.mesh);
+    let largest = meshes
+        .clone()
+        .map(|m| m.vertices().len())
+        .max()
+        .unwrap_or(0);
+    let all = meshes.clone().map(|m| m.vertices().len()).sum::<usize>();
+    let polygons = meshes.map(|m| m.polygon_count()).sum::<usize>();
+    let counts = Counts {
+        w,
+        h,
+        largest: largest.saturating_mul(vertex_bytes),
+        all: all.saturating_mul(vertex_bytes),
+        table: polygons.saturating_mul(core::mem::size_of::<PolygonRows>()),
     };
-    Plan { visibility, reason }
+    let reason = match n {
+        0 => Ok(MethodReason::Empty),
+        _ => back_faces_allowed(scene, facts, &projector, &frustum, &mut order[..n]),
+    };
+    let far_z = match reason {
+        Ok(_) => 0,
+        Err(far_z) => far_z.1,
+    };
+    let method_reason = match reason {
+        Ok(r) => {
+            let buffers = Buffers {
+                frame: w * h,
+                vertices: counts.largest,
+                ..Buffers::default()
+            };
+            if buffers.total() <= budget {
+                return Ok(Plan {
+                    visibility: Visibility::BackFace,
+                    depth: DepthWidth::None,
+                    band_rows: h as u16,
+                    vertex_stage_once: false,
+                    buffers,
+                    method_reason: r,
+                    depth_reason: DepthReason::NoDepthBuffer,
+                    layout_reason: LayoutReason::WholeFrame,
+                });
+            }
+            MethodReason::WholeFrameOverBudget {
+                needed: buffers.total(),
+            }
+        }
+        Err((r, _)) => r,
+    };
+    for (o, i) in order[..n].iter_mut().zip(0..) {
+        *o = i; // the z-buffer draws in scene order
+    }
+    let mut smallest = usize::MAX;
+    for depth in [DepthWidth::U32, DepthWidth::U16] {
+        for layout in zbuffer_layouts(&counts, depth, budget) {
+            smallest = smallest.min(layout.1.total());
+            if layout.1.total() > budget {
+                continue;
+            }
+            let depth_reason = match depth {
+                DepthWidth::U16 => DepthReason::OnlyU16Fits {
+                    resolution: resolution_16(camera, far_z),
+                },
+                _ => DepthReason::U32Fits,
+            };
+            return Ok(Plan {
+                visibility: Visibility::ZBuffer,
+                depth,
+                band_rows: layout.0,
+                vertex_stage_once: layout.2 != LayoutReason::BandsVertexStagePerBand,
+                buffers: layout.1,
+                method_reason,
+                depth_reason,
+                layout_reason: layout.2,
+            });
+        }
+    }
+    Err(PlanError::OverBudget {
+        needed: smallest,
+        budget,
+    })
+}
+
+/// Sizes the layouts are made of.
+struct Counts {
+    w: usize,
+    h: usize,
+    /// Vertex scratch for the largest mesh, for every object's vertices, and the polygon
+    /// table, in bytes.
+    largest: usize,
+    all: usize,
+    table: usize,
+}
+
+/// The z-buffer's layouts at `depth`, in the planner's order of preference, as
+/// `(band_rows, buffers, why)`: the whole frame, then bands as tall as `budget` allows (one row
+/// when even that does not fit: the layout's smallest size).
+fn zbuffer_layouts(
+    c: &Counts,
+    depth: DepthWidth,
+    budget: usize,
+) -> [(u16, Buffers, LayoutReason); 3] {
+    let at = |rows: usize, vertices: usize, polygons: usize| Buffers {
+        frame: c.w * rows,
+        depth: c.w * rows * depth.bytes(),
+        vertices,
+        polygons,
+        tables: 0,
+    };
+    // The tallest band whose rows fit beside `fixed` bytes of scratch.
+    let rows = |fixed: usize| {
+        let per_row = (c.w * (1 + depth.bytes())).max(1);
+        (budget.saturating_sub(fixed) / per_row).clamp(1, c.h.max(1))
+    };
+    let once = rows(c.all.saturating_add(c.table));
+    let per_band = rows(c.largest);
+    [
+        (c.h as u16, at(c.h, c.largest, 0), LayoutReason::WholeFrame),
+        (
+            once as u16,
+            at(once, c.all, c.table),
+            LayoutReason::BandsVertexStageOnce,
+        ),
+        // The compact banded mode (issue 18, item 3: compact vertex scratch, polygons binned
+        // by band) is not planned yet: its layout goes here, before the vertex stage per band.
+        (
+            per_band as u16,
+            at(per_band, c.largest, 0),
+            LayoutReason::BandsVertexStagePerBand,
+        ),
+    ]
+}
+
+/// Back faces alone for `scene` (rule 1), with `order` sorted far to near; else the reason
+/// and the scene's largest observer-frame `z` (raw, for the 16-bit resolution).
+fn back_faces_allowed<const S: u32>(
+    scene: &Scene<'_>,
+    facts: &[MeshFacts<'_>],
+    projector: &Projector<S>,
+    frustum: &Frustum,
+    order: &mut [u16],
+) -> Result<MethodReason, (MethodReason, i32)> {
+    let far_z = scene
+        .objects
+        .iter()
+        .zip(facts)
+        .filter_map(|(o, f)| place(o, f, scene, projector).map(|p| p.far_z))
+        .max()
+        .unwrap_or(0);
+    for (i, (object, fact)) in scene.objects.iter().zip(facts).enumerate() {
+        if !object.cull_back_faces {
+            return Err((MethodReason::BackFacesDrawn { object: i }, far_z));
+        }
+        let reason = match fact.convexity {
+            Convexity::Convex => continue,
+            Convexity::NotConvex => MethodReason::NotConvex { object: i },
+            Convexity::Creased(creases) => {
+                let model_view = model_view(object, scene);
+                let view = model_view.as_ref().map(|mv| View {
+                    model_view: mv,
+                    frustum,
+                    projector,
+                });
+                // The certificate's argument takes the solid outside the eye: a mirroring
+                // transform turns the mesh inside out, so it is not used there.
+                let mirrored = determinant(object.transform.linear_bits()) < 0;
+                if !mirrored && view.is_some_and(|v| creases.hold(&object.mesh, &v)) {
+                    continue;
+                }
+                MethodReason::CreasesOverlap { object: i }
+            }
+        };
+        return Err((reason, far_z));
+    }
+    let key = |i: u16| {
+        let k = i as usize;
+        place(&scene.objects[k], &facts[k], scene, projector).map_or(u32::MAX, |p| p.depth.1)
+    };
+    // Far to near by the far end of the depth range (insertion sort: no heap, n small).
+    for k in 1..order.len() {
+        let mut j = k;
+        while j > 0 && key(order[j - 1]) < key(order[j]) {
+            order.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    for a in 0..order.len() {
+        for b in a + 1..order.len() {
+            let (i, j) = (order[a] as usize, order[b] as usize);
+            let pi = place(&scene.objects[i], &facts[i], scene, projector);
+            let pj = place(&scene.objects[j], &facts[j], scene, projector);
+            let apart = match (pi, pj) {
+                (Some(p), Some(q)) => p.depth.0 > q.depth.1 || screens_apart(&p, &q),
+                _ => false,
+            };
+            if !apart {
+                let (a, b) = (i.min(j), i.max(j));
+                return Err((MethodReason::ObjectsOverlap { a, b }, far_z));
+            }
+        }
+    }
+    Ok(MethodReason::ConvexAndSeparable)
+}
+
+/// The sign-exact determinant of a linear part (raw entries `|e| < 2^31`: each product of
+/// three below `2^93`, `i128`).
+fn determinant(m: [[i32; 3]; 3]) -> i128 {
+    let e = |r: usize, c: usize| m[r][c] as i128;
+    e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1))
+        - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))
+        + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0))
+}
+
+/// True when two screen boxes are disjoint.
+fn screens_apart(p: &Placed, q: &Placed) -> bool {
+    match (p.screen, q.screen) {
+        (Some(a), Some(b)) => a[2] < b[0] || b[2] < a[0] || a[3] < b[1] || b[3] < a[1],
+        _ => false,
+    }
+}
+
+/// The object's model → observer transform, as the renderer composes it.
+fn model_view(object: &Object<'_>, scene: &Scene<'_>) -> Option<crate::geometry::matrix::Affine3> {
+    object.transform.then(scene.camera.view_transform()).ok()
+}
+
+/// The object's depth range and screen box in this view (module doc), `None` when its
+/// transform cannot be composed.
+fn place<const S: u32>(
+    object: &Object<'_>,
+    fact: &MeshFacts<'_>,
+    scene: &Scene<'_>,
+    projector: &Projector<S>,
+) -> Option<Placed> {
+    let mv = model_view(object, scene)?;
+    let [lo, hi] = fact.bounds;
+    let corner = |k: usize| {
+        let pick = |axis: usize| {
+            if k >> axis & 1 == 0 {
+                lo[axis]
+            } else {
+                hi[axis]
+            }
+        };
+        mv.transform_point(Vec3::from_bits(pick(0), pick(1), pick(2)))
+            .bits()
+    };
+    let mut b = [[i32::MAX; 3], [i32::MIN; 3]];
+    for k in 0..8 {
+        let c = corner(k);
+        for a in 0..3 {
+            b[0][a] = b[0][a].min(c[a]);
+            b[1][a] = b[1][a].max(c[a]);
+        }
+    }
+    let near = projector.near().to_bits();
+    let depth_at = |z: i32| {
+        projector
+            .project_point(Vec3::from_bits(0, 0, z.max(near)))
+            .map_or(0, |p| p.1)
+    };
+    let depth = (
+        depth_at(b[0][2]).saturating_sub(DEPTH_MARGIN),
+        depth_at(b[1][2]).saturating_add(DEPTH_MARGIN),
+    );
+    let mut screen = Some([i64::MAX, i64::MAX, i64::MIN, i64::MIN]);
+    for k in 0..8 {
+        let pick = |axis: usize| b[k >> axis & 1][axis];
+        let p = projector.project_point(Vec3::from_bits(pick(0), pick(1), pick(2)));
+        screen = match (screen, p) {
+            (Some(s), Ok((q, _))) => Some([
+                s[0].min(q.x as i64),
+                s[1].min(q.y as i64),
+                s[2].max(q.x as i64),
+                s[3].max(q.y as i64),
+            ]),
+            _ => None,
+        };
+    }
+    let screen = screen.map(|s| {
+        [
+            s[0] - SCREEN_MARGIN,
+            s[1] - SCREEN_MARGIN,
+            s[2] + SCREEN_MARGIN,
+            s[3] + SCREEN_MARGIN,
+        ]
+    });
+    Some(Placed {
+        depth,
+        screen,
+        far_z: b[1][2],
+    })
+}
+
+/// `Δz = z²·(far − near)/(far·near·2^16)` at `z` (raw I16F16; the far plane when `z` is
+/// beyond it or unknown): the 16-bit buffer's depth step there.
+fn resolution_16(camera: &crate::geometry::camera::Camera, z: i32) -> Coord {
+    let lens = camera.lens();
+    let (near, far) = (lens.near.to_bits() as u128, lens.far.to_bits() as u128);
+    let z = if z <= 0 { far } else { (z as u128).min(far) };
+    let raw = z * z * (far - near) / (far * near * (1 << 16)).max(1);
+    Coord::from_bits(raw.min(i32::MAX as u128) as i32)
 }

@@ -50,6 +50,10 @@ pub struct ChartArgs {
     /// A saved `zscan bench --no-host` table with the `lit_*` cases (the Cortex-M4 panel).
     #[arg(long)]
     pub m4: Option<PathBuf>,
+    /// Instead of the shading chart: the RAM-against-instructions chart of the visibility
+    /// methods from this data file (`docs/plan_chart.csv`), the planner's pick marked.
+    #[arg(long, value_name = "CSV")]
+    pub plan_data: Option<PathBuf>,
     /// Internal: render one variant inside the measured region (what callgrind runs).
     #[arg(long, hide = true)]
     pub run_variant: Option<String>,
@@ -344,6 +348,12 @@ impl Row {
 
 /// Runs `zscan chart`.
 pub fn run(args: ChartArgs) -> Result<(), CliError> {
+    if let Some(data) = &args.plan_data {
+        let svg = plan_chart(data)?;
+        std::fs::write(&args.out, svg).map_err(|e| format!("{}: {e}", args.out.display()))?;
+        println!("wrote {}", args.out.display());
+        return Ok(());
+    }
     if let Some(name) = &args.run_variant {
         let v = Variant::all()
             .into_iter()
@@ -655,4 +665,160 @@ fn read_m4(path: &std::path::Path) -> Result<std::collections::HashMap<String, u
         }
     }
     Ok(out)
+}
+
+/// One point of the plan chart: `(scene, method, ram bytes, Cortex-M4 instructions, peer)`.
+type PlanPoint = (String, String, f64, f64, bool);
+
+/// The planner's pick on standard scene `name` (no budget limit), as the data file's method.
+fn planner_pick(name: &str) -> Result<String, CliError> {
+    let core = crate::core_render::to_core(&scenes::standard_scene(name)?)?;
+    let objects = [core.object(ShadeMode::GouraudExact)?];
+    let scene = zscan::scene::Scene {
+        camera: core.camera,
+        ambient: 0,
+        lights: &[],
+        objects: &objects,
+        background: 0,
+    };
+    let mut pairs = Vec::new();
+    let facts = crate::core_render::mesh_facts(&scene, &mut pairs);
+    let plan = zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut [0])
+        .map_err(|e| e.to_string())?;
+    Ok(plan.visibility.name().to_string())
+}
+
+/// The RAM (x, log scale) against Cortex-M4 instructions (y) chart of every method on each
+/// standard scene, one panel per scene, from the data file (module doc of the file itself),
+/// with the planner's pick (computed here) ringed and the peers as grey squares.
+fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
+    use plotters::prelude::*;
+    let e = |x: &dyn std::fmt::Display| -> CliError { x.to_string().into() };
+    let text = std::fs::read_to_string(data).map_err(|x| format!("{}: {x}", data.display()))?;
+    let mut points: Vec<PlanPoint> = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        if line.starts_with('#') || line.trim().is_empty() {
+            continue;
+        }
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        let num = |i: usize| f.get(i).and_then(|v| v.parse::<f64>().ok());
+        match (f.first(), f.get(1), num(2), num(3), f.get(4)) {
+            (Some(s), Some(m), Some(r), Some(i), Some(k)) => {
+                points.push((s.to_string(), m.to_string(), r, i, *k == "peer"))
+            }
+            _ => {
+                return Err(format!(
+                    "{}:{}: expected scene,method,ram,m4,kind",
+                    data.display(),
+                    n + 1
+                )
+                .into())
+            }
+        }
+    }
+    let (width, height) = (1000u32, 760u32);
+    let mut svg = String::new();
+    let mut texts: Vec<String> = Vec::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|x| e(&x))?;
+        let areas = root.margin(50, 60, 10, 10).split_evenly((2, 2));
+        for (area, name) in areas.iter().zip(["quad", "cube", "sphere", "bunny"]) {
+            let pick = planner_pick(name)?;
+            let rows: Vec<&PlanPoint> = points.iter().filter(|p| p.0 == name).collect();
+            let ymax = rows.iter().map(|p| p.3).fold(0.0, f64::max) * 1.15 / 1e6;
+            let mut chart = ChartBuilder::on(area)
+                .margin(30)
+                .build_cartesian_2d((20_000f64..600_000f64).log_scale(), 0f64..ymax)
+                .map_err(|x| e(&x))?;
+            chart
+                .draw_series(LineSeries::new(
+                    [(20_000.0, ymax), (20_000.0, 0.0), (600_000.0, 0.0)],
+                    BLACK,
+                ))
+                .map_err(|x| e(&x))?;
+            for kb in [32, 64, 128, 256, 512] {
+                let x = kb as f64 * 1024.0;
+                chart
+                    .draw_series(LineSeries::new(
+                        [(x, 0.0), (x, ymax)],
+                        RGBColor(225, 225, 225),
+                    ))
+                    .map_err(|q| e(&q))?;
+                let (px, py) = chart.backend_coord(&(x, 0.0));
+                texts.push(format!(
+                    r#"<text x="{px}" y="{}" text-anchor="middle" font-size="11">{kb} KB</text>"#,
+                    py + 14
+                ));
+            }
+            let (tx, ty) = chart.backend_coord(&(20_000.0, ymax));
+            texts.push(format!(
+                r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{name}</text>"#,
+                tx + 6,
+                ty + 14
+            ));
+            let (lx, ly) = chart.backend_coord(&(20_000.0, 0.0));
+            texts.push(format!(
+                r#"<text x="{}" y="{}" text-anchor="end" font-size="11">0</text>"#,
+                lx - 4,
+                ly
+            ));
+            texts.push(format!(
+                r#"<text x="{}" y="{}" text-anchor="end" font-size="11">{:.1} M</text>"#,
+                lx - 4,
+                ty + 10,
+                ymax
+            ));
+            for p in rows {
+                let (x, y) = (p.2, p.3 / 1e6);
+                let (px, py) = chart.backend_coord(&(x, y));
+                if p.4 {
+                    chart
+                        .draw_series(std::iter::once(Rectangle::new(
+                            [(x / 1.04, y - ymax / 80.0), (x * 1.04, y + ymax / 80.0)],
+                            RGBColor(150, 150, 150).filled(),
+                        )))
+                        .map_err(|q| e(&q))?;
+                } else {
+                    chart
+                        .draw_series(std::iter::once(Circle::new(
+                            (x, y),
+                            5,
+                            RGBColor(30, 90, 200).filled(),
+                        )))
+                        .map_err(|q| e(&q))?;
+                }
+                if !p.4 && p.1 == pick {
+                    chart
+                        .draw_series(std::iter::once(Circle::new(
+                            (x, y),
+                            10,
+                            RGBColor(200, 30, 30).stroke_width(2),
+                        )))
+                        .map_err(|q| e(&q))?;
+                }
+                let label = if p.1 == "zbuffer" {
+                    "zbuffer (16-bit)".to_string()
+                } else {
+                    p.1.clone()
+                };
+                // The painter sits on back faces' point on the quad and cube: label it below.
+                let dy = if p.1 == "painter" { 16 } else { -6 };
+                texts.push(format!(
+                    r#"<text x="{}" y="{}" font-size="11">{label}</text>"#,
+                    px + 9,
+                    py + dy
+                ));
+            }
+        }
+        root.present().map_err(|x| e(&x))?;
+    }
+    let w = width as i32;
+    texts.push(format!(r#"<text x="{}" y="26" text-anchor="middle" font-size="16" font-weight="bold">Visibility methods: caller RAM against Cortex-M4 instructions per frame (standard scenes, 320x240)</text>"#, w / 2));
+    texts.push(format!(r#"<text x="{}" y="46" text-anchor="middle" font-size="12">blue: zscan methods; ringed red: the planner's pick (no budget limit); grey squares: peers (frame + depth, SCENES.md). x: bytes, log scale; data: docs/plan_chart.csv</text>"#, w / 2));
+    let body = texts.join("\n");
+    Ok(match svg.rfind("</svg>") {
+        Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
+        None => svg,
+    })
 }

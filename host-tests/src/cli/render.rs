@@ -94,13 +94,33 @@ pub struct RenderArgs {
     /// Render in bands of ROWS rows (the pixels are the same as one pass).
     #[arg(long, value_name = "ROWS")]
     pub bands: Option<u16>,
-    /// Hidden-surface method: auto (zscan::visibility::plan: back faces alone for one convex
-    /// culled object, else the z-buffer), backface, painter, scanline, warnock or zbuffer.
-    /// Back faces alone, the painter and Warnock's subdivision need no depth buffer (no
-    /// --depth-out); the scan-line
-    /// draws in bands of --bands rows (default 1) through one band of depth.
+    /// Hidden-surface method: auto (zscan::visibility::plan: back faces alone for convex,
+    /// separable objects, else the z-buffer in the layout and depth width that fit
+    /// --ram-budget; the plan and its reasons are printed), backface, painter, scanline,
+    /// warnock or zbuffer. Back faces alone, the painter and Warnock's subdivision need no
+    /// depth buffer (no --depth-out); the scan-line draws in bands of --bands rows
+    /// (default 1) through one band of depth.
     #[arg(long, value_name = "METHOD", default_value = "zbuffer", value_parser = parse_visibility)]
     pub visibility: VisibilityArg,
+    /// With --visibility auto: the caller memory the plan may use, in bytes (32768 or 32K;
+    /// K = 1024, M = 1024²). Default: no limit.
+    #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
+    pub ram_budget: Option<usize>,
+}
+
+/// `--ram-budget`'s parser: a byte count, optionally followed by `K` (1024) or `M` (1024²).
+pub fn parse_bytes(s: &str) -> Result<usize, String> {
+    let t = s.trim();
+    let (digits, unit) = match t.char_indices().last() {
+        Some((i, 'K' | 'k')) => (&t[..i], 1024usize),
+        Some((i, 'M' | 'm')) => (&t[..i], 1024 * 1024),
+        _ => (t, 1),
+    };
+    digits
+        .parse::<usize>()
+        .ok()
+        .and_then(|n| n.checked_mul(unit))
+        .ok_or_else(|| format!("{s:?} is not a byte count (digits, optionally followed by K or M)"))
 }
 
 /// `--visibility`'s value: a method, or `auto` (`None`: the planner's).
@@ -1321,12 +1341,32 @@ impl LoadedScene {
         self.render_by::<D>(band_rows, Visibility::ZBuffer)
     }
 
-    /// The plan of [`zscan::visibility::plan`] for this scene, each object's convexity
-    /// computed here ([`Mesh::is_convex`](zscan::geometry::mesh::Mesh::is_convex)).
-    pub fn plan(&self) -> Result<zscan::visibility::Plan, String> {
+    /// The plan of [`zscan::visibility::plan`] for this scene within `budget` bytes, each
+    /// mesh's facts computed here ([`MeshFacts::of`](zscan::visibility::MeshFacts::of)),
+    /// with the drawing order it wrote.
+    pub fn plan(&self, budget: usize) -> Result<(zscan::visibility::Plan, Vec<u16>), String> {
         let objects = self.core_objects(None)?;
-        let convex: Vec<bool> = objects.iter().map(|o| o.mesh.is_convex()).collect();
-        Ok(zscan::visibility::plan(&self.core_scene(&objects), &convex))
+        let scene = self.core_scene(&objects);
+        let mut pairs = Vec::new();
+        let facts = crate::core_render::mesh_facts(&scene, &mut pairs);
+        let mut order = vec![0u16; objects.len()];
+        let plan = zscan::visibility::plan::<SUBPIXEL_BITS>(&scene, &facts, budget, &mut order)
+            .map_err(|e| format!("plan: {e}"))?;
+        Ok((plan, order))
+    }
+
+    /// The frame drawn as `plan` says, objects in `order` (depth samples all far).
+    pub fn render_plan(
+        &self,
+        plan: &zscan::visibility::Plan,
+        order: &[u16],
+    ) -> Result<(Vec<u8>, RenderStats), String> {
+        let objects = self.core_objects(None)?;
+        let scene = self.core_scene(&objects);
+        let renderer = Renderer::<SUBPIXEL_BITS>::from_scene(&scene)
+            .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
+        crate::core_render::draw_plan(&renderer, &scene, plan, order)
+            .map_err(|e| format!("render: {}", render_error_words(&e)))
     }
 
     /// The core objects of the scene, or object `only` alone.
@@ -1538,14 +1578,7 @@ fn finish<D: DepthValue + Into<u64>>(
     args: &RenderArgs,
     scene: &LoadedScene,
 ) -> Result<(), CliError> {
-    let (visibility, reason) = match args.visibility.0 {
-        Some(v) => (v, None),
-        None => {
-            let p = scene.plan()?;
-            println!("plan: {} ({})", p.visibility, p.reason);
-            (p.visibility, Some(p.reason))
-        }
-    };
+    let visibility = args.visibility.0.unwrap_or(Visibility::ZBuffer);
     if args.depth_out.is_some()
         && matches!(
             visibility,
@@ -1626,7 +1659,6 @@ fn finish<D: DepthValue + Into<u64>>(
             "band_rows": band_rows,
             "depth_bits": D::BITS,
             "visibility": visibility.name(),
-            "plan_reason": reason.map(|r| r.to_string()),
             "subpixel_bits": SUBPIXEL_BITS,
             "objects": scene.objects.len(),
             "triangles_in": scene.triangles_in,
@@ -1650,6 +1682,81 @@ fn finish<D: DepthValue + Into<u64>>(
     Ok(())
 }
 
+/// `zscan render --visibility auto`: plans within `--ram-budget` (no limit by default),
+/// prints the plan and its reasons, draws the frame as planned.
+fn finish_auto(args: &RenderArgs, scene: &LoadedScene) -> Result<(), CliError> {
+    use zscan::visibility::DepthWidth;
+    if args.bands.is_some() {
+        return Err("--bands: --visibility auto picks the band height".into());
+    }
+    let budget = args.ram_budget.unwrap_or(usize::MAX);
+    let (plan, order) = scene.plan(budget)?;
+    for line in plan.to_string().lines() {
+        println!("plan: {line}");
+    }
+    if args.depth_out.is_some() {
+        return Err("--depth-out: --visibility auto keeps no whole depth picture".into());
+    }
+    let (pixels, stats) = scene.render_plan(&plan, &order)?;
+    let vp = *scene.camera.viewport();
+    let (w, h) = (vp.width, vp.height);
+    let mut pixels = pixels;
+    let fb = Framebuffer::new(&mut pixels, w, h).map_err(|e| format!("frame: {e}"))?;
+    crate::image::write_image(&args.output, &fb, &scene.lut).map_err(|e| e.0)?;
+    if let Some(p) = &args.stats {
+        let b = plan.buffers;
+        let depth_bits = match plan.depth {
+            DepthWidth::None => 0,
+            DepthWidth::U16 => 16,
+            DepthWidth::U32 => 32,
+        };
+        let json = serde_json::json!({
+            "width": w,
+            "height": h,
+            "bands": h.div_ceil(plan.band_rows.max(1)),
+            "band_rows": plan.band_rows,
+            "depth_bits": depth_bits,
+            "visibility": plan.visibility.name(),
+            "plan": {
+                "budget": args.ram_budget,
+                "method": plan.visibility.name(),
+                "method_reason": plan.method_reason.to_string(),
+                "depth_bits": depth_bits,
+                "depth_reason": plan.depth_reason.to_string(),
+                "band_rows": plan.band_rows,
+                "layout_reason": plan.layout_reason.to_string(),
+                "vertex_stage_once": plan.vertex_stage_once,
+                "order": order,
+                "buffers": {
+                    "frame": b.frame,
+                    "depth": b.depth,
+                    "vertices": b.vertices,
+                    "polygons": b.polygons,
+                    "tables": b.tables,
+                    "total": b.total(),
+                },
+            },
+            "subpixel_bits": SUBPIXEL_BITS,
+            "objects": scene.objects.len(),
+            "triangles_in": scene.triangles_in,
+            "polygons_in": stats.polygons_in,
+            "culled": stats.culled,
+            "rejected": stats.rejected,
+            "clipped": stats.clipped,
+            "triangles_drawn": stats.triangles_drawn,
+            "pixels_covered": stats.pixels_covered,
+            "pixels_written": stats.pixels_written,
+        });
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        let text = serde_json::to_string_pretty(&json)?;
+        fs::write(p, text + "\n").map_err(|e| format!("{}: {e}", p.display()))?;
+    }
+    println!("{}", summary(&args.output, w, h, &stats));
+    Ok(())
+}
+
 /// The one-line summary `zscan render` prints on success.
 pub fn summary(output: &Path, w: u16, h: u16, stats: &RenderStats) -> String {
     format!(
@@ -1665,7 +1772,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if args.bands == Some(0) {
         return Err("--bands: a band needs at least one row".into());
     }
+    if args.ram_budget.is_some() && args.visibility.0.is_some() {
+        return Err("--ram-budget: only --visibility auto plans within a budget".into());
+    }
     let scene = load_scene(&args.scene)?;
+    if args.visibility.0.is_none() {
+        return finish_auto(&args, &scene);
+    }
     match scene.depth_bits {
         16 => finish::<u16>(&args, &scene),
         _ => finish::<u32>(&args, &scene),
