@@ -660,7 +660,7 @@ mod tests {
     /// on random triangles; a span of `2^15` is not narrow.
     #[test]
     fn narrow_cull_agrees_with_front_triangle() {
-        let mut rng = crate::test_rng::XorShift(0x5EED_0F_C0_4AC7u64);
+        let mut rng = crate::test_rng::XorShift(0x5EED_0FC0_4AC7_u64);
         let v = |x: i32, y: i32| CompactVertex {
             x: x as i16,
             y: y as i16,
