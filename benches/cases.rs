@@ -86,6 +86,10 @@ pub const CASES: &[Case] = &[
         run: |fb, _| empty(fb),
     },
     Case {
+        name: "clear",
+        run: clear,
+    },
+    Case {
         name: "line_shallow",
         run: |fb, _| line_shallow(fb),
     },
@@ -326,6 +330,17 @@ fn empty(_fb: &mut Framebuffer<'_>) -> u32 {
     0
 }
 
+/// The clears of a frame alone: colour (index 0, one byte per pixel) and 16-bit depth (far),
+/// 320 × 240, as [`scene::frame`] does them; returns 0 pixels.
+fn clear(fb: &mut Framebuffer<'_>, st: &mut Storage) -> u32 {
+    fb.clear(0);
+    if let Ok(mut zb) = zscan::target::DepthBuffer::new(&mut st.depth, WIDTH, HEIGHT) {
+        zb.clear();
+    }
+    core::hint::black_box(&st.depth);
+    0
+}
+
 /// 8 long x-major lines across the whole width (320 pixels each, slope 37/319).
 fn line_shallow(fb: &mut Framebuffer<'_>) -> u32 {
     for i in 0..8 {
@@ -453,13 +468,12 @@ pub mod scene {
     /// faces overlap); returns the pixels covered.
     pub fn back_faces(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
-        match zscan::visibility::render_back_faces(&r, &scene, fb, &mut st.vertices, &mut stats) {
+        match zscan::visibility::render_back_faces(&r, fb, &mut st.vertices, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
@@ -470,18 +484,17 @@ pub mod scene {
     pub fn painter(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
         use zscan::visibility::{render_painter, PainterMemory, SplitPolicy};
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
         let memory = PainterMemory {
             triangles: &mut st.triangles,
             order: &mut st.order,
         };
         let policy = SplitPolicy::Budget(64);
-        match render_painter(&r, &scene, fb, &mut st.vertices, memory, policy, &mut stats) {
+        match render_painter(&r, fb, &mut st.vertices, memory, policy, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
@@ -502,11 +515,10 @@ pub mod scene {
         let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
         let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
         let memory = ScanLineMemory {
             triangles: &mut st.triangles,
@@ -517,7 +529,6 @@ pub mod scene {
         };
         let drawn = render_scan_lines(
             &r,
-            &scene,
             (super::WIDTH, super::HEIGHT, rows),
             &mut st.vertices,
             memory,
@@ -534,10 +545,10 @@ pub mod scene {
         drawn.map_or(0, |()| stats.0.pixels_covered)
     }
 
-    /// The one-object scene of `objects` for renderer `r` (no lights, background 0).
-    fn core_scene<'a>(r: &Renderer<4>, objects: &'a [Object<'a>]) -> zscan::scene::Scene<'a> {
+    /// The scene of `objects` seen by `camera` (no lights, background 0).
+    fn core_scene<'a>(camera: Camera, objects: &'a [Object<'a>]) -> zscan::scene::Scene<'a> {
         zscan::scene::Scene {
-            camera: *r.camera(),
+            camera,
             objects,
             background: 0,
             ambient: 0,
@@ -763,22 +774,14 @@ pub mod scene {
         let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
         let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
-            return 0;
-        };
         let mut polygons = [zscan::render::PolygonRows::default(); MAX_POLYGONS];
         let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = zscan::scene::Scene {
-            camera: *r.camera(),
-            objects: &objects,
-            background: 0,
-            ambient: 0,
-            lights: &[],
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
+            return 0;
         };
         let mut stats = StatsWithoutWritten::default();
         let drawn = zscan::render::render_in_bands(
             &r,
-            &scene,
             (&mut band, &mut depth),
             (super::WIDTH, super::HEIGHT, rows),
             zscan::render::BandScratch {

@@ -44,7 +44,7 @@ fn render(display: &mut impl DrawTarget<Color = Rgb565>) -> Result<RenderStats, 
     let renderer = Renderer::for_scene(&scene)?; // 4 sub-pixel bits by default
     let mut scratch = [PreparedVertex::default(); N.0];
     let mut stats = RenderStats::default(); // or StatsWithoutWritten: no per-pixel count
-    render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
+    render_scene(&renderer, &mut frame, &mut depth, &mut scratch, &mut stats)?;
     static LUT: Lut<Rgb565> = Lut::<Rgb565>::GREY; // 256 colours, in flash
     flush(&frame, &LUT, display, None).map_err(|_| zscan::Error::Display)?; // any DrawTarget
     Ok(stats)

@@ -53,7 +53,7 @@
 //! let mut scratch = [PreparedVertex::default(); 114];
 //! let mut stats = RenderStats::default();
 //! let renderer = Renderer::for_scene(&scene)?;
-//! render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
+//! render_scene(&renderer, &mut frame, &mut depth, &mut scratch, &mut stats)?;
 //!
 //! // The sphere covers the middle of the picture, lit brighter toward the light (up right).
 //! assert_eq!(frame.pixel(0, 0), Some(0));

@@ -12,7 +12,8 @@ use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{
-    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
+    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats,
+    SceneRenderer,
 };
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
@@ -195,7 +196,7 @@ impl CoreMesh {
             ambient: 0,
             lights: &[],
         };
-        let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
+        let renderer = SceneRenderer::<S>::new(&scene).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
         let polygons = if polygon_table {
             objects[0].mesh.polygon_count()
@@ -208,7 +209,7 @@ impl CoreMesh {
             polygons: &mut table,
         };
         let (pixels, depth, stats) =
-            render_picture(&renderer, &scene, (w, h), band_rows, band_scratch)
+            render_picture(&renderer, (w, h), band_rows, band_scratch)
                 .map_err(|e| e.to_string())?;
         Ok(CoreFrame {
             pixels,
@@ -223,12 +224,12 @@ impl CoreMesh {
 /// where a device would flush it). `band_rows = None` is one band of the whole height.
 /// Returns the picture's indices and depths, row-major, and the summed statistics.
 pub fn render_picture<D: DepthValue, const SB: u32>(
-    renderer: &Renderer<SB>,
-    scene: &CoreScene<'_>,
+    renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
     band_rows: Option<u16>,
     scratch: BandScratch<'_, SB>,
 ) -> Result<(Vec<u8>, Vec<D>, RenderStats), zscan::render::RenderError> {
+    let scene = renderer.scene();
     let band = band_rows.unwrap_or(h).clamp(1, h.max(1));
     let n = w as usize * band as usize;
     let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
@@ -237,7 +238,6 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     let mut stats = RenderStats::default();
     render_in_bands(
         renderer,
-        scene,
         (&mut band_pixels, &mut band_depths),
         (w, h, band),
         scratch,
@@ -261,13 +261,13 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
 /// with a split budget of `splits` (`None`: no test 6), the scan-line and z-buffer in bands of
 /// `band_rows` rows (the z-buffer 32-bit, the reference the other methods are compared with).
 pub fn render_visible<const SB: u32>(
-    renderer: &Renderer<SB>,
-    scene: &CoreScene<'_>,
+    renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
     visibility: Visibility,
     splits: Option<usize>,
     band_rows: u16,
 ) -> Result<(Vec<u8>, RenderStats), RenderError> {
+    let scene = renderer.scene();
     let vertices: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
     let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
     let mut scratch = vec![PreparedVertex::default(); vertices.max(1)];
@@ -280,7 +280,7 @@ pub fn render_visible<const SB: u32>(
             let mut pixels = vec![0u8; total];
             let mut frame =
                 Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
-            render_back_faces(renderer, scene, &mut frame, &mut scratch, &mut stats)?;
+            render_back_faces(renderer, &mut frame, &mut scratch, &mut stats)?;
             Ok((pixels, stats))
         }
         Visibility::Painter => {
@@ -296,7 +296,6 @@ pub fn render_visible<const SB: u32>(
             let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
             render_painter(
                 renderer,
-                scene,
                 &mut frame,
                 &mut scratch,
                 memory,
@@ -321,7 +320,6 @@ pub fn render_visible<const SB: u32>(
             let mut pixels = vec![scene.background; total];
             render_scan_lines(
                 renderer,
-                scene,
                 (w, h, band),
                 &mut scratch,
                 memory,
@@ -343,7 +341,7 @@ pub fn render_visible<const SB: u32>(
                 polygons: &mut table,
             };
             let (pixels, _, stats) =
-                render_picture::<u32, SB>(renderer, scene, (w, h), Some(band_rows), band_scratch)?;
+                render_picture::<u32, SB>(renderer, (w, h), Some(band_rows), band_scratch)?;
             Ok((pixels, stats))
         }
     }

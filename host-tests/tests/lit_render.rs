@@ -364,7 +364,7 @@ fn lit_bands_equal_one_pass() {
                 lights: &light,
             };
             let r = Renderer::for_scene(&scene).unwrap();
-            let (one, _) = frame(&r, &objects[0]);
+            let (one, _) = frame(r.renderer(), &objects[0]);
             for (rows, table) in [(1u16, false), (5, false), (72, false), (1, true), (5, true)] {
                 let n = W as usize * rows as usize;
                 let (mut band, mut depth) = (vec![0u8; n], vec![0u16; n]);
@@ -373,7 +373,6 @@ fn lit_bands_equal_one_pass() {
                 let mut picture = vec![0u8; W as usize * H as usize];
                 render_in_bands(
                     &r,
-                    &scene,
                     (&mut band, &mut depth),
                     (W, H, rows),
                     BandScratch {

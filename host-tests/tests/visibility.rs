@@ -28,8 +28,8 @@ fn both(
     band_rows: u16,
 ) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
     let renderer = Renderer::for_scene(scene)?;
-    let (m, _) = render_visible(&renderer, scene, (w, h), method, splits, band_rows)?;
-    let (z, _) = render_visible(&renderer, scene, (w, h), Visibility::ZBuffer, None, h)?;
+    let (m, _) = render_visible(&renderer, (w, h), method, splits, band_rows)?;
+    let (z, _) = render_visible(&renderer, (w, h), Visibility::ZBuffer, None, h)?;
     Ok((m, z))
 }
 

@@ -9,10 +9,11 @@ use super::cull::front_triangle;
 use super::polygon_rows::triangle_rows;
 use super::polygon_stage::{Path, PolygonStage};
 use super::{
-    render_scene, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
+    render_scene, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, SceneRenderer,
+    StatsSink,
 };
 use crate::geometry::mesh::PolygonSizes;
-use crate::scene::{Object, Scene};
+use crate::scene::Object;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
@@ -142,7 +143,8 @@ pub struct BandScratch<'a, const S: u32> {
     pub polygons: &'a mut [PolygonRows],
 }
 
-/// Draws a `width × height` picture band by band through one band-sized pair of buffers:
+/// Draws a `width × height` picture of the renderer's scene band by band through one
+/// band-sized pair of buffers:
 /// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band,
 /// then calls `band_done` with the finished band, mutable (draw an overlay into it there, with
 /// embedded-graphics text or shapes, since a [`Framebuffer`] is a `DrawTarget`), and flush it to
@@ -159,14 +161,14 @@ pub struct BandScratch<'a, const S: u32> {
 /// without it, once per band pass (`culled` then counts, per band, the back faces that reach
 /// the band's rows: a band skips projected polygons above or below it first).
 pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    scene_renderer: &SceneRenderer<'_, S>,
     (pixels, depths): (&mut [u8], &mut [D]),
     (width, height, band_rows): (u16, u16, u16),
     scratch: BandScratch<'_, S>,
     stats: &mut impl StatsSink,
     mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
+    let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
     let BandScratch { vertices, polygons } = scratch;
     let band_rows = band_rows.clamp(1, height.max(1));
     let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
@@ -211,7 +213,7 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
                 (at, pat) = (at + n, pat + np);
             }
         } else {
-            render_scene(renderer, scene, &mut frame, &mut depth, vertices, stats)?;
+            render_scene(scene_renderer, &mut frame, &mut depth, vertices, stats)?;
         }
         band_done(&mut frame, &depth)?;
         top += rows;

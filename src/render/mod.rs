@@ -1,7 +1,9 @@
 //! The frame: geometry → clipping → projection → raster → shading → target, for whole scenes.
 //!
 //! Role in the pipeline: the glue that runs every stage in order. A [`Renderer`] holds what is
-//! fixed for a frame (projector, frustum, view transform, lights). For each
+//! fixed for a frame (projector, frustum, view transform, lights); a [`SceneRenderer`] is one
+//! built from a scene's camera and lights, holding the scene, and is what the scene entries
+//! draw (one source of camera and lights, `renderer.rs`). For each
 //! [`Object`](crate::scene::Object):
 //!
 //! 1. **Vertex stage** (`vertex_stage.rs`, [`Renderer::prepare`]), once per vertex: model →
@@ -57,6 +59,6 @@ pub use bands::{render_in_bands, BandScratch};
 pub use error::RenderError;
 pub use frame::render_scene;
 pub use polygon_rows::PolygonRows;
-pub use renderer::Renderer;
+pub use renderer::{Renderer, SceneRenderer};
 pub use stats::{RenderStats, StatsSink, StatsWithoutWritten};
 pub use vertex_stage::PreparedVertex;

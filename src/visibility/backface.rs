@@ -10,21 +10,21 @@
 //! Memory: none beside the frame and the vertex scratch; the span loops run with the
 //! zero-sized [`NoDepth`] sample, which compiles away the depth interpolant, test and store.
 
-use crate::render::{PreparedVertex, RenderError, Renderer, StatsSink};
-use crate::scene::Scene;
+use crate::render::{PreparedVertex, RenderError, SceneRenderer, StatsSink};
 use crate::target::{DepthBuffer, Framebuffer, NoDepth};
 
-/// Clears `frame` to the scene's background and draws every object in order, back faces
+/// Clears `frame` to the scene's background and draws every object of the renderer's scene in
+/// order, back faces
 /// culled, front faces painted as they come (no depth test). `scratch` holds at least the
 /// largest mesh's vertices. The picture equals the z-buffer's when the scene qualifies
 /// (the module doc of `visibility::backface`).
 pub fn render_back_faces<const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
+    let (scene, renderer) = (renderer.scene(), renderer.renderer());
     frame.clear(scene.background);
     without_depth(frame, |frame, depth| {
         for object in scene.objects {

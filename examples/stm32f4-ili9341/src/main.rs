@@ -225,7 +225,6 @@ fn run<D: DrawTarget<Color = Rgb565>>(
         let mut stats = RenderStats::default();
         render_in_bands(
             &renderer,
-            &scene,
             (&mut pixels[..], &mut depths[..]),
             (W, H, BAND),
             // Vertex scratch and polygon table for all objects: the vertex stage runs once

@@ -1382,7 +1382,6 @@ impl LoadedScene {
             let band = band_rows.unwrap_or(1).clamp(1, h);
             let (pixels, stats) = crate::core_render::render_visible(
                 &renderer,
-                &scene,
                 (w, h),
                 visibility,
                 Some(PAINTER_SPLITS),
@@ -1412,7 +1411,6 @@ impl LoadedScene {
         let bands = h.div_ceil(band) as u32;
         let (pixels, depth, stats) = crate::core_render::render_picture(
             &renderer,
-            &scene,
             (w, h),
             band_rows,
             BandScratch {
