@@ -22,7 +22,7 @@
 //!
 //! The harness clears the framebuffer to index 0 before each call, calls the case once to warm
 //! up, clears again, then measures one call between the region markers.
-use zscan::raster::edge_walker::{DivisionWalker, IncrementalWalker};
+use zscan::internals::{DivisionWalker, IncrementalWalker};
 use zscan::render::PreparedVertex;
 use zscan::shade::span_writer::ShadeMode;
 use zscan::target::Framebuffer;
@@ -435,7 +435,7 @@ pub mod scene {
     use zscan::geometry::mesh::{Mesh, PolygonSizes};
     use zscan::geometry::trig::Angle;
     use zscan::geometry::vector::Vec3;
-    use zscan::raster::edge_walker::EdgeWalker;
+    use zscan::internals::EdgeWalker;
     use zscan::raster::triangle::{cross, fill_triangle_with};
     use zscan::render::{RenderStats, Renderer, StatsSink, StatsWithoutWritten};
     use zscan::scene::{Intensities, Object};

@@ -208,9 +208,8 @@ impl CoreMesh {
             vertices: &mut scratch,
             polygons: &mut table,
         };
-        let (pixels, depth, stats) =
-            render_picture(&renderer, (w, h), band_rows, band_scratch)
-                .map_err(|e| e.to_string())?;
+        let (pixels, depth, stats) = render_picture(&renderer, (w, h), band_rows, band_scratch)
+            .map_err(|e| e.to_string())?;
         Ok(CoreFrame {
             pixels,
             depth,

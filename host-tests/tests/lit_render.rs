@@ -11,7 +11,6 @@
 //! - Statistics without the written-pixel count draw the same pixels with the same counts,
 //!   `pixels_written` 0, in every mode (front faces only, and with hidden back faces drawn).
 //! - Bad input: short normal tables, too many lights, a zero light direction → errors.
-use zscan::clip::frustum::NEAR;
 use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::{uv_sphere, uv_sphere_sizes};
@@ -19,6 +18,7 @@ use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::Mesh;
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
+use zscan::internals::NEAR;
 use zscan::render::{
     render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
     StatsSink, StatsWithoutWritten,

@@ -15,7 +15,7 @@
 //!    level, or a normal for Phong) and which consumer takes the triangles.
 //! 3. **The seam** (`consumer.rs`): each culled, clipped, projected triangle goes to a
 //!    `TriangleConsumer`. Today's consumers draw through the depth buffer at once
-//!    (`LevelWriter` into [`draw_triangle_on`](crate::shade::span_writer::draw_triangle_on),
+//!    (`LevelWriter` into `draw_triangle_on`,
 //!    `PhongWriter` into [`draw_triangle_phong`](crate::shade::phong::draw_triangle_phong));
 //!    other visibility methods plug in here.
 //!
@@ -54,7 +54,8 @@ mod renderer;
 mod stats;
 mod vertex_stage;
 
-pub use crate::clip::frustum::MAX_POLYGON_VERTICES;
+pub use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
+pub use crate::project::ProjectError;
 pub use bands::{render_in_bands, BandScratch};
 pub use error::RenderError;
 pub use frame::render_scene;

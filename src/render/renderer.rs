@@ -62,11 +62,6 @@ impl<const S: u32> Renderer<S> {
         Ok(self)
     }
 
-    /// The lights in the observer frame.
-    pub fn illumination(&self) -> &Illumination {
-        &self.illumination
-    }
-
     /// The camera this renderer projects for.
     pub fn camera(&self) -> &Camera {
         &self.camera
@@ -210,7 +205,12 @@ mod tests {
 
     /// The picture of `objects` drawn one by one, through the depth buffer, with a renderer
     /// built from `camera`, `ambient` and `lights` directly (not from a scene).
-    fn reference(camera: &Camera, ambient: u8, lights: &[Light], objects: &[Object<'_>]) -> [u8; N] {
+    fn reference(
+        camera: &Camera,
+        ambient: u8,
+        lights: &[Light],
+        objects: &[Object<'_>],
+    ) -> [u8; N] {
         let r = Renderer::<4>::new(camera)
             .unwrap()
             .with_lights(ambient, lights)
@@ -223,7 +223,8 @@ mod tests {
         let mut scratch = [PreparedVertex::default(); 8];
         for o in objects {
             let stats = &mut RenderStats::default();
-            r.draw_object(o, &mut scratch, &mut frame, &mut depth, stats).unwrap();
+            r.draw_object(o, &mut scratch, &mut frame, &mut depth, stats)
+                .unwrap();
         }
         pixels
     }
@@ -301,8 +302,14 @@ mod tests {
     fn scene_entries_draw_with_the_scenes_own_camera_and_lights() {
         let objects = [cube()];
         let (lights_a, lights_b) = (
-            [Light::Point { position: Vec3::from_int(3, 4, 5), intensity: 255 }],
-            [Light::Directional { toward: Vec3::from_int(-1, 0, 1), intensity: 120 }],
+            [Light::Point {
+                position: Vec3::from_int(3, 4, 5),
+                intensity: 255,
+            }],
+            [Light::Directional {
+                toward: Vec3::from_int(-1, 0, 1),
+                intensity: 120,
+            }],
         );
         let a = Scene {
             camera: camera(Vec3::from_int(1, 1, 2)),
@@ -325,7 +332,10 @@ mod tests {
             let renderer = Renderer::for_scene(scene).unwrap();
             assert_eq!(renderer.renderer().camera(), &scene.camera);
             for (entry, drawn) in entries(&renderer).iter().enumerate() {
-                assert!(drawn == picture, "entry {entry} drew another camera or lights");
+                assert!(
+                    drawn == picture,
+                    "entry {entry} drew another camera or lights"
+                );
             }
         }
         // Objects moved under A's renderer: A's camera and lights, the new objects.

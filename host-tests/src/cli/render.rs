@@ -1431,9 +1431,9 @@ impl LoadedScene {
 /// Words for a core [`RenderError`](zscan::render::RenderError), naming the limit that was
 /// reached (the core's own `Display` prints some inner errors by their Debug names).
 pub fn render_error_words(e: &zscan::render::RenderError) -> String {
-    use zscan::clip::frustum::ClipError;
     use zscan::geometry::matrix::MatrixError;
-    use zscan::project::ProjectError;
+    use zscan::render::ClipError;
+    use zscan::render::ProjectError;
     use zscan::render::{RenderError as R, MAX_POLYGON_VERTICES};
     use zscan::shade::lighting::LightingError;
     use zscan::shade::span_writer::DrawError;
@@ -1452,7 +1452,7 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
             }
             ProjectError::OutOfRange => format!(
                 "projection: a vertex projects outside the raster's range of ±{} sub-pixel units",
-                zscan::raster::edge_walker::MAX_COORD
+                zscan::raster::MAX_COORD
             ),
             ProjectError::SubpixelBitsTooLarge => {
                 "projection: sub-pixel bits above the raster's limit of 16".into()
