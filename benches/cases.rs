@@ -22,7 +22,7 @@
 //!
 //! The harness clears the framebuffer to index 0 before each call, calls the case once to warm
 //! up, clears again, then measures one call between the region markers.
-use zscan::raster::edge_walker::{DivisionWalker, IncrementalWalker};
+use zscan::internals::{DivisionWalker, IncrementalWalker};
 use zscan::render::PreparedVertex;
 use zscan::shade::span_writer::ShadeMode;
 use zscan::target::Framebuffer;
@@ -90,6 +90,10 @@ pub const CASES: &[Case] = &[
     Case {
         name: "empty",
         run: |fb, _| empty(fb),
+    },
+    Case {
+        name: "clear",
+        run: clear,
     },
     Case {
         name: "line_shallow",
@@ -360,6 +364,17 @@ fn empty(_fb: &mut Framebuffer<'_>) -> u32 {
     0
 }
 
+/// The clears of a frame alone: colour (index 0, one byte per pixel) and 16-bit depth (far),
+/// 320 × 240, as [`scene::frame`] does them; returns 0 pixels.
+fn clear(fb: &mut Framebuffer<'_>, st: &mut Storage) -> u32 {
+    fb.clear(0);
+    if let Ok(mut zb) = zscan::target::DepthBuffer::new(&mut st.depth, WIDTH, HEIGHT) {
+        zb.clear();
+    }
+    core::hint::black_box(&st.depth);
+    0
+}
+
 /// 8 long x-major lines across the whole width (320 pixels each, slope 37/319).
 fn line_shallow(fb: &mut Framebuffer<'_>) -> u32 {
     for i in 0..8 {
@@ -454,7 +469,7 @@ pub mod scene {
     use zscan::geometry::mesh::{Mesh, PolygonSizes};
     use zscan::geometry::trig::Angle;
     use zscan::geometry::vector::Vec3;
-    use zscan::raster::edge_walker::EdgeWalker;
+    use zscan::internals::EdgeWalker;
     use zscan::raster::triangle::{cross, fill_triangle_with};
     use zscan::render::{RenderStats, Renderer, StatsSink, StatsWithoutWritten};
     use zscan::scene::{Intensities, Object};
@@ -487,13 +502,12 @@ pub mod scene {
     /// faces overlap); returns the pixels covered.
     pub fn back_faces(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
-        match zscan::visibility::render_back_faces(&r, &scene, fb, &mut st.vertices, &mut stats) {
+        match zscan::visibility::render_back_faces(&r, fb, &mut st.vertices, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
@@ -504,11 +518,10 @@ pub mod scene {
     pub fn painter(fb: &mut Framebuffer<'_>, st: &mut Storage, s: &StandardScene) -> u32 {
         use zscan::visibility::{render_painter, PainterMemory, SplitPolicy};
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
         let memory = PainterMemory {
             triangles: &mut st.triangles,
@@ -516,7 +529,7 @@ pub mod scene {
             normals: &mut st.normals,
         };
         let policy = SplitPolicy::Budget(64);
-        match render_painter(&r, &scene, fb, &mut st.vertices, memory, policy, &mut stats) {
+        match render_painter(&r, fb, &mut st.vertices, memory, policy, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
@@ -530,18 +543,17 @@ pub mod scene {
         // 1 + 3 × 9 levels at 320 × 240.
         let mut windows = [Area::DEFAULT; 28];
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
         let memory = WarnockMemory {
             triangles: &mut st.triangles,
             candidates: &mut st.order,
             windows: &mut windows,
         };
-        match render_warnock(&r, &scene, fb, &mut st.vertices, memory, &mut stats) {
+        match render_warnock(&r, fb, &mut st.vertices, memory, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
@@ -562,11 +574,10 @@ pub mod scene {
         let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
         let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
         let memory = ScanLineMemory {
             triangles: &mut st.triangles,
@@ -577,7 +588,6 @@ pub mod scene {
         };
         let drawn = render_scan_lines(
             &r,
-            &scene,
             (super::WIDTH, super::HEIGHT, rows),
             &mut st.vertices,
             memory,
@@ -594,10 +604,10 @@ pub mod scene {
         drawn.map_or(0, |()| stats.0.pixels_covered)
     }
 
-    /// The one-object scene of `objects` for renderer `r` (no lights, background 0).
-    fn core_scene<'a>(r: &Renderer<4>, objects: &'a [Object<'a>]) -> zscan::scene::Scene<'a> {
+    /// The scene of `objects` seen by `camera` (no lights, background 0).
+    fn core_scene<'a>(camera: Camera, objects: &'a [Object<'a>]) -> zscan::scene::Scene<'a> {
         zscan::scene::Scene {
-            camera: *r.camera(),
+            camera,
             objects,
             background: 0,
             ambient: 0,
@@ -855,16 +865,14 @@ pub mod scene {
     ) -> Result<u32, E> {
         use zscan::render::{render_in_compact_bands, CompactBandScratch};
         let Some(camera) = camera() else { return Ok(0) };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return Ok(0);
         };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(&r, &objects);
         let mut stats = StatsWithoutWritten::default();
         let mut band_done = band_done;
         render_in_compact_bands(
             &r,
-            &scene,
             (&mut m.pixels, &mut m.depths),
             (super::WIDTH, super::HEIGHT, COMPACT_ROWS),
             CompactBandScratch {
@@ -909,22 +917,14 @@ pub mod scene {
         let mut band = [0u8; super::WIDTH as usize * MAX_ROWS];
         let mut depth = [u16::MAX; super::WIDTH as usize * MAX_ROWS];
         let Some(camera) = camera() else { return 0 };
-        let Ok(r) = Renderer::<4>::new(&camera) else {
-            return 0;
-        };
         let mut polygons = [zscan::render::PolygonRows::default(); MAX_POLYGONS];
         let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = zscan::scene::Scene {
-            camera: *r.camera(),
-            objects: &objects,
-            background: 0,
-            ambient: 0,
-            lights: &[],
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
+            return 0;
         };
         let mut stats = StatsWithoutWritten::default();
         let drawn = zscan::render::render_in_bands(
             &r,
-            &scene,
             (&mut band, &mut depth),
             (super::WIDTH, super::HEIGHT, rows),
             zscan::render::BandScratch {

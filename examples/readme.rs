@@ -41,10 +41,10 @@ fn render(display: &mut impl DrawTarget<Color = Rgb565>) -> Result<RenderStats, 
     let (mut pixels, mut depths) = ([0u8; PIXELS], [0u16; PIXELS]);
     let mut frame = Framebuffer::new(&mut pixels, W, H)?; // your memory: 1 byte per pixel
     let mut depth = DepthBuffer::new(&mut depths, W, H)?; // 2 bytes per pixel (u16)
-    let renderer = Renderer::for_scene(&scene)?; // 4 sub-pixel bits by default
+    let renderer = Renderer::for_scene(&scene)?; // holds the scene, its camera and lights
     let mut scratch = [PreparedVertex::default(); N.0];
     let mut stats = RenderStats::default(); // or StatsWithoutWritten: no per-pixel count
-    render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
+    render_scene(&renderer, &mut frame, &mut depth, &mut scratch, &mut stats)?;
     static LUT: Lut<Rgb565> = Lut::<Rgb565>::GREY; // 256 colours, in flash
     flush(&frame, &LUT, display, None).map_err(|_| zscan::Error::Display)?; // any DrawTarget
     Ok(stats)

@@ -8,8 +8,8 @@
 //! | stage | module | what it does |
 //! |---|---|---|
 //! | geometry | [`geometry`] | fixed-point vectors, matrices, sine/cosine, meshes, the observer camera |
-//! | clipping | [`clip`] | Cohen–Sutherland outcodes (2D), Sutherland–Hodgman against planes (3D) |
-//! | projection | [`project`] | observer frame → sub-pixel screen coordinates |
+//! | clipping | `clip` | Cohen–Sutherland outcodes (2D), Sutherland–Hodgman against planes (3D) |
+//! | projection | `project` | observer frame → sub-pixel screen coordinates |
 //! | raster | [`raster`] | Bresenham lines, midpoint circles, the exact scanline polygon fill (TIPE 2010) |
 //! | shading | [`shade`] | incremental integer attribute interpolation (depth, luminance) |
 //! | target | [`target`] | the caller's 8-bit indexed framebuffer, depth buffer, the colour LUT, `DrawTarget` output |
@@ -53,7 +53,7 @@
 //! let mut scratch = [PreparedVertex::default(); 114];
 //! let mut stats = RenderStats::default();
 //! let renderer = Renderer::for_scene(&scene)?;
-//! render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
+//! render_scene(&renderer, &mut frame, &mut depth, &mut scratch, &mut stats)?;
 //!
 //! // The sphere covers the middle of the picture, lit brighter toward the light (up right).
 //! assert_eq!(frame.pixel(0, 0), Some(0));
@@ -83,11 +83,11 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 
 pub(crate) mod arith;
-pub mod clip;
+pub(crate) mod clip;
 mod error;
 pub mod geometry;
 pub mod prelude;
-pub mod project;
+pub(crate) mod project;
 pub mod raster;
 pub mod render;
 pub mod scene;
@@ -98,3 +98,23 @@ mod test_rng;
 pub mod visibility;
 
 pub use error::Error;
+
+/// Internal stages, for the host harness (`zscan-host`) and the benchmark cases
+/// (`benches/cases.rs`) only: not part of the API, not documented, no stability promise.
+///
+/// Why it exists: the harness tests stages against independent references it owns (the
+/// edge walkers and the triangle fill against an exact rational fill, the clipper and the
+/// projector against `f64`, the Phong writer and the lighting functions against `f64`
+/// lighting), and the benchmarks measure the bare fill with each edge walker. Those references
+/// need `std` and floats, which the `no_std` core does not carry into its own unit tests, and
+/// the benchmark cases are compiled both into the host harness and into the Cortex-M firmware
+/// (an example crate, which sees only `pub` items). Everything a user names lives at the crate
+/// root, in [`prelude`] and in the public modules; the modules these come from are
+/// `pub(crate)`.
+#[doc(hidden)]
+pub mod internals {
+    pub use crate::clip::frustum::{ClipVertex, Frustum, NEAR};
+    pub use crate::project::Projector;
+    pub use crate::raster::edge_walker::{DivisionWalker, Edge, EdgeWalker, IncrementalWalker};
+    pub use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
+}

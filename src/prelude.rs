@@ -29,7 +29,7 @@
 //! let mut depth = DepthBuffer::new(&mut depths, 32, 24)?;
 //! let mut scratch = [PreparedVertex::default(); 8];
 //! let mut stats = RenderStats::default();
-//! render_scene(&renderer, &scene, &mut frame, &mut depth, &mut scratch, &mut stats)?;
+//! render_scene(&renderer, &mut frame, &mut depth, &mut scratch, &mut stats)?;
 //! assert!(stats.pixels_covered > 0);
 //! # Ok::<(), zscan::Error>(())
 //! ```

@@ -85,7 +85,7 @@ pub struct Object<'a> {
     /// Luminance → palette index.
     pub ramp: LuminanceRamp,
     /// Ordered 4×4 dithering between adjacent ramp levels
-    /// ([`dither`](crate::shade::dither)), against banding on short ramps.
+    /// (`dither`), against banding on short ramps.
     pub dither: bool,
     /// Skip polygons facing away from the eye (closed meshes).
     pub cull_back_faces: bool,

@@ -12,7 +12,8 @@ use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{
-    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
+    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats,
+    SceneRenderer,
 };
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
@@ -195,7 +196,7 @@ impl CoreMesh {
             ambient: 0,
             lights: &[],
         };
-        let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
+        let renderer = SceneRenderer::<S>::new(&scene).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
         let polygons = if polygon_table {
             objects[0].mesh.polygon_count()
@@ -207,9 +208,8 @@ impl CoreMesh {
             vertices: &mut scratch,
             polygons: &mut table,
         };
-        let (pixels, depth, stats) =
-            render_picture(&renderer, &scene, (w, h), band_rows, band_scratch)
-                .map_err(|e| e.to_string())?;
+        let (pixels, depth, stats) = render_picture(&renderer, (w, h), band_rows, band_scratch)
+            .map_err(|e| e.to_string())?;
         Ok(CoreFrame {
             pixels,
             depth,
@@ -223,12 +223,12 @@ impl CoreMesh {
 /// where a device would flush it). `band_rows = None` is one band of the whole height.
 /// Returns the picture's indices and depths, row-major, and the summed statistics.
 pub fn render_picture<D: DepthValue, const SB: u32>(
-    renderer: &Renderer<SB>,
-    scene: &CoreScene<'_>,
+    renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
     band_rows: Option<u16>,
     scratch: BandScratch<'_, SB>,
 ) -> Result<(Vec<u8>, Vec<D>, RenderStats), zscan::render::RenderError> {
+    let scene = renderer.scene();
     let band = band_rows.unwrap_or(h).clamp(1, h.max(1));
     let n = w as usize * band as usize;
     let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
@@ -237,7 +237,6 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     let mut stats = RenderStats::default();
     render_in_bands(
         renderer,
-        scene,
         (&mut band_pixels, &mut band_depths),
         (w, h, band),
         scratch,
@@ -309,13 +308,13 @@ pub fn ram_bytes<const SB: u32>(
 /// with a split budget of `splits` (`None`: no test 6), the scan-line and z-buffer in bands of
 /// `band_rows` rows (the z-buffer 32-bit, the reference the other methods are compared with).
 pub fn render_visible<const SB: u32>(
-    renderer: &Renderer<SB>,
-    scene: &CoreScene<'_>,
+    renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
     visibility: Visibility,
     splits: Option<usize>,
     band_rows: u16,
 ) -> Result<(Vec<u8>, RenderStats), RenderError> {
+    let scene = renderer.scene();
     let vertices: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
     let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
     let mut scratch = vec![PreparedVertex::default(); vertices.max(1)];
@@ -328,7 +327,7 @@ pub fn render_visible<const SB: u32>(
             let mut pixels = vec![0u8; total];
             let mut frame =
                 Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
-            render_back_faces(renderer, scene, &mut frame, &mut scratch, &mut stats)?;
+            render_back_faces(renderer, &mut frame, &mut scratch, &mut stats)?;
             Ok((pixels, stats))
         }
         Visibility::Painter => {
@@ -346,7 +345,6 @@ pub fn render_visible<const SB: u32>(
             let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
             render_painter(
                 renderer,
-                scene,
                 &mut frame,
                 &mut scratch,
                 memory,
@@ -371,7 +369,6 @@ pub fn render_visible<const SB: u32>(
             let mut pixels = vec![scene.background; total];
             render_scan_lines(
                 renderer,
-                scene,
                 (w, h, band),
                 &mut scratch,
                 memory,
@@ -398,14 +395,7 @@ pub fn render_visible<const SB: u32>(
                 candidates: &mut candidates,
                 windows: &mut windows,
             };
-            render_warnock(
-                renderer,
-                scene,
-                &mut frame,
-                &mut scratch,
-                memory,
-                &mut stats,
-            )?;
+            render_warnock(renderer, &mut frame, &mut scratch, memory, &mut stats)?;
             Ok((pixels, stats))
         }
         Visibility::ZBuffer => {
@@ -415,7 +405,7 @@ pub fn render_visible<const SB: u32>(
                 polygons: &mut table,
             };
             let (pixels, _, stats) =
-                render_picture::<u32, SB>(renderer, scene, (w, h), Some(band_rows), band_scratch)?;
+                render_picture::<u32, SB>(renderer, (w, h), Some(band_rows), band_scratch)?;
             Ok((pixels, stats))
         }
     }
@@ -427,11 +417,11 @@ pub fn render_visible<const SB: u32>(
 /// gives; each finished band is copied out where a device would flush it. Returns the
 /// picture's indices and depths, row-major, and the summed statistics.
 pub fn render_compact_picture<D: DepthValue, const SB: u32>(
-    renderer: &Renderer<SB>,
-    scene: &CoreScene<'_>,
+    renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
     band_rows: u16,
 ) -> Result<(Vec<u8>, Vec<D>, RenderStats), RenderError> {
+    let scene = renderer.scene();
     use zscan::render::{
         render_in_compact_bands, CompactBandScratch, CompactSizes, CompactVertex, PolygonTop,
     };
@@ -446,7 +436,6 @@ pub fn render_compact_picture<D: DepthValue, const SB: u32>(
     let mut stats = RenderStats::default();
     render_in_compact_bands(
         renderer,
-        scene,
         (&mut band_pixels, &mut band_depths),
         (w, h, band_rows),
         CompactBandScratch {
@@ -487,9 +476,9 @@ impl CoreMesh {
             ambient: 0,
             lights: &[],
         };
-        let renderer = Renderer::<S>::new(&self.camera).map_err(|e| e.to_string())?;
+        let renderer = SceneRenderer::<S>::new(&scene).map_err(|e| e.to_string())?;
         let (pixels, depth, stats) =
-            render_compact_picture(&renderer, &scene, (vp.width, vp.height), band_rows)
+            render_compact_picture(&renderer, (vp.width, vp.height), band_rows)
                 .map_err(|e| e.to_string())?;
         Ok(CoreFrame {
             pixels,
@@ -535,15 +524,15 @@ pub struct PlannedFrame {
 /// Plans `scene` within `budget` bytes ([`zscan::visibility::plan`]) and draws it so
 /// ([`draw_plan`]).
 pub fn render_planned<const SB: u32>(
-    renderer: &Renderer<SB>,
-    scene: &CoreScene<'_>,
+    renderer: &SceneRenderer<'_, SB>,
     facts: &[zscan::visibility::MeshFacts<'_>],
     budget: usize,
 ) -> Result<PlannedFrame, String> {
+    let scene = renderer.scene();
     let mut order = vec![0u16; scene.objects.len()];
     let plan = zscan::visibility::plan::<SB>(scene, facts, budget, &mut order)
         .map_err(|e| e.to_string())?;
-    let (pixels, stats) = draw_plan(renderer, scene, &plan, &order).map_err(|e| e.to_string())?;
+    let (pixels, stats) = draw_plan(renderer, &plan, &order).map_err(|e| e.to_string())?;
     Ok(PlannedFrame {
         plan,
         order,
@@ -555,12 +544,12 @@ pub fn render_planned<const SB: u32>(
 /// Draws `scene` as `plan` says (objects in `order`), with buffers of the plan's sizes;
 /// returns the whole picture (bands copied out as a display flush would take them).
 pub fn draw_plan<const SB: u32>(
-    renderer: &Renderer<SB>,
-    scene: &CoreScene<'_>,
+    renderer: &SceneRenderer<'_, SB>,
     plan: &zscan::visibility::Plan,
     order: &[u16],
 ) -> Result<(Vec<u8>, RenderStats), RenderError> {
     use zscan::visibility::{render_back_faces_in_order, DepthWidth};
+    let scene = renderer.scene();
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
     let largest = scene.objects.iter().map(|o| o.mesh.vertices().len());
@@ -578,14 +567,7 @@ pub fn draw_plan<const SB: u32>(
             let mut pixels = vec![0u8; w as usize * h as usize];
             let mut frame =
                 Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
-            render_back_faces_in_order(
-                renderer,
-                scene,
-                order,
-                &mut frame,
-                &mut scratch,
-                &mut stats,
-            )?;
+            render_back_faces_in_order(renderer, order, &mut frame, &mut scratch, &mut stats)?;
             pixels
         }
         depth => {
@@ -596,10 +578,10 @@ pub fn draw_plan<const SB: u32>(
             };
             let rows = Some(plan.band_rows);
             let (pixels, s) = if depth == DepthWidth::U16 {
-                let (p, _, s) = render_picture::<u16, SB>(renderer, scene, (w, h), rows, band)?;
+                let (p, _, s) = render_picture::<u16, SB>(renderer, (w, h), rows, band)?;
                 (p, s)
             } else {
-                let (p, _, s) = render_picture::<u32, SB>(renderer, scene, (w, h), rows, band)?;
+                let (p, _, s) = render_picture::<u32, SB>(renderer, (w, h), rows, band)?;
                 (p, s)
             };
             stats = s;

@@ -13,7 +13,7 @@ use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{
     render_in_compact_bands, BandPart, CompactBandScratch, CompactSizes, CompactVertex, PolygonTop,
-    PreparedVertex, RenderError, RenderStats, Renderer,
+    PreparedVertex, RenderError, RenderStats, Renderer, SceneRenderer,
 };
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::shade::lighting::{Light, Material};
@@ -178,15 +178,14 @@ fn lit(
 }
 
 /// The one-pass frame of `scene` (32-bit depth) and its counts.
-fn one_pass(r: &Renderer<4>, scene: &Scene<'_>) -> (Vec<u8>, Vec<u32>, RenderStats) {
+fn one_pass(r: &SceneRenderer<'_, 4>) -> (Vec<u8>, Vec<u32>, RenderStats) {
     let n = W as usize * H as usize;
     let (mut px, mut zs) = (vec![0u8; n], vec![0u32; n]);
     let mut scratch = vec![PreparedVertex::<4>::default(); SPHERE.0.max(TORUS.0)];
     let mut stats = RenderStats::default();
     let mut frame = Framebuffer::new(&mut px, W, H).unwrap();
     let mut depth = DepthBuffer::new(&mut zs, W, H).unwrap();
-    zscan::render::render_scene(r, scene, &mut frame, &mut depth, &mut scratch, &mut stats)
-        .unwrap();
+    zscan::render::render_scene(r, &mut frame, &mut depth, &mut scratch, &mut stats).unwrap();
     (px, zs, stats)
 }
 
@@ -224,7 +223,7 @@ fn lit_objects_equal_the_full_frame() {
                 lights: &light,
             };
             let r = Renderer::for_scene(&scene).unwrap();
-            let (px, zs, st) = one_pass(&r, &scene);
+            let (px, zs, st) = one_pass(&r);
             assert!(st.pixels_covered > 1000, "{eye:?}: something is drawn");
             let sizes = CompactSizes::of(&scene);
             let lit_vertices = [shade, shades[(s + 1) % 3]]
@@ -235,8 +234,7 @@ fn lit_objects_equal_the_full_frame() {
                 .sum::<usize>();
             assert_eq!(sizes.levels, lit_vertices);
             for rows in [1u16, 9, 40] {
-                let (cp, cz, cs) =
-                    render_compact_picture::<u32, 4>(&r, &scene, (W, H), rows).unwrap();
+                let (cp, cz, cs) = render_compact_picture::<u32, 4>(&r, (W, H), rows).unwrap();
                 assert!(cp == px && cz == zs, "{eye:?} {shade:?} bands of {rows}");
                 assert_eq!(
                     (cs.pixels_covered, cs.pixels_written, cs.culled),
@@ -272,17 +270,17 @@ fn clipping_and_phong_are_refused() {
         lights: &[],
     };
     let r = Renderer::for_scene(&scene).unwrap();
-    let (_, _, st) = one_pass(&r, &scene);
+    let (_, _, st) = one_pass(&r);
     assert!(st.clipped > 0, "the one-pass frame clips");
     let mut bands = 0;
-    let e = render_with(&r, &scene, [W as usize * 8, W as usize * 8], &mut bands).unwrap_err();
+    let e = render_with(&r, [W as usize * 8, W as usize * 8], &mut bands).unwrap_err();
     match e {
         RenderError::NotCompact { object, vertex } => {
             assert_eq!(object, 1);
             assert!(vertex < TORUS.0);
             // The named vertex is one the full vertex stage finds outside the frustum.
             let mut full = vec![PreparedVertex::<4>::default(); TORUS.0];
-            r.prepare(&objects[1], &mut full).unwrap();
+            r.renderer().prepare(&objects[1], &mut full).unwrap();
             assert_ne!(full[vertex].outcode, 0);
             assert!(full[..vertex].iter().all(|p| p.outcode == 0));
         }
@@ -295,22 +293,21 @@ fn clipping_and_phong_are_refused() {
         objects: &phong,
         ..scene
     };
-    let e = render_with(&r, &scene, [W as usize * 8; 2], &mut bands).unwrap_err();
+    let r = Renderer::for_scene(&scene).unwrap();
+    let e = render_with(&r, [W as usize * 8; 2], &mut bands).unwrap_err();
     assert_eq!(e, RenderError::PhongUnsupported);
 }
 
 /// `render_in_compact_bands` in bands of 8 rows with band buffers of `band` elements and the
 /// scratch sized by `CompactSizes`; counts the bands drawn in `bands`.
 fn render_with(
-    r: &Renderer<4>,
-    scene: &Scene<'_>,
+    r: &SceneRenderer<'_, 4>,
     band: [usize; 2],
     bands: &mut usize,
 ) -> Result<(), RenderError> {
-    let sizes = CompactSizes::of(scene);
+    let sizes = CompactSizes::of(r.scene());
     render_sized(
         r,
-        scene,
         band,
         [sizes.vertices, sizes.levels, sizes.polygons],
         bands,
@@ -318,8 +315,7 @@ fn render_with(
 }
 
 fn render_sized(
-    r: &Renderer<4>,
-    scene: &Scene<'_>,
+    r: &SceneRenderer<'_, 4>,
     [pixels, depths]: [usize; 2],
     [vertices, levels, polygons]: [usize; 3],
     bands: &mut usize,
@@ -330,7 +326,6 @@ fn render_sized(
     let mut p = vec![PolygonTop::default(); polygons];
     render_in_compact_bands(
         r,
-        scene,
         (&mut px, &mut zs),
         (W, H, 8),
         CompactBandScratch {
@@ -371,7 +366,7 @@ fn short_memory_is_named_and_the_formula_adds_up() {
     let band = W as usize * 8;
     let exact = [sizes.vertices, sizes.levels, sizes.polygons];
     let mut bands = 0;
-    render_sized(&r, &scene, [band, band], exact, &mut bands).unwrap();
+    render_sized(&r, [band, band], exact, &mut bands).unwrap();
     assert_eq!(bands, (H as usize).div_ceil(8));
     let parts = [
         BandPart::Pixels,
@@ -390,7 +385,7 @@ fn short_memory_is_named_and_the_formula_adds_up() {
             s[k - 2] -= 1;
         }
         let mut bands = 0;
-        let e = render_sized(&r, &scene, b, s, &mut bands).unwrap_err();
+        let e = render_sized(&r, b, s, &mut bands).unwrap_err();
         let given = needed - 1;
         assert_eq!(
             e,

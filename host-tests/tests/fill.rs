@@ -6,9 +6,10 @@
 //! number with exact `i128` cross-multiplication instead of walking edges.
 
 use std::collections::{BTreeMap, BTreeSet};
-use zscan::raster::edge_walker::{DivisionWalker, IncrementalWalker, MAX_COORD};
+use zscan::internals::{DivisionWalker, IncrementalWalker};
 use zscan::raster::polygon::{fill_polygon, FillError, PolygonEdges};
 use zscan::raster::triangle::{fill_triangle, fill_triangle_with};
+use zscan::raster::MAX_COORD;
 use zscan::raster::{Span, SubpixelPoint, Window};
 use zscan_host::reference::exact_fill as reference;
 
@@ -56,10 +57,7 @@ fn collect_spans(spans: &[Span], w: &Window, counts: &mut BTreeMap<(i64, i64), u
     }
 }
 
-fn polygon_spans<const S: u32, W: zscan::raster::edge_walker::EdgeWalker>(
-    v: &[V],
-    w: &Window,
-) -> Vec<Span> {
+fn polygon_spans<const S: u32, W: zscan::internals::EdgeWalker>(v: &[V], w: &Window) -> Vec<Span> {
     let e = PolygonEdges::<CAP>::build(&pts::<S>(v)).expect("build");
     let mut out = Vec::new();
     e.fill_with::<W, S>(w, |s| out.push(s));
@@ -411,7 +409,7 @@ const XD: [&[i32]; 14] = [
 #[test]
 fn tipe_annex_tables() {
     let e = PolygonEdges::<32>::build(&pts::<0>(&ANNEX)).unwrap();
-    let as_set = |edges: &[zscan::raster::edge_walker::Edge]| -> BTreeSet<(i32, i32, i32, i32)> {
+    let as_set = |edges: &[zscan::internals::Edge]| -> BTreeSet<(i32, i32, i32, i32)> {
         edges.iter().map(|e| (e.x0, e.y0, e.x1, e.y1)).collect()
     };
     assert_eq!(e.left_edges().len(), 7);

@@ -1,6 +1,5 @@
 //! Geometry, clipping and projection checked against independent `f64` computations.
 
-use zscan::clip::frustum::{ClipVertex, Frustum};
 use zscan::geometry::camera::{frame_sphere, Camera, FovAxis, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::{hollow_prism, torus, unit_cube, uv_sphere, uv_sphere_sizes};
@@ -8,7 +7,9 @@ use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::{sin_cos_bits, Angle};
 use zscan::geometry::vector::Vec3;
-use zscan::project::{ProjectError, Projector};
+use zscan::internals::Projector;
+use zscan::internals::{ClipVertex, Frustum};
+use zscan::render::ProjectError;
 use zscan_host::obj::load_obj;
 
 type F3 = [f64; 3];

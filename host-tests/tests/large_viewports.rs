@@ -176,7 +176,7 @@ fn maximum_viewports_render_the_quad() {
             ambient: 0,
             lights: &[],
         };
-        let renderer = Renderer::<4>::new(&mesh.camera).unwrap();
+        let renderer = Renderer::for_scene(&scene).unwrap();
         let mut scratch = vec![PreparedVertex::<4>::default(); 4];
         let n = w as usize * ROWS as usize;
         let (mut px, mut zs) = (vec![0u8; n], vec![0u32; n]);
@@ -185,15 +185,8 @@ fn maximum_viewports_render_the_quad() {
             let mut fb = Framebuffer::band(&mut px, w, ROWS, top).unwrap();
             let mut zb = DepthBuffer::band(&mut zs, w, ROWS, top).unwrap();
             let mut stats = RenderStats::default();
-            render_scene(
-                &renderer,
-                &scene,
-                &mut fb,
-                &mut zb,
-                &mut scratch,
-                &mut stats,
-            )
-            .unwrap_or_else(|e| panic!("{w}×{h} at {p:?}: {e}"));
+            render_scene(&renderer, &mut fb, &mut zb, &mut scratch, &mut stats)
+                .unwrap_or_else(|e| panic!("{w}×{h} at {p:?}: {e}"));
             for (k, (&l, &z)) in px.iter().zip(&zs).enumerate() {
                 let (x, y) = (
                     (k % w as usize) as f64,
@@ -226,7 +219,7 @@ fn zero_band_rows_are_an_error() {
         ambient: 0,
         lights: &[],
     };
-    let renderer = Renderer::<4>::new(&mesh.camera).unwrap();
+    let renderer = Renderer::for_scene(&scene).unwrap();
     let (mut px, mut zs) = (vec![0u8; 32 * 24], vec![0u16; 32 * 24]);
     let mut bands = 0;
     for rows in [0u16, 24, 100, u16::MAX] {
@@ -237,7 +230,6 @@ fn zero_band_rows_are_an_error() {
         };
         let r = render_in_bands(
             &renderer,
-            &scene,
             (&mut px, &mut zs),
             (32, 24, rows),
             band,

@@ -13,9 +13,9 @@ use zscan::geometry::generators::unit_cube;
 use zscan::geometry::matrix::Affine3;
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
+use zscan::internals::{draw_triangle_phong, PhongContext, PhongVertex};
 use zscan::raster::SubpixelPoint;
 use zscan::shade::lighting::{light_faces, light_vertices, Illumination, Light, Material};
-use zscan::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
 use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
 use zscan::target::{DepthBuffer, Framebuffer};
 use zscan_host::reference::float_lighting::{

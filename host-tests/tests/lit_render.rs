@@ -11,7 +11,6 @@
 //! - Statistics without the written-pixel count draw the same pixels with the same counts,
 //!   `pixels_written` 0, in every mode (front faces only, and with hidden back faces drawn).
 //! - Bad input: short normal tables, too many lights, a zero light direction → errors.
-use zscan::clip::frustum::NEAR;
 use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::{uv_sphere, uv_sphere_sizes};
@@ -19,6 +18,7 @@ use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::Mesh;
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
+use zscan::internals::NEAR;
 use zscan::render::{
     render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
     StatsSink, StatsWithoutWritten,
@@ -364,7 +364,7 @@ fn lit_bands_equal_one_pass() {
                 lights: &light,
             };
             let r = Renderer::for_scene(&scene).unwrap();
-            let (one, _) = frame(&r, &objects[0]);
+            let (one, _) = frame(r.renderer(), &objects[0]);
             for (rows, table) in [(1u16, false), (5, false), (72, false), (1, true), (5, true)] {
                 let n = W as usize * rows as usize;
                 let (mut band, mut depth) = (vec![0u8; n], vec![0u16; n]);
@@ -373,7 +373,6 @@ fn lit_bands_equal_one_pass() {
                 let mut picture = vec![0u8; W as usize * H as usize];
                 render_in_bands(
                     &r,
-                    &scene,
                     (&mut band, &mut depth),
                     (W, H, rows),
                     BandScratch {

@@ -42,11 +42,11 @@ fn zbuffer(scene: &Scene<'_>, bits16: bool) -> Vec<u8> {
     };
     let size = (vp.width, vp.height);
     if bits16 {
-        render_picture::<u16, 4>(&renderer, scene, size, None, band)
+        render_picture::<u16, 4>(&renderer, size, None, band)
             .unwrap()
             .0
     } else {
-        render_picture::<u32, 4>(&renderer, scene, size, None, band)
+        render_picture::<u32, 4>(&renderer, size, None, band)
             .unwrap()
             .0
     }
@@ -58,7 +58,7 @@ fn check(scene: &Scene<'_>, budget: usize) -> Result<(Plan, usize), String> {
     let mut pairs = Vec::new();
     let facts = mesh_facts(scene, &mut pairs);
     let renderer = Renderer::for_scene(scene).unwrap();
-    let frame = render_planned(&renderer, scene, &facts, budget)?;
+    let frame = render_planned(&renderer, &facts, budget)?;
     let z = zbuffer(scene, frame.plan.depth == DepthWidth::U16);
     assert!(
         frame.plan.ram_bytes() <= budget,

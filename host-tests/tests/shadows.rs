@@ -642,10 +642,10 @@ fn render_frame<D: DepthValue>(
         objects: &objects,
         background: 0,
     };
-    let renderer: Renderer<4> = Renderer::for_scene(&scene).unwrap();
+    let renderer = Renderer::for_scene(&scene).unwrap();
     let mut scratch = vec![PreparedVertex::<4>::default(); floor.vertices.len().max(8)];
     let mut stats = zscan::render::StatsWithoutWritten::default();
-    render_scene(&renderer, &scene, frame, depth, &mut scratch, &mut stats).unwrap();
+    render_scene(&renderer, frame, depth, &mut scratch, &mut stats).unwrap();
 }
 
 /// The float ray through pixel `(i, j)` of the observer meets the floor at this point.

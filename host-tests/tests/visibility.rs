@@ -29,8 +29,8 @@ fn both(
     band_rows: u16,
 ) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
     let renderer = Renderer::for_scene(scene)?;
-    let (m, _) = render_visible(&renderer, scene, (w, h), method, splits, band_rows)?;
-    let (z, _) = render_visible(&renderer, scene, (w, h), Visibility::ZBuffer, None, h)?;
+    let (m, _) = render_visible(&renderer, (w, h), method, splits, band_rows)?;
+    let (z, _) = render_visible(&renderer, (w, h), Visibility::ZBuffer, None, h)?;
     Ok((m, z))
 }
 
@@ -189,15 +189,7 @@ fn warnock_names_each_exhausted_capacity() {
             windows: &mut w,
         };
         let mut stats = RenderStats::default();
-        render_warnock(
-            &renderer,
-            &scene,
-            &mut frame,
-            &mut scratch,
-            memory,
-            &mut stats,
-        )
-        .map(|()| stats)
+        render_warnock(&renderer, &mut frame, &mut scratch, memory, &mut stats).map(|()| stats)
     };
     let stats = run(4096, 8192, 64).unwrap();
     let m = stats.method;
@@ -415,8 +407,7 @@ fn random_scenes_agree_with_the_z_buffer() {
         .unwrap();
         assert_eq!(differing(&s, &z), 0, "case {case}: scan-line");
         let renderer = Renderer::for_scene(&scene).unwrap();
-        let (w, ws) =
-            render_visible(&renderer, &scene, (96, 72), Visibility::Warnock, None, 1).unwrap();
+        let (w, ws) = render_visible(&renderer, (96, 72), Visibility::Warnock, None, 1).unwrap();
         assert_eq!(differing(&w, &z), 0, "case {case}: Warnock");
         windows += ws.method.windows;
         match both(&scene, (96, 72), Visibility::Painter, Some(4096), 1) {
@@ -537,13 +528,9 @@ fn z_fighting_counted_by_depth_bits_and_far_near_ratio() {
                 vertices: &mut scratch,
                 polygons: &mut table,
             };
-            let (z16, _, _) =
-                render_picture::<u16, 4>(&renderer, &scene, (w, h), None, scratch).unwrap();
-            let method = |m: Visibility| {
-                render_visible(&renderer, &scene, (w, h), m, Some(64), 1)
-                    .unwrap()
-                    .0
-            };
+            let (z16, _, _) = render_picture::<u16, 4>(&renderer, (w, h), None, scratch).unwrap();
+            let method =
+                |m: Visibility| render_visible(&renderer, (w, h), m, Some(64), 1).unwrap().0;
             let z32 = method(Visibility::ZBuffer);
             // Both surfaces show where they should: the nearer over the farther.
             let near_shown = z32.iter().filter(|&&p| p == 200).count();

@@ -70,12 +70,6 @@ impl Divisor {
         }
     }
 
-    /// The divisor.
-    #[inline(always)]
-    pub fn get(&self) -> i64 {
-        self.d as i64
-    }
-
     /// `(q, r)` with `a = d·q + r`, `0 ≤ r < d`, for `|a| < 2^63`. Operands that fit `i32`
     /// take [`div_floor_i64`]'s 32-bit division (inline); others the reciprocal (out of line).
     #[inline(always)]
@@ -151,6 +145,7 @@ impl DivisorU32 {
 
     /// `⌊(2^32 − 1)/d⌋`, the largest quotient (the reciprocal itself where it is kept).
     #[inline(always)]
+    #[cfg(test)]
     pub fn max_quotient(&self) -> u32 {
         #[cfg(not(hardware_divide))]
         return self.m;

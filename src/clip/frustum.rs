@@ -283,7 +283,7 @@ impl Frustum {
     ///
     /// The planes have the shapes [`Frustum::new`] gives them (`z − near`, `far − z`,
     /// `±x + cx·z`, `±y + cy·z`), so each distance is formed from its non-zero terms only: the
-    /// same `i64` values as [`Plane::distance`] (tested) with two multiplies instead of
+    /// same `i64` values as `Plane::distance` (tested) with two multiplies instead of
     /// eighteen — this runs once per vertex per frame.
     #[inline]
     pub fn outcode(&self, p: Vec3) -> u8 {

@@ -21,6 +21,7 @@ pub struct Outcode(u8);
 
 impl Outcode {
     /// Inside the window: no bit set.
+    #[cfg(test)]
     pub const INSIDE: Outcode = Outcode(0);
     /// Left of the window: `x < x0`.
     pub const LEFT: Outcode = Outcode(1);
@@ -52,30 +53,28 @@ impl Outcode {
 
     /// The raw bits (`LEFT = 1`, `RIGHT = 2`, `TOP = 4`, `BOTTOM = 8`).
     #[inline]
+    #[cfg(test)]
     pub const fn bits(self) -> u8 {
         self.0
     }
 
     /// True when the point is inside the window (no bit set).
     #[inline]
+    #[cfg(test)]
     pub const fn is_inside(self) -> bool {
         self.0 == 0
     }
 
     /// True when every side in `other` is also in `self`.
     #[inline]
+    #[cfg(test)]
     pub const fn contains(self, other: Outcode) -> bool {
         self.0 & other.0 == other.0
     }
 
-    /// The sides common to both codes.
-    #[inline]
-    pub const fn and(self, other: Outcode) -> Outcode {
-        Outcode(self.0 & other.0)
-    }
-
     /// The sides in either code.
     #[inline]
+    #[cfg(test)]
     pub const fn or(self, other: Outcode) -> Outcode {
         Outcode(self.0 | other.0)
     }

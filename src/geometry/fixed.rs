@@ -39,7 +39,7 @@ pub const UNIT_FRAC: u32 = 30;
 /// common in-range case is one shift, one compare and a branch (the two-sided clamp compiled to
 /// about 15 instructions per value on a Cortex-M4 in the vertex transform).
 #[inline(always)]
-pub const fn saturate_i32(v: i64) -> i32 {
+pub(crate) const fn saturate_i32(v: i64) -> i32 {
     let low = v as i32;
     if low as i64 == v {
         low
@@ -53,7 +53,7 @@ pub const fn saturate_i32(v: i64) -> i32 {
 /// `v / 2^s` rounded to nearest (ties toward +∞); `s = 0` returns `v`, `s > 62` gives 0.
 /// Never overflows: the rounding bit is added after the shift.
 #[inline(always)]
-pub const fn shr_round(v: i64, s: u32) -> i64 {
+pub(crate) const fn shr_round(v: i64, s: u32) -> i64 {
     if s == 0 {
         v
     } else if s > 62 {

@@ -13,7 +13,7 @@
 //!   `i32::MIN` components use [`dot`](Vec3::dot), which saturates.
 //! - Lengths come from the exact integer square root (`arith::isqrt`): `length` is
 //!   `floor(√(x² + y² + z²))` in raw units, as `u32` (up to `√3·2^31`).
-//! - [`unit_bits`] turns any `i64` direction into a unit vector with a chosen number of
+//! - `unit_bits` turns any `i64` direction into a unit vector with a chosen number of
 //!   fractional bits (`≤ 30`), with about 30 significant bits.
 
 use super::fixed::{saturate_i32, Coord};
@@ -185,7 +185,7 @@ impl Vec3 {
 /// length is below `3·2^60`), the length is the exact integer square root, and each component
 /// is `round(c·2^frac / len)` with `c·2^frac < 2^60`. Precision: about 2^-29 relative, plus the
 /// final rounding to 2^-frac. Components are in `[-2^frac, 2^frac]`.
-pub fn unit_bits(v: [i64; 3], frac: u32) -> Option<[i32; 3]> {
+pub(crate) fn unit_bits(v: [i64; 3], frac: u32) -> Option<[i32; 3]> {
     let frac = frac.min(30);
     let max = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
     if max == 0 {

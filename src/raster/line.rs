@@ -46,7 +46,7 @@
 //! Only additions and one comparison per pixel; no division after set-up.
 //!
 //! ## Clipping
-//! [`Bresenham::clipped`] classifies the ends with Cohen–Sutherland [`Outcode`]s (trivial
+//! [`Bresenham::clipped`] classifies the ends with Cohen–Sutherland `Outcode`s (trivial
 //! accept/reject), and otherwise computes directly, with a few `u64`/`i64` divisions, the
 //! first and last steps `t` whose pixel is inside the window, and the exact midpoint state at
 //! the first one. So a clipped line draws **exactly the pixels of the unclipped line that lie

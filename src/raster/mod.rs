@@ -10,16 +10,18 @@
 //! - **Spans are half-open**: a [`Span`] covers `x0 ≤ x < x1` on row `y`.
 //! - **Sub-pixel vertices**: [`SubpixelPoint<S>`] holds coordinates in units of `2^-S` pixel.
 //!
-//! Modules: [`line`](mod@line) (Bresenham), [`circle`] (midpoint circle), [`edge_walker`] (TIPE's
-//! `Parcours`: exact edge stepping by Euclidean division), [`polygon`] (TIPE's `Remplissage`
+//! Modules: [`line`](mod@line) (Bresenham), [`circle`] (midpoint circle), `edge_walker` (TIPE's
+//! `Parcours`: exact edge stepping by Euclidean division; crate-private), [`polygon`] (TIPE's `Remplissage`
 //! for arbitrary polygons), [`triangle`] (the fast path with the same coverage).
 
 pub mod circle;
-pub mod edge_walker;
+pub(crate) mod edge_walker;
 pub mod line;
 pub mod polygon;
 pub(crate) mod range;
 pub mod triangle;
+
+pub use edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 
 /// A half-open rectangle of pixels: `x0 ≤ x < x1`, `y0 ≤ y < y1`. Empty when `x1 ≤ x0` or `y1 ≤ y0`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -33,7 +33,7 @@
 //!    one along which it decreases to [`right_edges`](PolygonEdges::right_edges) (`TAD`), stored
 //!    low end first; horizontal edges are dropped. Capacity is the const generic `MAX_EDGES`;
 //!    a polygon with more non-horizontal edges is an error (before any pixel is written).
-//! 2. Each edge is walked with [`edge_walker`](super::edge_walker) (`Parcours`), giving per row
+//! 2. Each edge is walked with `edge_walker` (`Parcours`), giving per row
 //!    the ends `xG` (left edges: first pixel in) and `xD` (right edges: last pixel in).
 //! 3. Each row's ends are sorted and turned into maximal spans (`Remplissage`, step 6). TIPE
 //!    pairs the k-th `xG` with the k-th `xD`; this implementation sweeps the sorted ends with a
@@ -52,9 +52,9 @@
 //! ## Numeric contract
 //! Vertices are [`SubpixelPoint<S>`] with `|x|, |y| ≤ `[`MAX_COORD`](super::edge_walker::MAX_COORD)` = 2^28 − 1` and
 //! `S ≤ `[`MAX_SUBPIXEL_BITS`](super::edge_walker::MAX_SUBPIXEL_BITS); other input is rejected with [`FillError::CoordinateOutOfRange`].
-//! See [`edge_walker`](super::edge_walker) for why nothing overflows in that range.
+//! See `edge_walker` for why nothing overflows in that range.
 
-use super::edge_walker::{ceil_shift, Edge, EdgeSide, EdgeWalker, IncrementalWalker};
+use super::edge_walker::{Edge, EdgeSide, EdgeWalker, IncrementalWalker};
 use super::range::check_range;
 pub use super::range::FillError;
 use super::{Span, SubpixelPoint, Window};
@@ -303,10 +303,12 @@ pub fn fill_polygon<const S: u32, const MAX_EDGES: usize>(
 }
 
 /// The rows `⌈y_min⌉ .. ⌈y_max⌉` a polygon's edges can cover (helper for callers sizing bands);
-/// exact for any `i32` coordinates, not only the fill's range ([`ceil_shift`]).
-pub fn row_range<const S: u32>(vertices: &[SubpixelPoint<S>]) -> (i32, i32) {
+/// exact for any `i32` coordinates, not only the fill's range (`ceil_shift`).
+#[cfg(test)]
+pub(crate) fn row_range<const S: u32>(vertices: &[SubpixelPoint<S>]) -> (i32, i32) {
     let lo = vertices.iter().map(|p| p.y).min().unwrap_or(0);
     let hi = vertices.iter().map(|p| p.y).max().unwrap_or(0);
+    use super::edge_walker::ceil_shift;
     (ceil_shift(lo, S), ceil_shift(hi, S))
 }
 

@@ -11,7 +11,7 @@ use super::polygon_rows::triangle_rows;
 use super::polygon_stage::{Path, PolygonStage};
 use super::{
     render_scene, BandPart, CompactSizes, CompactVertex, PolygonRows, PolygonTop, PreparedVertex,
-    RenderError, RenderStats, Renderer, StatsSink,
+    RenderError, RenderStats, Renderer, SceneRenderer, StatsSink,
 };
 use crate::geometry::mesh::PolygonSizes;
 use crate::scene::{Intensities, Object, Scene};
@@ -145,7 +145,8 @@ pub struct BandScratch<'a, const S: u32> {
     pub polygons: &'a mut [PolygonRows],
 }
 
-/// Draws a `width × height` picture band by band through one band-sized pair of buffers:
+/// Draws a `width × height` picture of the renderer's scene band by band through one
+/// band-sized pair of buffers:
 /// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band,
 /// then calls `band_done` with the finished band, mutable (draw an overlay into it there, with
 /// embedded-graphics text or shapes, since a [`Framebuffer`] is a `DrawTarget`), and flush it to
@@ -165,14 +166,14 @@ pub struct BandScratch<'a, const S: u32> {
 /// without it, once per band pass (`culled` then counts, per band, the back faces that reach
 /// the band's rows: a band skips projected polygons above or below it first).
 pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    scene_renderer: &SceneRenderer<'_, S>,
     (pixels, depths): (&mut [u8], &mut [D]),
     (width, height, band_rows): (u16, u16, u16),
     scratch: BandScratch<'_, S>,
     stats: &mut impl StatsSink,
     band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
+    let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
     let BandScratch { vertices, polygons } = scratch;
     if band_rows == 0 {
         return Err(RenderError::BadBandRows { band_rows }.into());
@@ -217,7 +218,7 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
                 }
                 Ok(())
             } else {
-                render_scene(renderer, scene, frame, depth, vertices, stats)
+                render_scene(scene_renderer, frame, depth, vertices, stats)
             }
         },
         band_done,
@@ -267,6 +268,8 @@ pub struct CompactBandScratch<'a> {
 /// reach it; the pixels and counts are the full frame's (and `render_in_bands`'s). The memory
 /// is `width·band_rows·(1 + size_of::<D>()) + 8·V + L + P` bytes ([`CompactSizes::bytes`]):
 /// the standard bunny at 320 × 240 in bands of 11 rows with 16-bit depth takes 28,946 bytes.
+/// `band_rows` is at least 1 ([`RenderError::BadBandRows`]); a band taller than the picture
+/// draws the picture in one band.
 ///
 /// It applies when every vertex projects inside the frustum's guard band within the 16-bit
 /// sub-pixel range (the vertex stage checks it: [`RenderError::NotCompact`] names the first
@@ -275,8 +278,7 @@ pub struct CompactBandScratch<'a> {
 /// [`RenderError::BandMemoryTooSmall`], naming the part and both sizes; nothing is drawn
 /// then. `polygons_in` and `culled` are counted once per frame.
 pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    scene_renderer: &SceneRenderer<'_, S>,
     (pixels, depths): (&mut [u8], &mut [D]),
     (width, height, band_rows): (u16, u16, u16),
     scratch: CompactBandScratch<'_>,
@@ -288,7 +290,12 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
         levels,
         polygons,
     } = scratch;
-    let band_rows = band_rows.clamp(1, height.max(1));
+    let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
+    if band_rows == 0 {
+        return Err(RenderError::BadBandRows { band_rows }.into());
+    }
+    // A band taller than the picture is the whole picture, as for `render_in_bands`.
+    let band_rows = band_rows.min(height.max(1));
     let sizes = CompactSizes::of(scene);
     let band = width as usize * band_rows as usize;
     check_compact_memory(

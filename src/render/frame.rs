@@ -1,8 +1,8 @@
 //! The frame entry: [`Renderer::draw_object`] (both stages for one object) and
-//! [`render_scene`] (clear, then every object of a scene).
+//! [`render_scene`] (clear, then every object of a [`SceneRenderer`]'s scene).
 
-use super::{PreparedVertex, RenderError, Renderer, StatsSink};
-use crate::scene::{Object, Scene};
+use super::{PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
+use crate::scene::Object;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
@@ -20,19 +20,20 @@ impl<const S: u32> Renderer<S> {
     }
 }
 
-/// Clears `frame` to the scene's background and `depth` to far, then draws every object,
+/// Clears `frame` to the scene's background and `depth` to far, then draws every object of
+/// the renderer's scene with that scene's camera and lights,
 /// adding the frame's counts to `stats`: a [`RenderStats`](super::RenderStats) counts everything, a
 /// [`StatsWithoutWritten`](super::StatsWithoutWritten) everything but the written pixels, whose per-pixel add the span
 /// loops then leave out (the faster choice when the count is not read; see its doc).
 /// `scratch` must hold at least as many vertices as the largest mesh.
 pub fn render_scene<D: DepthValue, const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
+    let (scene, renderer) = (renderer.scene(), renderer.renderer());
     frame.clear(scene.background);
     depth.clear();
     for object in scene.objects {

@@ -1,7 +1,9 @@
 //! The frame: geometry → clipping → projection → raster → shading → target, for whole scenes.
 //!
 //! Role in the pipeline: the glue that runs every stage in order. A [`Renderer`] holds what is
-//! fixed for a frame (projector, frustum, view transform, lights). For each
+//! fixed for a frame (projector, frustum, view transform, lights); a [`SceneRenderer`] is one
+//! built from a scene's camera and lights, holding the scene, and is what the scene entries
+//! draw (one source of camera and lights, `renderer.rs`). For each
 //! [`Object`](crate::scene::Object):
 //!
 //! 1. **Vertex stage** (`vertex_stage.rs`, [`Renderer::prepare`]), once per vertex: model →
@@ -13,7 +15,7 @@
 //!    level, or a normal for Phong) and which consumer takes the triangles.
 //! 3. **The seam** (`consumer.rs`): each culled, clipped, projected triangle goes to a
 //!    `TriangleConsumer`. Today's consumers draw through the depth buffer at once
-//!    (`LevelWriter` into [`draw_triangle_on`](crate::shade::span_writer::draw_triangle_on),
+//!    (`LevelWriter` into `draw_triangle_on`,
 //!    `PhongWriter` into [`draw_triangle_phong`](crate::shade::phong::draw_triangle_phong));
 //!    other visibility methods plug in here.
 //!
@@ -61,12 +63,13 @@ mod renderer;
 mod stats;
 mod vertex_stage;
 
-pub use crate::clip::frustum::MAX_POLYGON_VERTICES;
+pub use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
+pub use crate::project::ProjectError;
 pub use bands::{render_in_bands, render_in_compact_bands, BandScratch, CompactBandScratch};
 pub use compact::{CompactSizes, CompactVertex, PolygonTop};
 pub use error::{BandPart, RenderError};
 pub use frame::render_scene;
 pub use polygon_rows::PolygonRows;
-pub use renderer::Renderer;
+pub use renderer::{Renderer, SceneRenderer};
 pub use stats::{MethodCounts, RenderStats, StatsSink, StatsWithoutWritten};
 pub use vertex_stage::PreparedVertex;

@@ -18,7 +18,7 @@ impl<const S: u32> Renderer<S> {
     /// The polygon stage and raster for `object`, whose vertices `prepare` put in `scratch`.
     ///
     /// Lit objects ([`Intensities::Lit`]) get their levels here: flat ones per polygon
-    /// ([`light_polygon`]), Gouraud ones from the vertex stage; Phong ones carry their
+    /// (`light_polygon`), Gouraud ones from the vertex stage; Phong ones carry their
     /// observer-frame normals through clipping as three attributes and are lit per pixel
     /// ([`draw_triangle_phong`](crate::shade::phong::draw_triangle_phong)).
     pub fn rasterize<D: DepthValue, T: StatsSink>(

@@ -59,9 +59,9 @@ pub struct MethodCounts {
 /// Where the renderer adds its counts, and whether its span loops count written pixels:
 /// [`RenderStats`] counts everything; [`StatsWithoutWritten`] everything but the written
 /// pixels, whose per-pixel add the span loops then leave out
-/// ([`WrittenCount`]).
+/// (`WrittenCount`).
 pub trait StatsSink {
-    /// [`CountWritten`] or [`SkipWritten`].
+    /// `CountWritten` or `SkipWritten`.
     type Count: WrittenCount;
     /// The counts added to.
     fn counts(&mut self) -> &mut RenderStats;

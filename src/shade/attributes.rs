@@ -111,12 +111,14 @@ impl Exact {
 
     /// The longest run of pixels an [`ExactRun`] started from this plane's values keeps
     /// correctly rounded: `⌊(2^32 − 1) / 2D⌋` (at least 2, since `2D < 2^31`).
+    #[cfg(test)]
     pub fn run_limit(&self) -> u32 {
         u32::MAX / self.two_d
     }
 
     /// The remainder of the value's numerator, `0 ≤ rem < 2D` (the value's exact fraction is
     /// `rem / 2D − 1/2`, its rounding residue).
+    #[cfg(test)]
     pub fn remainder(&self) -> (u32, u32) {
         (self.rem, self.two_d)
     }
@@ -445,6 +447,7 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     }
 
     /// All values at pixel `(x, y)`, exactly rounded.
+    #[cfg(test)]
     pub fn values_at(&self, x: i32, y: i32) -> [u32; N] {
         core::array::from_fn(|i| self.exact(i, x, y).value())
     }
@@ -452,16 +455,6 @@ impl<const N: usize, const S: u32> AttributePlane<N, S> {
     /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
     pub fn run_limit(&self) -> u32 {
         u32::MAX / (2 * self.d) as u32
-    }
-
-    /// The attribute values at vertex 0 (the values everywhere for a constant attribute).
-    pub fn vertex0_values(&self) -> [u32; N] {
-        self.base
-    }
-
-    /// True when attribute `i` is the same at every pixel (its plane is flat).
-    pub fn is_constant(&self, i: usize) -> bool {
-        self.gx.get(i) == Some(&0) && self.gy.get(i) == Some(&0)
     }
 }
 
@@ -665,6 +658,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
     /// Attribute `i < N` at the covered pixel `(x, y)`, ready to step right exactly: equal to
     /// [`AttributePlane::exact`] of the same triangle.
     #[inline(always)]
+    #[cfg(test)]
     pub fn exact(&self, i: usize, x: i32, y: i32) -> Exact {
         let (px, py) = self.offset(x, y);
         self.exact_from(i, px, py)
@@ -701,6 +695,7 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
     }
 
     /// The longest run an [`ExactRun`] of this plane keeps exact: `⌊(2^32 − 1) / 2D⌋`.
+    #[cfg(test)]
     pub fn run_limit(&self) -> u32 {
         self.two_d.max_quotient()
     }
@@ -749,6 +744,7 @@ pub struct ExactWide {
 
 impl ExactWide {
     /// The remainder of the value's numerator and `2D` (as [`Exact::remainder`]).
+    #[cfg(test)]
     pub fn remainder(&self) -> (u64, u64) {
         (self.rem, self.two_d)
     }
@@ -881,11 +877,6 @@ impl<const N: usize, const S: u32> WidePlane<N, S> {
             acc: (start + (1 << 15)) as u32,
             inc: inc as u32,
         }
-    }
-
-    /// All values at pixel `(x, y)`, exactly rounded.
-    pub fn values_at(&self, x: i32, y: i32) -> [u32; N] {
-        core::array::from_fn(|i| self.exact(i, x, y).value())
     }
 }
 

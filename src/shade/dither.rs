@@ -28,9 +28,7 @@
 //! Conventions: pixel `(x, y)` as [`raster`](crate::raster); the matrix is the classical
 //! recursive Bayer matrix, indexed `[y mod 4][x mod 4]`.
 
-use super::span_writer::{draw_triangle_quantized, DrawError, LuminanceRamp, Quantizer, ShadeMode};
-use crate::raster::SubpixelPoint;
-use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+use super::span_writer::{LuminanceRamp, Quantizer};
 
 /// The 4×4 Bayer matrix: `0..16`, each value once.
 pub const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
@@ -81,20 +79,6 @@ impl Quantizer for Bayer4 {
     fn step(&mut self) {
         self.phase = self.phase.wrapping_add(1);
     }
-}
-
-/// [`draw_triangle`](super::span_writer::draw_triangle) with the ramp dithered by [`Bayer4`]:
-/// same arguments (`values[i] = [depth, luminance]`), pixels and return value. Flat uses the
-/// rounded mean of the vertex luminances, as the undithered writer does.
-pub fn draw_triangle_dithered<D: DepthValue, const S: u32>(
-    frame: &mut Framebuffer<'_>,
-    depth: &mut DepthBuffer<'_, D>,
-    v: [SubpixelPoint<S>; 3],
-    values: [[u32; 2]; 3],
-    ramp: LuminanceRamp,
-    mode: ShadeMode,
-) -> Result<(u32, u32), DrawError> {
-    draw_triangle_quantized(frame, depth, v, values, mode, |x, y| Bayer4::at(ramp, x, y))
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //! Role in the pipeline: before the raster. It turns surface points and normals **in the
 //! observer frame** (the eye at the origin, before perspective — the course's warning: lighting
 //! after the projection would distort angles) into intensities `0..=255`, which the span writers
-//! interpolate (Gouraud), use per polygon (flat) or which [`phong`](super::phong) evaluates per
+//! interpolate (Gouraud), use per polygon (flat) or which `phong` evaluates per
 //! pixel.
 //!
 //! ## The model
@@ -25,7 +25,7 @@
 //! - Intensities `I_a, I_p` are `u8` (`0..=255`); the result is rounded to nearest and clamped
 //!   to `0..=255`.
 //! - Unit vectors are Q15 in `i32` (`|c| ≤ 32768`), made by
-//!   [`unit_bits`](crate::geometry::vector::unit_bits) (integer square root). A dot product of
+//!   `unit_bits` (integer square root). A dot product of
 //!   two of them is at most `(2^15 + 1)²·3 < 2^32` in magnitude, computed in `i64`, rounded back
 //!   to Q15.
 //! - `(cos⁺α)^n` by squaring in Q15 with `u32` products (`≤ 2^30`), rounded at each step: at
@@ -141,11 +141,11 @@ pub struct Illumination {
 /// operations only: the squared length scaled by `4^k` into `x ∈ [2^62, 2^64)`; a 16-bit
 /// square root of its top word (Heron's iteration from above with 32-bit divisions, exact
 /// floor) as `t0` (relative error `< 2^-15`); one Newton step `t1 = (t0 + x/t0)/2` with
-/// `x/t0` from the reciprocal of [`reciprocal`](crate::project::reciprocal) (relative
+/// `x/t0` from the reciprocal of `reciprocal` (relative
 /// `2^-30`), leaving `t1` within a relative `2^-29` of `√x`; then `2^(61+k)/t1` from a second
 /// reciprocal.
 #[inline]
-pub fn inv_len_q61(len2: u64) -> u64 {
+pub(crate) fn inv_len_q61(len2: u64) -> u64 {
     // x = len2·4^k ∈ [2^62, 2^64), k ∈ {1, 2} for len2 ∈ [2^58, 2^62) (k = 0 above).
     let k = (len2.leading_zeros() / 2).min(31);
     let x = len2 << (2 * k);
@@ -189,7 +189,7 @@ pub fn inv_len_q61(len2: u64) -> u64 {
 /// hence within one unit of [`unit_bits`](crate::geometry::vector::unit_bits)`(v, 15)`
 /// (tested); components are in `[-32768, 32768]`.
 #[inline]
-pub fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
+pub(crate) fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
     let max = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
     if max == 0 {
         return None;
@@ -229,7 +229,7 @@ fn dot_q15(a: [i32; 3], b: [i32; 3]) -> i32 {
 
 /// `x^n` for `x` in Q15 `0..=32768`, by squaring, rounding each product to nearest.
 #[inline]
-pub fn pow_q15(x: u32, n: u32) -> u32 {
+pub(crate) fn pow_q15(x: u32, n: u32) -> u32 {
     let mul = |a: u32, b: u32| (a * b + (1 << (FRAC - 1))) >> FRAC; // a, b ≤ 2^15
     let mut base = x.min(ONE as u32);
     let mut e = n;
@@ -429,7 +429,7 @@ pub fn light_faces(
 /// The flat-shading intensity of one polygon of `mesh`: lit at its centroid (the mean of its
 /// vertices, rounded) with its face normal, both moved to the observer frame by `model_view`
 /// (model → observer). A degenerate polygon (no normal) gets the ambient term only.
-pub fn light_polygon(
+pub(crate) fn light_polygon(
     mesh: &Mesh<'_>,
     polygon: &[u16],
     model_view: &Affine3,

@@ -61,7 +61,7 @@ pub struct PhongContext<'a> {
     pub material: Material,
     /// Intensity → palette index.
     pub ramp: LuminanceRamp,
-    /// Ordered 4×4 dithering between adjacent levels ([`dither`](super::dither)).
+    /// Ordered 4×4 dithering between adjacent levels (`dither`).
     pub dither: bool,
 }
 

@@ -54,22 +54,6 @@ pub trait Shading: Copy {
     fn step(&mut self);
 }
 
-/// One palette index for the whole span (flat shading, or a constant luminance).
-#[derive(Debug, Clone, Copy)]
-pub struct FlatIndex(pub u8);
-
-impl Shading for FlatIndex {
-    const IS_CONSTANT: bool = true;
-
-    #[inline(always)]
-    fn index(&self) -> u8 {
-        self.0
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {}
-}
-
 /// Luminance → palette index at the current pixel, stepping right: the plain
 /// [`LuminanceRamp`] or a dithered one ([`Bayer4`](super::dither::Bayer4)).
 pub trait Quantizer: Copy {

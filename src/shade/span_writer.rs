@@ -3,16 +3,16 @@
 //! Role in the pipeline: the last step of the raster stage. [`draw_triangle`] sets up the
 //! triangle's exact plane once (attribute 0 is depth, attribute 1 luminance), then for each
 //! span of [`fill_triangle`] takes the exact values at the span start from it and runs one
-//! generic loop, [`depth_span`]: depth test (strict, nearer wins, see [`DepthValue`]), palette
-//! index from a [`Shading`], two stores.
+//! generic loop, `depth_span`: depth test (strict, nearer wins, see [`DepthValue`]), palette
+//! index from a `Shading`, two stores.
 //!
 //! Small triangles (bounding box below `2^K` sub-pixel units on both axes,
-//! `K =` [`small_bits`](super::attributes::small_bits)`(S)`: 64 pixels at `S = 4`) get a
-//! [`SmallPlane`], whose set-up and span starts are 32-bit arithmetic; the others an
-//! [`AttributePlane`] with [`RowStarts`], and the few too large for its 32-bit stepping
-//! (`2D ≥ 2^31`: large viewports, guard-band fan triangles) a [`WidePlane`], set up out of
+//! `K =` `small_bits``(S)`: 64 pixels at `S = 4`) get a
+//! `SmallPlane`, whose set-up and span starts are 32-bit arithmetic; the others an
+//! `AttributePlane` with `RowStarts`, and the few too large for its 32-bit stepping
+//! (`2D ≥ 2^31`: large viewports, guard-band fan triangles) a `WidePlane`, set up out of
 //! line (`TriangleSpans::wide`) so the others run the instructions they ran before. All give
-//! the same values and feed the same span code ([`SpanStarts`]): every triangle of the
+//! the same values and feed the same span code (`SpanStarts`): every triangle of the
 //! raster's range is drawn. The switch is the 32-bit arithmetic's limit, not a tuned size: every
 //! triangle of the standard sphere and bunny is below it, and the 32-bit path measured cheaper
 //! there (Cortex-M4 `frame_bunny` −22 %, `frame_sphere` −18 %; host −0.2 % and −1.5 %).
@@ -24,7 +24,7 @@
 //! with far fewer values held across the rows (Cortex-M4 `frame_bunny` −19 %, `frame_sphere`
 //! −11 %, 16-row bands of the bunny −13 %).
 //!
-//! Numeric contract: as [`attributes`](super::attributes); depth values are the 32-bit
+//! Numeric contract: as `attributes`; depth values are the 32-bit
 //! normalised depth of the projection stage, stored through [`DepthValue::from_depth32`];
 //! luminance is `0..=255` (vertex values above saturate to 255 at the vertices, so every
 //! interpolated value is in range and the span loops map it without a test).
@@ -33,9 +33,10 @@ use super::attributes::{
     AttributePlane, Constant, Exact, ExactRun, ExactWide, Interpolant, PlaneError, RowStarts,
     SmallPlane, SpanStarts, WidePlane,
 };
-pub use super::span::{
-    depth_span, depth_span_with, CountWritten, FlatIndex, Gouraud, LuminanceRamp, Quantizer,
-    Shading, SkipWritten, WrittenCount,
+pub use super::span::LuminanceRamp;
+pub(crate) use super::span::{
+    depth_span, depth_span_with, CountWritten, Gouraud, Quantizer, Shading, SkipWritten,
+    WrittenCount,
 };
 use super::span::{Direct, InRange, Targets};
 use super::tiny_triangle::TinyTriangle;
@@ -54,9 +55,9 @@ pub enum ShadeMode {
     Flat,
     /// Vertex luminances interpolated exactly (every pixel the correctly rounded value).
     GouraudExact,
-    /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see [`Dda`](super::attributes::Dda)).
+    /// Vertex luminances interpolated in 16.16 fixed point (one add per pixel; see `Dda`).
     GouraudFast,
-    /// Normals interpolated and lit at every pixel ([`phong`](super::phong)); the renderer
+    /// Normals interpolated and lit at every pixel (`phong`); the renderer
     /// draws lit objects in this mode with [`draw_triangle_phong`](super::phong::draw_triangle_phong).
     /// The luminance writers here have no normals: given vertex luminances they interpolate
     /// them as [`GouraudExact`](ShadeMode::GouraudExact).
@@ -100,7 +101,7 @@ pub fn draw_triangle<D: DepthValue, const S: u32>(
 /// fast Gouraud (two attributes). A constant depth under Gouraud shading takes the depth plane,
 /// whose value is then the vertex depth at every pixel (zero gradient: `M = 0`, the rounded
 /// quotient `⌊D / 2D⌋ = 0`), the value the constant would give.
-pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
+pub(crate) fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
     v: [SubpixelPoint<S>; 3],
@@ -122,7 +123,7 @@ pub fn draw_triangle_quantized<D: DepthValue, Q: Quantizer, const S: u32>(
 /// recompute them.
 /// `C` says whether triangles drawn into it count their written pixels ([`WrittenCount`]).
 #[derive(Debug)]
-pub struct RasterTarget<'t, D, C = CountWritten> {
+pub(crate) struct RasterTarget<'t, D, C = CountWritten> {
     /// Where triangles are drawn: the buffers' window, or part of it ([`Self::restrict`]).
     window: Window,
     /// The window both buffers hold.
@@ -289,7 +290,7 @@ pub(crate) const fn tiny_kind(kind: Kind, direct_ramp: bool) -> Tiny {
 /// [`DrawError::Fill`] with [`FillError::CoordinateOutOfRange`], checked here once, before any
 /// arithmetic (the plane set-up and the fill that follow rely on it and do not check again).
 /// Any triangle within the range is drawn, whatever its size.
-pub fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
+pub(crate) fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
     values: [[u32; 2]; 3],
@@ -656,7 +657,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
 
 /// The pixels both buffers hold (a band's rows, the frame's width).
 #[inline(always)]
-pub fn drawable_window<D: DepthValue>(
+pub(crate) fn drawable_window<D: DepthValue>(
     frame: &Framebuffer<'_>,
     depth: &DepthBuffer<'_, D>,
 ) -> Window {

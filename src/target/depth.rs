@@ -166,7 +166,7 @@ impl<'a, D: DepthValue> DepthBuffer<'a, D> {
         self.top
     }
 
-    /// Sets every sample to [`DepthValue::FAR`] ([`DepthValue::fill_far`]: 32 bytes per loop
+    /// Sets every sample to [`DepthValue::FAR`] ([`DepthValue::fill_far`]: 128 bytes per loop
     /// iteration for `u16` and `u32`); samples past `width × height` are left untouched.
     pub fn clear(&mut self) {
         let n = self.width as usize * self.height as usize;

@@ -169,8 +169,8 @@ impl<'a> Framebuffer<'a> {
     }
 
     /// Fills every pixel with `index` (bytes between rows, when `stride > width`, are left
-    /// untouched). Packed rows are cleared as one run, 32 bytes per iteration (runs of word
-    /// stores rather than a `memset` call; any alignment).
+    /// untouched). Packed rows are cleared as one run (word stores, 128 bytes per loop
+    /// iteration, at any alignment; `memset` on the Cortex-M0: `target/mod.rs`).
     pub fn clear(&mut self, index: u8) {
         let (w, h) = (self.width as usize, self.height as usize);
         if self.stride == w {

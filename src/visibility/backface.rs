@@ -10,25 +10,26 @@
 //! Memory: none beside the frame and the vertex scratch; the span loops run with the
 //! zero-sized [`NoDepth`] sample, which compiles away the depth interpolant, test and store.
 
-use crate::render::{PreparedVertex, RenderError, Renderer, StatsSink};
+use crate::render::{PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 use crate::target::{DepthBuffer, Framebuffer, NoDepth};
 
-/// Clears `frame` to the scene's background and draws every object in order, back faces
+/// Clears `frame` to the scene's background and draws every object of the renderer's scene in
+/// order, back faces
 /// culled, front faces painted as they come (no depth test). `scratch` holds at least the
 /// largest mesh's vertices. The picture equals the z-buffer's when the scene qualifies
 /// (the module doc of `visibility::backface`).
 pub fn render_back_faces<const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
+    let n = renderer.scene().objects.len();
     draw_objects(
-        renderer,
-        scene,
-        0..scene.objects.len(),
+        renderer.renderer(),
+        renderer.scene(),
+        0..n,
         frame,
         scratch,
         stats,
@@ -39,13 +40,13 @@ pub fn render_back_faces<const S: u32>(
 /// e.g. far to near as [`plan`](super::plan) sorts separable objects: Schumacker's clusters).
 /// An index past the scene's objects is [`RenderError::TooManyObjects`].
 pub fn render_back_faces_in_order<const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &SceneRenderer<'_, S>,
     order: &[u16],
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
+    let (scene, renderer) = (renderer.scene(), renderer.renderer());
     if order.iter().any(|&i| i as usize >= scene.objects.len()) {
         return Err(RenderError::TooManyObjects);
     }

@@ -40,7 +40,7 @@ use core::cmp::Reverse;
 use super::backface::without_depth;
 use super::store::{collect, sort_order, StoredTriangle, CUT_FRONT, NO_CUT};
 use crate::raster::Window;
-use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
+use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 use crate::shade::span_writer::RasterTarget;
 use crate::target::{Framebuffer, NoDepth};
@@ -90,17 +90,17 @@ impl Default for Normal {
     }
 }
 
-/// Clears `frame`, stores every object's front triangles, orders them by Newell's tests
+/// Clears `frame`, stores the front triangles of every object of the renderer's scene, orders them by Newell's tests
 /// (module doc) and paints them back to front with no depth buffer.
 pub fn render_painter<T: StatsSink, const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     memory: PainterMemory<'_, S>,
     policy: SplitPolicy,
     stats: &mut T,
 ) -> Result<(), RenderError> {
+    let scene = renderer.scene();
     let counts = stats.counts();
     let PainterMemory {
         triangles,
@@ -110,7 +110,7 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     let capacity = triangles.len().min(order.len());
     let triangles = &mut triangles[..capacity];
     let order = &mut order[..capacity];
-    let n = collect(renderer, scene, scratch, triangles, counts)?;
+    let n = collect(renderer, scratch, triangles, counts)?;
     let full = RenderError::TriangleStoreFull {
         capacity: normals.len(),
     };

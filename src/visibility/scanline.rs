@@ -13,7 +13,7 @@
 //! active triangle, and the band's pixels and depth samples (`width × band_rows` each).
 
 use super::store::{collect, sort_order, StoredTriangle};
-use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
+use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 use crate::shade::span_writer::RasterTarget;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
@@ -33,20 +33,20 @@ pub struct ScanLineMemory<'a, D, const S: u32 = 4> {
     pub depths: &'a mut [D],
 }
 
-/// Draws a `width × height` picture band by band (`band_rows` rows each, the last may be
+/// Draws a `width × height` picture of the renderer's scene band by band (`band_rows` rows each, the last may be
 /// shorter) from the scene's front triangles, calling `band_done` with each finished band
 /// as [`render_in_bands`](crate::render::render_in_bands) does. The pixels are the
 /// z-buffer's (module doc).
 #[allow(clippy::too_many_arguments)]
 pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &SceneRenderer<'_, S>,
     (width, height, band_rows): (u16, u16, u16),
     scratch: &mut [PreparedVertex<S>],
     memory: ScanLineMemory<'_, D, S>,
     stats: &mut T,
     mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
+    let scene = renderer.scene();
     let ScanLineMemory {
         triangles,
         order,
@@ -56,7 +56,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
     } = memory;
     let counts = stats.counts();
     let capacity = triangles.len().min(order.len());
-    let n = collect(renderer, scene, scratch, &mut triangles[..capacity], counts)?;
+    let n = collect(renderer, scratch, &mut triangles[..capacity], counts)?;
     let (triangles, order) = (&triangles[..n], &mut order[..n]);
     sort_order(order, |i| triangles[i].rows().0);
     let band_rows = band_rows.clamp(1, height.max(1));

@@ -148,15 +148,15 @@ impl<const S: u32> TriangleConsumer<S, 1> for Collector<'_, S> {
     }
 }
 
-/// Runs the vertex and polygon stages of every object of `scene`, storing its front
-/// triangles into `store`; returns how many.
+/// Runs the vertex and polygon stages of every object of the renderer's scene, storing its
+/// front triangles into `store`; returns how many.
 pub(crate) fn collect<const S: u32>(
-    renderer: &crate::render::Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &crate::render::SceneRenderer<'_, S>,
     scratch: &mut [crate::render::PreparedVertex<S>],
     store: &mut [StoredTriangle<S>],
     stats: &mut crate::render::RenderStats,
 ) -> Result<usize, RenderError> {
+    let (scene, renderer) = (renderer.scene(), renderer.renderer());
     if scene.objects.len() > 256 {
         return Err(RenderError::TooManyObjects);
     }

@@ -53,7 +53,7 @@
 use super::backface::without_depth;
 use super::store::{collect, StoredTriangle};
 use crate::raster::Window;
-use crate::render::{PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
+use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 use crate::shade::span_writer::{RasterTarget, WrittenCount};
 use crate::target::{DepthValue, Framebuffer, NoDepth};
@@ -146,13 +146,13 @@ pub(crate) enum Relation {
 /// area subdivision (module doc): the 32-bit z-buffer's picture with no depth buffer.
 /// The windows visited are added to `windows`.
 pub fn render_warnock<T: StatsSink, const S: u32>(
-    renderer: &Renderer<S>,
-    scene: &Scene<'_>,
+    renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     memory: WarnockMemory<'_, S>,
     stats: &mut T,
 ) -> Result<(), RenderError> {
+    let scene = renderer.scene();
     let counts = stats.counts();
     let WarnockMemory {
         triangles,
@@ -160,7 +160,7 @@ pub fn render_warnock<T: StatsSink, const S: u32>(
         windows,
     } = memory;
     let capacity = triangles.len().min(candidates.len());
-    let n = collect(renderer, scene, scratch, &mut triangles[..capacity], counts)?;
+    let n = collect(renderer, scratch, &mut triangles[..capacity], counts)?;
     frame.clear(scene.background);
     without_depth(frame, |frame, depth| {
         let target = RasterTarget::with_count(frame, depth, T::Count::default());

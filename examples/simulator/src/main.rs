@@ -141,7 +141,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut stats = RenderStats::default();
     render_in_bands(
         &renderer,
-        &scene,
         (&mut pixels, &mut depths),
         (W, H, BAND),
         scratch,

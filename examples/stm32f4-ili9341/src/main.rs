@@ -211,10 +211,8 @@ fn run<D: DrawTarget<Color = Rgb565>>(
             .rotate_x(Angle::from_degrees(65))
             .build()?;
         let objects = [ring, ball];
-        let scene = Scene {
-            objects: &objects,
-            ..base
-        };
+        // This frame's objects under the renderer's camera and lights (no new set-up).
+        let frame_renderer = renderer.with_objects(&objects);
         // The overlay shows the previous frame's counts: this frame's are being summed.
         text.clear();
         let _ = write!(
@@ -224,8 +222,7 @@ fn run<D: DrawTarget<Color = Rgb565>>(
         );
         let mut stats = RenderStats::default();
         render_in_bands(
-            &renderer,
-            &scene,
+            &frame_renderer,
             (&mut pixels[..], &mut depths[..]),
             (W, H, BAND),
             // Vertex scratch and polygon table for all objects: the vertex stage runs once

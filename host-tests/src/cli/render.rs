@@ -67,7 +67,9 @@ use zscan::geometry::generators;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer};
+use zscan::render::{
+    BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
+};
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::shade::lighting::{Light, Material, MAX_LIGHTS, MAX_SHININESS};
 use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
@@ -1363,9 +1365,9 @@ impl LoadedScene {
     ) -> Result<(Vec<u8>, RenderStats), String> {
         let objects = self.core_objects(None)?;
         let scene = self.core_scene(&objects);
-        let renderer = Renderer::<SUBPIXEL_BITS>::from_scene(&scene)
+        let renderer = SceneRenderer::<SUBPIXEL_BITS>::new(&scene)
             .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
-        crate::core_render::draw_plan(&renderer, &scene, plan, order)
+        crate::core_render::draw_plan(&renderer, plan, order)
             .map_err(|e| format!("render: {}", render_error_words(&e)))
     }
 
@@ -1430,7 +1432,6 @@ impl LoadedScene {
             let band = band_rows.unwrap_or(1).clamp(1, h);
             let (pixels, stats) = crate::core_render::render_visible(
                 &renderer,
-                &scene,
                 (w, h),
                 visibility,
                 Some(PAINTER_SPLITS),
@@ -1460,7 +1461,6 @@ impl LoadedScene {
         let bands = h.div_ceil(band) as u32;
         let (pixels, depth, stats) = crate::core_render::render_picture(
             &renderer,
-            &scene,
             (w, h),
             band_rows,
             BandScratch {
@@ -1481,9 +1481,9 @@ impl LoadedScene {
 /// Words for a core [`RenderError`](zscan::render::RenderError), naming the limit that was
 /// reached (the core's own `Display` prints some inner errors by their Debug names).
 pub fn render_error_words(e: &zscan::render::RenderError) -> String {
-    use zscan::clip::frustum::ClipError;
     use zscan::geometry::matrix::MatrixError;
-    use zscan::project::ProjectError;
+    use zscan::render::ClipError;
+    use zscan::render::ProjectError;
     use zscan::render::{RenderError as R, MAX_POLYGON_VERTICES};
     use zscan::shade::lighting::LightingError;
     use zscan::shade::span_writer::DrawError;
@@ -1502,7 +1502,7 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
             }
             ProjectError::OutOfRange => format!(
                 "projection: a vertex projects outside the raster's range of ±{} sub-pixel units",
-                zscan::raster::edge_walker::MAX_COORD
+                zscan::raster::MAX_COORD
             ),
             ProjectError::SubpixelBitsTooLarge => {
                 "projection: sub-pixel bits above the raster's limit of 16".into()

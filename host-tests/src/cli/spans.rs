@@ -18,9 +18,9 @@
 //! has an error.
 use super::CliError;
 use std::io::{BufWriter, Read, Write};
-use zscan::raster::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 use zscan::raster::polygon::{fill_polygon, PolygonEdges};
 use zscan::raster::{Span, SubpixelPoint, Window};
+use zscan::raster::{MAX_COORD, MAX_SUBPIXEL_BITS};
 
 /// The largest number of non-horizontal edges a polygon may have.
 pub const MAX_EDGES: usize = 1024;

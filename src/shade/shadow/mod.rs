@@ -29,7 +29,7 @@
 //!   projection (rounded sub-pixel position, `S = 4`).
 //! - **Depth** is a 32-bit normalised depth `D`, smaller nearer, for both projections:
 //!   orthographic `D = (z + r)·(2^32 − 1)/2r` (`z` along the light's travel, origin at the
-//!   centre); perspective the renderer's `D(z) = A − K/z` ([`project`](crate::project):
+//!   centre); perspective the renderer's `D(z) = A − K/z` (`project`:
 //!   `A = (2^32 − 1)·far/(far − near)`, `K = A·near`), affine in screen space, so the exact
 //!   fill and exact interpolation of pass 1 are exact for both. A `u16` map keeps the top 16
 //!   bits ([`DepthValue::from_depth32`](crate::target::DepthValue::from_depth32)), a `u32` map
@@ -44,7 +44,7 @@
 //!   one map; the part outside the pyramid is lit (tested; aim several maps with
 //!   [`ShadowMap::from_camera`] to cover more).
 //! - **Near plane** (perspective): occluder polygons are clipped by the 3D clipper
-//!   ([`clip::frustum`](crate::clip::frustum)) against the map's near plane, far plane and a
+//!   (`clip::frustum`) against the map's near plane, far plane and a
 //!   guard band of twice the map's extent before projection, so polygons crossing the near
 //!   plane or reaching behind the light are cut, never projected through `z ≤ 0`; parts nearer
 //!   to the light than `near` cast no shadow. The orthographic map clips to the box
@@ -108,14 +108,14 @@
 //! - Map sizes: `1 ≤ w, h ≤ 2^14` (perspective: `≥ 4`) and `w·h ≤ 2^19`. Clipped polygons
 //!   then stay inside `(2w + 2) × (2h + 2)` texels, so every fan triangle's doubled area is
 //!   below `2^30` sub-pixel units², the exact interpolation's limit
-//!   ([`AttributePlane`](crate::shade::attributes::AttributePlane)).
+//!   (`AttributePlane`).
 //! - Orthographic: `0 < r ≤ 8192` units (the clip planes' `2r` fits I16F16); texel positions
 //!   are `i0 + x·8w/r` sub-pixel units by one `i64` product with a 31-bit multiplier
 //!   (`|x·m| < 2^62`); depth `(z + r)·m_d >> s` with `z + r` clamped to `0..=2r` (`< 2^31`)
 //!   and a 32-bit multiplier (`< 2^63` in `u64`), clamped to `2^32 − 1`.
 //! - Perspective: the light's [`Camera`](crate::geometry::camera::Camera) and
 //!   [`Projector`](crate::project::Projector) (`S = 4`): every range and error bound of
-//!   [`project`](crate::project) applies (depth within 6 units of `D(z)`).
+//!   `project` applies (depth within 6 units of `D(z)`).
 //! - Pass 2 over a frame: see [`pass`] (integer only: one 32-bit reciprocal, two
 //!   reciprocal-based `i64` divisions, one affine transform and one projection per pixel).
 //! - Memory: the caller's `w·h` samples; nothing allocated; polygons of up to

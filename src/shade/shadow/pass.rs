@@ -17,7 +17,7 @@
 //!    keeps, `D̂ = s·2^16 + 2^15` ([`DepthSample::to_depth32`]).
 //! 2. `z = K/(A − D̂)`, inverting the renderer's `D(z) = A − K/z` with the projector's own
 //!    constants ([`Projector::depth_constants`]): `A − D̂` (`≤ 2^61`) is normalised to 32
-//!    significant bits and inverted by [`reciprocal`] (one 32-bit division and two Newton
+//!    significant bits and inverted by `reciprocal` (one 32-bit division and two Newton
 //!    steps, relative error `< 2^-29`); `K_m·r < 2^63`, one rounding shift. Saturates to the
 //!    I16F16 range.
 //! 3. `x = (i − i0)·z/f_x`, `y = (j0 − j)·z/f_y` (TIPE's `i = i0 + f_x·x/z`,

@@ -20,7 +20,7 @@
 //!   `D = (z + r)·(2^32 − 1)/2r`, `z + r` clamped to `0..=2r` (`≤ 2^30` raw since
 //!   `r ≤ 8192`) times a multiplier below `2^32` (`< 2^62` in `u64`), rounded: within one unit
 //!   of the exact value, monotonic and affine in `z` up to that rounding.
-//! - Perspective: [`Projector`]`<4>` (module [`project`](crate::project)): positions within
+//! - Perspective: [`Projector`]`<4>` (module `project`): positions within
 //!   0.51 sub-pixel unit, depth within 6 units of `A − K/z`; points with `z < near` are not
 //!   projected.
 
