@@ -2,9 +2,9 @@
 //!
 //! Role in the pipeline: the last step of the raster stage. [`draw_triangle`] sets up the
 //! triangle's exact plane once (attribute 0 is depth, attribute 1 luminance), then for each
-//! span of [`fill_triangle`] takes the exact values at the span start from it and runs one
-//! generic loop, `depth_span`: depth test (strict, nearer wins, see [`DepthValue`]), palette
-//! index from a `Shading`, two stores.
+//! span of the fill (`fill_triangle`, without its second range check) takes the exact values
+//! at the span start from it and runs one generic loop, `depth_span`: depth test (strict,
+//! nearer wins, see [`DepthValue`]), palette index from a `Shading`, two stores.
 //!
 //! Small triangles (bounding box below `2^K` sub-pixel units on both axes,
 //! `K =` `small_bits``(S)`: 64 pixels at `S = 4`) get a
