@@ -411,11 +411,23 @@ pub fn plan<const S: u32>(
     for (o, i) in order[..n].iter_mut().zip(0..) {
         *o = i; // the z-buffer draws in scene order
     }
+    zbuffer_plan(&counts, camera, far_z, method_reason, budget)
+}
+
+/// The z-buffer's plan (rules 2 to 4 of the module doc): the first layout that fits `budget`,
+/// `u32` layouts first; else the bytes of the smallest.
+fn zbuffer_plan(
+    counts: &Counts,
+    camera: &crate::geometry::camera::Camera,
+    far_z: i32,
+    method_reason: MethodReason,
+    budget: usize,
+) -> Result<Plan, PlanError> {
     let mut smallest = usize::MAX;
     for depth in [DepthWidth::U32, DepthWidth::U16] {
-        for layout in zbuffer_layouts(&counts, depth, budget) {
-            smallest = smallest.min(layout.1.total());
-            if layout.1.total() > budget {
+        for (band_rows, buffers, layout_reason) in zbuffer_layouts(counts, depth, budget) {
+            smallest = smallest.min(buffers.total());
+            if buffers.total() > budget {
                 continue;
             }
             let depth_reason = match depth {
@@ -427,12 +439,12 @@ pub fn plan<const S: u32>(
             return Ok(Plan {
                 visibility: Visibility::ZBuffer,
                 depth,
-                band_rows: layout.0,
-                vertex_stage_once: layout.2 != LayoutReason::BandsVertexStagePerBand,
-                buffers: layout.1,
+                band_rows,
+                vertex_stage_once: layout_reason != LayoutReason::BandsVertexStagePerBand,
+                buffers,
                 method_reason,
                 depth_reason,
-                layout_reason: layout.2,
+                layout_reason,
             });
         }
     }

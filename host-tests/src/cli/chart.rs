@@ -724,92 +724,7 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
         root.fill(&WHITE).map_err(|x| e(&x))?;
         let areas = root.margin(50, 60, 10, 10).split_evenly((2, 2));
         for (area, name) in areas.iter().zip(["quad", "cube", "sphere", "bunny"]) {
-            let pick = planner_pick(name)?;
-            let rows: Vec<&PlanPoint> = points.iter().filter(|p| p.0 == name).collect();
-            let ymax = rows.iter().map(|p| p.3).fold(0.0, f64::max) * 1.15 / 1e6;
-            let mut chart = ChartBuilder::on(area)
-                .margin(30)
-                .build_cartesian_2d((20_000f64..600_000f64).log_scale(), 0f64..ymax)
-                .map_err(|x| e(&x))?;
-            chart
-                .draw_series(LineSeries::new(
-                    [(20_000.0, ymax), (20_000.0, 0.0), (600_000.0, 0.0)],
-                    BLACK,
-                ))
-                .map_err(|x| e(&x))?;
-            for kb in [32, 64, 128, 256, 512] {
-                let x = kb as f64 * 1024.0;
-                chart
-                    .draw_series(LineSeries::new(
-                        [(x, 0.0), (x, ymax)],
-                        RGBColor(225, 225, 225),
-                    ))
-                    .map_err(|q| e(&q))?;
-                let (px, py) = chart.backend_coord(&(x, 0.0));
-                texts.push(format!(
-                    r#"<text x="{px}" y="{}" text-anchor="middle" font-size="11">{kb} KB</text>"#,
-                    py + 14
-                ));
-            }
-            let (tx, ty) = chart.backend_coord(&(20_000.0, ymax));
-            texts.push(format!(
-                r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{name}</text>"#,
-                tx + 6,
-                ty + 14
-            ));
-            let (lx, ly) = chart.backend_coord(&(20_000.0, 0.0));
-            texts.push(format!(
-                r#"<text x="{}" y="{}" text-anchor="end" font-size="11">0</text>"#,
-                lx - 4,
-                ly
-            ));
-            texts.push(format!(
-                r#"<text x="{}" y="{}" text-anchor="end" font-size="11">{:.1} M</text>"#,
-                lx - 4,
-                ty + 10,
-                ymax
-            ));
-            for p in rows {
-                let (x, y) = (p.2, p.3 / 1e6);
-                let (px, py) = chart.backend_coord(&(x, y));
-                if p.4 {
-                    chart
-                        .draw_series(std::iter::once(Rectangle::new(
-                            [(x / 1.04, y - ymax / 80.0), (x * 1.04, y + ymax / 80.0)],
-                            RGBColor(150, 150, 150).filled(),
-                        )))
-                        .map_err(|q| e(&q))?;
-                } else {
-                    chart
-                        .draw_series(std::iter::once(Circle::new(
-                            (x, y),
-                            5,
-                            RGBColor(30, 90, 200).filled(),
-                        )))
-                        .map_err(|q| e(&q))?;
-                }
-                if !p.4 && p.1 == pick {
-                    chart
-                        .draw_series(std::iter::once(Circle::new(
-                            (x, y),
-                            10,
-                            RGBColor(200, 30, 30).stroke_width(2),
-                        )))
-                        .map_err(|q| e(&q))?;
-                }
-                let label = if p.1 == "zbuffer" {
-                    "zbuffer (16-bit)".to_string()
-                } else {
-                    p.1.clone()
-                };
-                // The painter sits on back faces' point on the quad and cube: label it below.
-                let dy = if p.1 == "painter" { 16 } else { -6 };
-                texts.push(format!(
-                    r#"<text x="{}" y="{}" font-size="11">{label}</text>"#,
-                    px + 9,
-                    py + dy
-                ));
-            }
+            plan_panel(area, name, &points, &mut texts)?;
         }
         root.present().map_err(|x| e(&x))?;
     }
@@ -821,4 +736,102 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
         Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
         None => svg,
     })
+}
+
+/// One panel of the plan chart: scene `name`'s points, the planner's pick ringed.
+fn plan_panel<DB: plotters::prelude::DrawingBackend>(
+    area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+    name: &str,
+    points: &[PlanPoint],
+    texts: &mut Vec<String>,
+) -> Result<(), CliError> {
+    use plotters::prelude::*;
+    let e = |x: &dyn std::fmt::Display| -> CliError { x.to_string().into() };
+    let pick = planner_pick(name)?;
+    let rows: Vec<&PlanPoint> = points.iter().filter(|p| p.0 == name).collect();
+    let ymax = rows.iter().map(|p| p.3).fold(0.0, f64::max) * 1.15 / 1e6;
+    let mut chart = ChartBuilder::on(area)
+        .margin(30)
+        .build_cartesian_2d((20_000f64..600_000f64).log_scale(), 0f64..ymax)
+        .map_err(|x| e(&x))?;
+    chart
+        .draw_series(LineSeries::new(
+            [(20_000.0, ymax), (20_000.0, 0.0), (600_000.0, 0.0)],
+            BLACK,
+        ))
+        .map_err(|x| e(&x))?;
+    for kb in [32, 64, 128, 256, 512] {
+        let x = kb as f64 * 1024.0;
+        chart
+            .draw_series(LineSeries::new(
+                [(x, 0.0), (x, ymax)],
+                RGBColor(225, 225, 225),
+            ))
+            .map_err(|q| e(&q))?;
+        let (px, py) = chart.backend_coord(&(x, 0.0));
+        texts.push(format!(
+            r#"<text x="{px}" y="{}" text-anchor="middle" font-size="11">{kb} KB</text>"#,
+            py + 14
+        ));
+    }
+    let (tx, ty) = chart.backend_coord(&(20_000.0, ymax));
+    texts.push(format!(
+        r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{name}</text>"#,
+        tx + 6,
+        ty + 14
+    ));
+    let (lx, ly) = chart.backend_coord(&(20_000.0, 0.0));
+    texts.push(format!(
+        r#"<text x="{}" y="{}" text-anchor="end" font-size="11">0</text>"#,
+        lx - 4,
+        ly
+    ));
+    texts.push(format!(
+        r#"<text x="{}" y="{}" text-anchor="end" font-size="11">{:.1} M</text>"#,
+        lx - 4,
+        ty + 10,
+        ymax
+    ));
+    for p in rows {
+        let (x, y) = (p.2, p.3 / 1e6);
+        let (px, py) = chart.backend_coord(&(x, y));
+        if p.4 {
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x / 1.04, y - ymax / 80.0), (x * 1.04, y + ymax / 80.0)],
+                    RGBColor(150, 150, 150).filled(),
+                )))
+                .map_err(|q| e(&q))?;
+        } else {
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    (x, y),
+                    5,
+                    RGBColor(30, 90, 200).filled(),
+                )))
+                .map_err(|q| e(&q))?;
+        }
+        if !p.4 && p.1 == pick {
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    (x, y),
+                    10,
+                    RGBColor(200, 30, 30).stroke_width(2),
+                )))
+                .map_err(|q| e(&q))?;
+        }
+        let label = if p.1 == "zbuffer" {
+            "zbuffer (16-bit)".to_string()
+        } else {
+            p.1.clone()
+        };
+        // The painter sits on back faces' point on the quad and cube: label it below.
+        let dy = if p.1 == "painter" { 16 } else { -6 };
+        texts.push(format!(
+            r#"<text x="{}" y="{}" font-size="11">{label}</text>"#,
+            px + 9,
+            py + dy
+        ));
+    }
+    Ok(())
 }
