@@ -18,7 +18,6 @@
 //! | [`HARDWARE_DIVIDE`]: a 32-bit division is one instruction | yes | yes (`sdiv`, `udiv`) | no: library routine |
 //! | [`NARROW_MULTIPLY`]: no 32×32→64-bit multiply | no | no (`smull`) | yes: four 16-bit products inline |
 //! | [`WIDE_REGISTERS`]: 64-bit registers, a 64-bit division is one instruction | yes | no | no |
-//! | [`UNALIGNED_STORES`]: a word is stored at any address in one instruction | yes | yes | no |
 //! | [`TINY_WRITER`]: the tiny-triangle writer is used | no | yes | no |
 
 pub mod euclid;
@@ -47,13 +46,6 @@ pub const NARROW_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_has_a
 /// instruction, so paths that narrow operands to 32 bits first (the edge walkers' short edges,
 /// [`euclid::div_floor_i64`]'s 32-bit case, the planes' 32-bit set-up) would only cost there.
 pub const WIDE_REGISTERS: bool = cfg!(target_pointer_width = "64");
-
-/// True where a word store may have any address (x86, x86-64, AArch64, ARMv7-M and richer
-/// Arm cores); false on ARMv6-M (Cortex-M0/M0+, recognised as [`NARROW_MULTIPLY`] is), whose
-/// stores must be aligned, so that a store to a `u8` buffer of unknown alignment is a byte
-/// store. The buffer clears (`target/mod.rs`) write 8-byte patterns where this holds and call
-/// `memset` (which aligns first) where it does not.
-pub const UNALIGNED_STORES: bool = !NARROW_MULTIPLY;
 
 /// Whether small triangles take the tiny-triangle writer (`shade/tiny_triangle.rs`): on 32-bit
 /// cores with a hardware divider, where its 32-bit set-up and one division per edge and row
