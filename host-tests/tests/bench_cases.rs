@@ -128,6 +128,9 @@ fn compact_bunny_is_the_frame_and_streams_its_checksum() {
         Ok::<(), zscan::render::RenderError>(())
     });
     assert_eq!(covered, Ok(px));
-    assert_eq!(bands, 240usize.div_ceil(cases::scene::COMPACT_ROWS as usize));
+    assert_eq!(
+        bands,
+        240usize.div_ceil(cases::scene::COMPACT_ROWS as usize)
+    );
     assert_eq!(h, cases::fnv1a(&frame));
 }
