@@ -46,7 +46,7 @@
 //! raster's `±(2^28 − 1)` sub-pixel range), and every triangle of that range is drawn with the
 //! exact planes, whatever its size: those too large for the 32-bit stepping plane (`2·area ≥
 //! 2^30` sub-pixel units², a quad filling a 512×512 view and up) take the wide plane
-//! ([`WidePlane`](crate::shade::attributes::WidePlane)), out of line. So any viewport the
+//! (`shade::attributes::WidePlane`), out of line. So any viewport the
 //! [`Viewport`](crate::geometry::camera::Viewport) holds (sides up to 65 535 pixels) and any
 //! principal point render. Intensities are `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
 

@@ -124,8 +124,8 @@ fn corner_values<const S: u32>(v: &PhongVertex<S>) -> [u32; 7] {
 /// Draws a depth-tested, Phong-shaded triangle. Pixels, bands and the return value
 /// `(covered, written)` as [`draw_triangle`](super::span_writer::draw_triangle): vertices
 /// outside the raster's range are [`DrawError::Fill`] (checked once, before the plane), any
-/// triangle within it is drawn (one too large for the [`AttributePlane`] through the
-/// [`WidePlane`], out of line).
+/// triangle within it is drawn (one too large for the `AttributePlane` through the
+/// `WidePlane`, out of line).
 pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,

@@ -65,7 +65,7 @@ pub enum ShadeMode {
 }
 
 /// Why a triangle was not drawn. Every triangle of the raster's range is drawn, whatever its
-/// size: one too large for the 32-bit stepping of [`AttributePlane`] takes the [`WidePlane`].
+/// size: one too large for the 32-bit stepping of `AttributePlane` takes the `WidePlane`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DrawError {
     /// The fill rejected the vertices (outside the raster's range).
