@@ -175,11 +175,7 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
 ) -> Result<(), E> {
     let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
     let BandScratch { vertices, polygons } = scratch;
-    if band_rows == 0 {
-        return Err(RenderError::BadBandRows { band_rows }.into());
-    }
-    // A band taller than the picture is the whole picture (documented above).
-    let band_rows = band_rows.min(height.max(1));
+    let band_rows = band_height(band_rows, height)?;
     let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
     let total_polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
     let prepare_once = vertices.len() >= total;
@@ -223,6 +219,16 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
         },
         band_done,
     )
+}
+
+/// The rows of each band of both banded entries: `band_rows`, at least 1
+/// ([`RenderError::BadBandRows`] names a 0); a band taller than the picture is the whole
+/// picture in one band.
+fn band_height(band_rows: u16, height: u16) -> Result<u16, RenderError> {
+    if band_rows == 0 {
+        return Err(RenderError::BadBandRows { band_rows });
+    }
+    Ok(band_rows.min(height.max(1)))
 }
 
 /// The band loop of both banded entries: for each band of `band_rows` rows of a `width ×
@@ -291,11 +297,7 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
         polygons,
     } = scratch;
     let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
-    if band_rows == 0 {
-        return Err(RenderError::BadBandRows { band_rows }.into());
-    }
-    // A band taller than the picture is the whole picture, as for `render_in_bands`.
-    let band_rows = band_rows.min(height.max(1));
+    let band_rows = band_height(band_rows, height)?;
     let sizes = CompactSizes::of(scene);
     let band = width as usize * band_rows as usize;
     check_compact_memory(
