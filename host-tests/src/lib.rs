@@ -5,10 +5,12 @@
 //! - [`mod@reference`]: independent reference implementations (exact rational fill, Bresenham by
 //!   definition, ...), kept apart from the production code they check.
 //! - [`cli`]: the subcommands of the `zscan` tool.
+//! - [`failures`]: where the hidden-surface methods fail, as scenes, counts and pictures.
 #![deny(missing_docs)]
 
 pub mod cli;
 pub mod core_render;
+pub mod failures;
 pub mod fuzz;
 pub mod image;
 pub mod obj;

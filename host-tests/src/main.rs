@@ -26,6 +26,8 @@ enum Command {
     Render(zscan_host::cli::render::RenderArgs),
     /// Write the speed-versus-accuracy chart of the shading modes (SVG) and print its table.
     Chart(zscan_host::cli::chart::ChartArgs),
+    /// Draw where the hidden-surface methods fail (wrong pixels marked) and print the counts.
+    Failures(zscan_host::cli::failures::FailuresArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -37,6 +39,7 @@ fn main() -> std::process::ExitCode {
         Command::ExportScenes(a) => zscan_host::cli::export::run(a),
         Command::Render(a) => zscan_host::cli::render::run(a),
         Command::Chart(a) => zscan_host::cli::chart::run(a),
+        Command::Failures(a) => zscan_host::cli::failures::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

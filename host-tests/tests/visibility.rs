@@ -1,17 +1,19 @@
 //! The hidden-surface methods (`zscan::visibility`) against the 32-bit z-buffer: identical
 //! pictures where a method claims to be exact, the wrong pixels counted where it is not.
 
-use zscan::geometry::camera::{Camera, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
-use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
 use zscan::render::{RenderError, Renderer};
-use zscan::scene::{Intensities, Object, Scene};
+use zscan::scene::{Object, Scene};
 use zscan::shade::span_writer::ShadeMode;
 use zscan::visibility::Visibility;
 use zscan_host::cli::render::load_scene;
 use zscan_host::core_render::{render_visible, to_core};
+use zscan_host::failures::{
+    camera, camera_with_near as far_camera, cycle_of_three, far_pair, interpenetrating,
+    soup_object as soup_objects, v,
+};
 use zscan_host::scenes::standard_scene;
 use zscan_host::test_rng::XorShift;
 
@@ -223,10 +225,8 @@ fn back_faces_alone_are_exact_on_convex_meshes_and_wrong_on_the_bunny() {
     }
     let wrong = standard_wrong("bunny", Visibility::BackFace, 1);
     println!("back faces alone, bunny: {wrong} wrong pixels");
-    assert!(
-        wrong > 0,
-        "the bunny is not convex: some front faces overlap"
-    );
+    // The bunny is not convex: some front faces overlap (docs/images/fail_backface_bunny.png).
+    assert_eq!(wrong, BACKFACE_BUNNY_WRONG);
 }
 
 /// The bunny's front faces defeat the painter's tests 1-5 in places (conservative tests on
@@ -258,48 +258,6 @@ fn painter_refuses_the_bunny_with_test_6_and_draws_it_right_without() {
     );
 }
 
-fn camera(w: u16, h: u16) -> Camera {
-    let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("50"));
-    let up = Vec3::from_int(0, 1, 0);
-    Camera::look_at(
-        Vec3::from_int(0, 0, 6),
-        Vec3::ZERO,
-        up,
-        lens,
-        Viewport::new(w, h),
-    )
-    .unwrap()
-}
-
-fn v(x: f64, y: f64, z: f64) -> Vec3 {
-    let c = |a: f64| Coord::from_num(a);
-    Vec3::new(c(x), c(y), c(z))
-}
-
-/// Objects of one triangle soup each (no culling: both sides show), levels per polygon.
-fn soup_objects<'a>(vertices: &'a [Vec3], indices: &'a [u16], levels: &'a [u8]) -> Object<'a> {
-    let mesh = Mesh::new(vertices, indices, PolygonSizes::Uniform(3)).unwrap();
-    let mut o = Object::new(mesh);
-    o.cull_back_faces = false;
-    o.intensities = Intensities::PerPolygon(levels);
-    o.shade = ShadeMode::Flat;
-    o
-}
-
-/// Three long triangles each over the next and under the one before (the survey's cycle).
-fn cycle_of_three() -> (Vec<Vec3>, Vec<u16>, Vec<u8>) {
-    let mut vs = Vec::new();
-    for k in 0..3 {
-        let a = k as f64 * std::f64::consts::TAU / 3.0;
-        let (c, s) = (a.cos(), a.sin());
-        // A long strip from the centre outward, tilted in depth so that it passes over the
-        // next strip near the centre and under it far out.
-        let p = |r: f64, w: f64, z: f64| v(r * c - w * s, r * s + w * c, z);
-        vs.extend([p(-0.3, -0.35, 0.6), p(-0.3, 0.35, 0.6), p(2.2, 0.0, -0.6)]);
-    }
-    (vs, (0..9).collect(), vec![80, 160, 240])
-}
-
 #[test]
 fn painter_needs_test_6_on_a_cycle_of_three() {
     let (vs, is, ls) = cycle_of_three();
@@ -314,7 +272,8 @@ fn painter_needs_test_6_on_a_cycle_of_three() {
     let (never, z) = both(&scene, (160, 120), Visibility::Painter, None, 1).unwrap();
     let wrong_never = differing(&never, &z);
     println!("cycle of three: painter without test 6 {wrong_never} wrong pixels");
-    assert!(wrong_never > 0, "the cycle must defeat tests 1-5");
+    // The cycle defeats tests 1-5 (docs/images/fail_painter_cycle.png).
+    assert_eq!(wrong_never, PAINTER_CYCLE_WRONG);
     // With test 6 the pieces of this cycle are not ordered by the tests (which judge a piece by
     // its whole triangle): the frame is refused, never drawn wrong. A budget of no split is
     // reported as such.
@@ -331,15 +290,7 @@ fn painter_needs_test_6_on_a_cycle_of_three() {
 
 #[test]
 fn painter_splits_interpenetrating_triangles() {
-    let vs = vec![
-        v(-2.0, -1.0, -1.0),
-        v(2.0, -1.0, 1.0),
-        v(0.0, 1.5, 0.0),
-        v(-2.0, -1.0, 1.0),
-        v(2.0, -1.0, -1.0),
-        v(0.0, 1.2, 0.2),
-    ];
-    let (is, ls) = ((0..6).collect::<Vec<u16>>(), vec![100, 200]);
+    let (vs, is, ls) = interpenetrating();
     let objects = [soup_objects(&vs, &is, &ls)];
     let scene = Scene {
         camera: camera(160, 120),
@@ -353,7 +304,7 @@ fn painter_splits_interpenetrating_triangles() {
     let (scan, _) = both(&scene, (160, 120), Visibility::ScanLine, None, 1).unwrap();
     let (wrong_never, wrong_split) = (differing(&never, &z), differing(&split, &z));
     println!("interpenetration: painter without test 6 {wrong_never} wrong pixels, with it {wrong_split}");
-    assert!(wrong_never > 0);
+    assert_eq!(wrong_never, PAINTER_INTERPENETRATION_WRONG);
     assert_eq!(wrong_split, 0);
     assert_eq!(differing(&scan, &z), 0);
 }
@@ -471,34 +422,6 @@ fn convexity_is_exact_on_the_standard_and_generated_meshes() {
     }
 }
 
-/// Two parallel surfaces `gap` apart at about 40 units from a camera whose far/near ratio
-/// is `ratio` (far 50), tilted so that their distance grows across the frame; the farther
-/// surface is drawn first, so that a depth tie keeps it (a wrong pixel).
-fn far_pair(gap: f64) -> (Vec<Vec3>, Vec<u16>, Vec<u8>) {
-    let mut vs = Vec::new();
-    for (z, _) in [(-34.0 - gap, 80u8), (-34.0, 200u8)] {
-        // A quad from x = −14 to 14, y = −9 to 9, its depth falling 0.4 per unit of x.
-        for (x, y) in [(-14.0, -9.0), (14.0, -9.0), (14.0, 9.0), (-14.0, 9.0)] {
-            vs.push(v(x, y, z - 0.4 * x));
-        }
-    }
-    let is = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7];
-    (vs, is, vec![80, 80, 200, 200])
-}
-
-fn far_camera(w: u16, h: u16, near: &str) -> Camera {
-    let lens = Lens::new(Angle::from_degrees(60), Coord::lit(near), Coord::lit("50"));
-    let up = Vec3::from_int(0, 1, 0);
-    Camera::look_at(
-        Vec3::from_int(0, 0, 6),
-        Vec3::ZERO,
-        up,
-        lens,
-        Viewport::new(w, h),
-    )
-    .unwrap()
-}
-
 /// Where methods fail, counted: a 16-bit z-buffer at far/near = 1000 and 10,000 against a
 /// 32-bit one on two close surfaces far away (z-fighting: the farther surface, drawn first,
 /// keeps the pixels where both store the same 16-bit depth); the scan-line and Warnock compare
@@ -568,7 +491,80 @@ fn z_fighting_counted_by_depth_bits_and_far_near_ratio() {
         assert!(wrong(10_000, gap) >= wrong(1000, gap), "{gap}");
     }
     assert!(wrong(1000, 2.0) < wrong(1000, 0.1) && wrong(10_000, 0.1) > 0);
+    // The pictures' cases (docs/images/fail_z16_ratio*.png).
+    assert_eq!(wrong(1000, 0.5), Z16_RATIO1000_WRONG);
+    assert_eq!(wrong(10_000, 0.5), Z16_RATIO10000_WRONG);
 }
 
 /// The gaps between the far surfaces of [`z_fighting_counted_by_depth_bits_and_far_near_ratio`].
 const GAPS: [f64; 4] = [2.0, 0.5, 0.1, 0.001];
+
+/// Wrong pixels of the failure pictures (`zscan failures`, docs/images/fail_*.png), against
+/// the 32-bit z-buffer.
+const PAINTER_CYCLE_WRONG: usize = 101;
+const PAINTER_INTERPENETRATION_WRONG: usize = 514;
+const BACKFACE_BUNNY_WRONG: usize = 279;
+const Z16_RATIO1000_WRONG: usize = 42;
+const Z16_RATIO10000_WRONG: usize = 3390;
+
+/// `n` as the docs write it (thousands separated by commas).
+fn with_commas(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The committed pictures of `zscan failures` are what it draws now, each case's wrong pixels
+/// are the counts the tests above assert, and every docs line showing a picture states its
+/// count.
+#[test]
+fn failure_pictures_are_current_and_their_counts_stated() {
+    use zscan_host::failures::failures;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let expected = [
+        ("fail_painter_cycle", PAINTER_CYCLE_WRONG),
+        (
+            "fail_painter_interpenetration",
+            PAINTER_INTERPENETRATION_WRONG,
+        ),
+        ("fail_backface_bunny", BACKFACE_BUNNY_WRONG),
+        ("fail_z16_ratio1000", Z16_RATIO1000_WRONG),
+        ("fail_z16_ratio10000", Z16_RATIO10000_WRONG),
+    ];
+    let cases = failures().unwrap();
+    assert_eq!(cases.len(), expected.len());
+    let docs = ["docs/BENCHMARKS.md", "README.md"].map(|d| {
+        let text = std::fs::read_to_string(root.join(d)).unwrap();
+        (d, text)
+    });
+    for (case, (name, wrong)) in cases.iter().zip(expected) {
+        assert_eq!((case.name, case.wrong()), (name, wrong));
+        let png = root.join(format!("docs/images/{name}.png"));
+        let image = zscan_host::image::read_png_rgb(&png).unwrap();
+        let (w, h) = (case.size.0 as u32 * 2, case.size.1 as u32 * 2);
+        assert_eq!((image.width, image.height), (w, h), "{name}");
+        assert!(
+            image.data == case.marked(2),
+            "{name}.png is not the current picture: run `zscan failures`"
+        );
+        let file = format!("images/{name}.png");
+        let mut shown = 0;
+        for (doc, text) in &docs {
+            for line in text.lines().filter(|l| l.contains(&file)) {
+                shown += 1;
+                let count = format!("{} wrong", with_commas(wrong));
+                assert!(
+                    line.contains(&count),
+                    "{doc}: {name} without {count:?}: {line}"
+                );
+            }
+        }
+        assert!(shown > 0, "{name}.png is shown nowhere in the docs");
+    }
+}

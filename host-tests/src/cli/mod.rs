@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod chart;
 pub mod export;
+pub mod failures;
 pub mod lines;
 pub mod render;
 pub mod spans;
