@@ -240,6 +240,10 @@ pub const CASES: &[Case] = &[
         run: |fb, st| scene::painter(fb, st, &scene::SPHERE),
     },
     Case {
+        name: "frame_bunny_painter",
+        run: |fb, st| scene::painter(fb, st, &scene::BUNNY),
+    },
+    Case {
         name: "frame_sphere_scanline16",
         run: |fb, st| scene::scan_lines(fb, st, &scene::SPHERE, 16),
     },

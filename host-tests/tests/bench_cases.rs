@@ -109,6 +109,18 @@ fn warnock_cases_draw_the_z_buffer_frames() {
     }
 }
 
+/// The painter cases draw the z-buffer frame's picture (the bunny too: its pieces judged by
+/// their outlines) and report the pixels they drew.
+#[test]
+fn painter_cases_draw_the_z_buffer_frames() {
+    for scene in ["quad", "cube", "sphere", "bunny"] {
+        let (px, pixels) = draw(case(&format!("frame_{scene}_painter")));
+        let (_, z) = draw(case(&format!("frame_{scene}")));
+        assert_eq!(pixels, z, "{scene}");
+        assert!(px > 0, "{scene}");
+    }
+}
+
 /// The compact banded bunny is the full frame's picture, and streaming FNV-1a band by band
 /// (as the footprint firmware does) gives the whole frame's checksum.
 #[test]

@@ -14,17 +14,24 @@
 //! 2. their screen boxes are disjoint in `x`, or in `y`;
 //! 3. `P` lies wholly behind (or on) `Q`'s plane;
 //! 4. `Q` lies wholly in front of (or on) `P`'s plane;
-//! 5. their projections are disjoint (an edge of one has the other strictly outside).
+//! 5. their projections are disjoint (the line through an edge of one has the other on it or
+//!    outside: their interiors are disjoint, and the fill rule draws no sample for both, so
+//!    mesh neighbours sharing an edge or a corner pass; `separated`).
 //!
 //! When every test fails, `Q` is moved before `P` and marked; a marked `Q` failing again is a
 //! cycle (or interpenetration), and test 6 **splits** `P` by `Q`'s plane into the piece behind
-//! it and the piece in front. A piece keeps `P`'s corners (so its pixels get `P`'s exact depth
-//! and level) and a list of cuts; drawn row by row, each row restricted to the columns whose
-//! samples lie on its side of the cut planes, so the pieces of `P` write exactly `P`'s pixels.
-//! The tests on a piece use its base triangle's corners (conservative: what holds for the
-//! whole holds for the piece) and its cuts (a piece behind `Q`'s plane passes test 3 against
-//! `Q`). With [`SplitPolicy::Never`] a cycle draws `P` in the tests' order instead: the
-//! painter without test 6, whose wrong pixels `tests/visibility.rs` counts.
+//! it and the piece in front (when each is cut by the other's plane already, one entry of the
+//! cycle of moved entries is split by the plane of another that it crosses). A piece keeps
+//! `P`'s corners (so its pixels get `P`'s exact depth and level) and a list of cuts; drawn row
+//! by row, each row restricted to the columns whose samples lie on its side of the cut planes,
+//! so the pieces of `P` write exactly `P`'s pixels. The tests judge a piece by its own
+//! polygon: tests 1–4 by its **outline** (`outline.rs`: the triangle clipped by its cuts, a
+//! superset of the piece with exact integer vertices, so what holds for the outline holds for
+//! the piece, and an empty outline is a piece with no sample), by its cuts (a piece behind
+//! `Q`'s plane passes test 3 against `Q`; a plane that cut both, one behind and one in front,
+//! separates them), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
+//! `P` in the tests' order instead: the painter without test 6, whose wrong pixels
+//! `tests/visibility.rs` counts.
 //!
 //! Numeric contract: corners within `±(2^28 − 1)` sub-pixel units, depths `u32`. A plane's
 //! normal `(n_x, n_y, n_d)` has `|n_x|, |n_y| < 2^62` (products of a `< 2^29` and a `< 2^32`
@@ -38,6 +45,7 @@
 use core::cmp::Reverse;
 
 use super::backface::without_depth;
+use super::outline::Outline;
 use super::store::{collect, sort_order, StoredTriangle, CUT_FRONT, NO_CUT};
 use crate::raster::Window;
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
@@ -217,7 +225,10 @@ impl<const S: u32> Painter<'_, S> {
                     } else if straddles(all, q, p) {
                         Some((k, p))
                     } else {
-                        None
+                        // P and Q are cut by each other's planes already: a cycle through
+                        // other moved entries. Split one of them by the plane of another
+                        // that it may not precede and crosses.
+                        self.split_in_cycle(k)
                     };
                     match cut {
                         Some((at, by)) => {
@@ -276,6 +287,22 @@ impl<const S: u32> Painter<'_, S> {
         }
     }
 
+    /// A split that may break a cycle among the moved entries `order[..=last]` (and
+    /// `order[..moved]`): `(at, by)` for the first entry `order[at]` that may not precede
+    /// another, `by`, whose plane it crosses.
+    fn split_in_cycle(&self, last: usize) -> Option<(usize, usize)> {
+        let all = (&*self.triangles, self.normals);
+        let group = self.moved.max(last + 1).min(self.count);
+        let entry = |i: usize| (self.order[i] & !MOVED) as usize;
+        (0..group).find_map(|i| {
+            let x = entry(i);
+            (0..group)
+                .map(entry)
+                .find(|&y| y != x && straddles(all, x, y) && deciding_test(all, x, y).is_none())
+                .map(|y| (i, y))
+        })
+    }
+
     /// Removes the first entry (painted).
     fn paint_first(&mut self) {
         self.order.copy_within(1..self.count, 0);
@@ -321,10 +348,14 @@ impl<const S: u32> Painter<'_, S> {
 }
 
 /// Which of tests 1–5 (module doc) shows that painting `a` before `b` is right wherever they
-/// overlap (0 for test 1), if one does.
+/// overlap (0 for test 1), if one does. Whole triangles are judged by their corners, pieces by
+/// their outlines (`outline.rs`).
 fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<usize> {
     let t = all.0;
     let (ta, tb) = (&t[a], &t[b]);
+    if ta.cuts[0] != NO_CUT || tb.cuts[0] != NO_CUT {
+        return deciding_test_pieces(all, ta, tb);
+    }
     let (a_near, _) = ta.depth_range();
     let (_, b_far) = tb.depth_range();
     // 1. Depth ranges.
@@ -337,28 +368,80 @@ fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<
     if ax.1 < bx.0 || bx.1 < ax.0 || ay.1 < by.0 || by.1 < ay.0 {
         return Some(1);
     }
-    // 3. A behind B's plane (its corners, or a cut that says so).
+    // 3. A behind B's plane.
     let b_plane = Plane::stored(all, tb.base);
-    if ta.cuts.contains(&tb.base) || (0..3).all(|k| b_plane.behind(ta, k) >= 0) {
+    if (0..3).all(|k| b_plane.behind(ta, k) >= 0) {
         return Some(2);
     }
     // 4. B in front of A's plane.
     let a_plane = Plane::stored(all, ta.base);
-    if tb.cuts.contains(&(ta.base | CUT_FRONT)) || (0..3).all(|k| a_plane.behind(tb, k) <= 0) {
+    if (0..3).all(|k| a_plane.behind(tb, k) <= 0) {
         return Some(3);
     }
     // 5. Projections disjoint.
     (separated(ta, tb) || separated(tb, ta)).then_some(4)
 }
 
-/// Whether `a`'s corners lie strictly on both sides of `b`'s plane, and `a` is not cut by it
-/// already.
+/// [`deciding_test`] when `ta` or `tb` is a piece: tests 1–4 on the outlines (supersets of
+/// the pieces, `outline.rs`) and on the cuts (a piece cut by the other's plane lies on its
+/// side), test 5 on the base triangles. An empty piece (no sample) may go anywhere: counted
+/// as test 2.
+fn deciding_test_pieces<const S: u32>(
+    all: Store<'_, S>,
+    ta: &StoredTriangle<S>,
+    tb: &StoredTriangle<S>,
+) -> Option<usize> {
+    let (oa, ob) = (Outline::of(all, ta), Outline::of(all, tb));
+    if oa.is_empty() || ob.is_empty() {
+        return Some(1);
+    }
+    let depths = |t: &StoredTriangle<S>| t.depth.map(|d| d as i64);
+    let (a_near, _) = oa.range(depths(ta));
+    let (_, b_far) = ob.range(depths(tb));
+    // 1. Depth ranges.
+    if a_near >= b_far {
+        return Some(0);
+    }
+    // 2. Screen boxes, x then y.
+    let xs = |t: &StoredTriangle<S>| t.v.map(|p| p.x as i64);
+    let ys = |t: &StoredTriangle<S>| t.v.map(|p| p.y as i64);
+    let (ax, ay) = (oa.range(xs(ta)), oa.range(ys(ta)));
+    let (bx, by) = (ob.range(xs(tb)), ob.range(ys(tb)));
+    if ax.1 < bx.0 || bx.1 < ax.0 || ay.1 < by.0 || by.1 < ay.0 {
+        return Some(1);
+    }
+    // 3. A behind B's plane (its outline, or a cut that says so), or behind a plane that B
+    // is in front of (both cut by it: the plane separates them).
+    let b_plane = Plane::stored(all, tb.base);
+    let separating = ta
+        .cuts
+        .iter()
+        .any(|&c| c != NO_CUT && c & CUT_FRONT == 0 && tb.cuts.contains(&(c | CUT_FRONT)));
+    if ta.cuts.contains(&tb.base) || separating || oa.side_bounds(b_plane.oriented(ta)).0 >= 0 {
+        return Some(2);
+    }
+    // 4. B in front of A's plane.
+    let a_plane = Plane::stored(all, ta.base);
+    if tb.cuts.contains(&(ta.base | CUT_FRONT)) || ob.side_bounds(a_plane.oriented(tb)).1 <= 0 {
+        return Some(3);
+    }
+    // 5. Projections disjoint (the base triangles'; a piece lies within its base).
+    (separated(ta, tb) || separated(tb, ta)).then_some(4)
+}
+
+/// Whether `a` (its outline, for a piece) has points strictly on both sides of `b`'s plane,
+/// and `a` is not cut by it already. The outline's bounds may say so of a piece wholly on one
+/// side: a split then makes an empty piece, which draws nothing.
 fn straddles<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> bool {
     let (ta, tb) = (&all.0[a], &all.0[b]);
     if ta.cuts.iter().any(|&c| c & !CUT_FRONT == tb.base) {
         return false;
     }
     let plane = Plane::stored(all, tb.base);
+    if ta.cuts[0] != NO_CUT {
+        let (lo, hi) = Outline::of(all, ta).side_bounds(plane.oriented(ta));
+        return lo < 0 && hi > 0;
+    }
     let sides = [0, 1, 2].map(|k| plane.behind(ta, k));
     sides.contains(&1) && sides.contains(&-1)
 }
@@ -379,8 +462,13 @@ fn boxes<const S: u32>(t: &StoredTriangle<S>) -> ((i32, i32), (i32, i32)) {
     )
 }
 
-/// True when an edge of `a` has every corner of `b` strictly outside `a` (`i64`: edge
-/// functions of `< 2^29` differences, `< 2^59`).
+/// True when the line through an edge of `a` has every corner of `b` on it or outside `a`
+/// (`i64`: edge functions of `< 2^29` differences, `< 2^59`). Their interiors are then
+/// disjoint, and no sample is drawn by both: the fill rule covers a lattice point on an
+/// edge exactly when the point moved by `(ε, ε²)` lies inside (closed for a left or a
+/// horizontal top edge, open for the others, `raster::polygon`), and that moved point cannot
+/// lie inside both. So triangles of a mesh that share an edge or a corner are separated
+/// when they do not overlap.
 fn separated<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> bool {
     let orient = a.twice_area().signum();
     (0..3).any(|k| {
@@ -388,7 +476,7 @@ fn separated<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> bool
         let (ex, ey) = (q.x as i64 - p.x as i64, q.y as i64 - p.y as i64);
         b.v.iter().all(|r| {
             let e = ex * (r.y as i64 - p.y as i64) - ey * (r.x as i64 - p.x as i64);
-            e * orient < 0
+            e * orient <= 0
         })
     })
 }
@@ -396,7 +484,7 @@ fn separated<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> bool
 /// A stored triangle's plane in `(X, Y, D)` (module doc), oriented so that
 /// [`behind`](Self::behind) is positive behind it.
 #[derive(Debug, Clone, Copy)]
-struct Plane {
+pub(super) struct Plane {
     n: [i64; 3],
     origin: [i64; 3],
     /// `sign(n_d)`: +1 or −1 (stored triangles have area).
@@ -404,11 +492,11 @@ struct Plane {
 }
 
 /// The stored triangles and their bases' normals.
-type Store<'a, const S: u32> = (&'a [StoredTriangle<S>], &'a [Normal]);
+pub(super) type Store<'a, const S: u32> = (&'a [StoredTriangle<S>], &'a [Normal]);
 
 impl Plane {
     /// The plane of base triangle `base`, from its stored normal.
-    fn stored<const S: u32>((t, normals): Store<'_, S>, base: u32) -> Plane {
+    pub(super) fn stored<const S: u32>((t, normals): Store<'_, S>, base: u32) -> Plane {
         let (t, n) = (&t[base as usize], normals[base as usize].0);
         Plane {
             n,
@@ -440,11 +528,20 @@ impl Plane {
 
     /// Positive when corner `k` of `t` is behind the plane, zero on it, negative in front.
     fn behind<const S: u32>(&self, t: &StoredTriangle<S>, k: usize) -> i128 {
+        self.side(t, k).signum() * self.facing
+    }
+
+    /// `n·(p − p0)` at corner `k` of `t` (`|·| < 2^93`, module doc).
+    fn side<const S: u32>(&self, t: &StoredTriangle<S>, k: usize) -> i128 {
         let p = [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
-        let side: i128 = (0..3)
+        (0..3)
             .map(|i| self.n[i] as i128 * (p[i] - self.origin[i]) as i128)
-            .sum();
-        side.signum() * self.facing
+            .sum()
+    }
+
+    /// The side at each corner of `t`, positive behind the plane (`|·| < 2^93`).
+    pub(super) fn oriented<const S: u32>(&self, t: &StoredTriangle<S>) -> [i128; 3] {
+        [0, 1, 2].map(|k| self.side(t, k) * self.facing)
     }
 
     /// Whether the sample at pixel `(x, y)` of plane `on` lies behind this plane (`> 0`),
