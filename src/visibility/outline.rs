@@ -38,8 +38,9 @@ const CUT_BITS_TWO: u32 = 24;
 /// Bits of a relaxed cut's coefficients on a piece of three cuts.
 const CUT_BITS_THREE: u32 = 10;
 
-/// Vertices an outline may have: a triangle clipped by three lines.
-const MAX_VERTICES: usize = 6;
+/// Vertices an outline may have: a triangle clipped by [`MAX_CUTS`](super::MAX_CUTS) lines,
+/// each clip adding at most one vertex (so `clip` never drops one).
+const MAX_VERTICES: usize = 3 + super::MAX_CUTS;
 
 /// A piece's outline (module doc): homogeneous barycentric vertices over its base triangle.
 #[derive(Debug, Clone, Copy)]
@@ -167,5 +168,102 @@ fn relaxed(c: [i128; 3], b: u32) -> [i128; 3] {
         c
     } else {
         c.map(|x| (x >> m) + 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::SubpixelPoint;
+    use crate::test_rng::XorShift;
+
+    fn triangle(rng: &mut XorShift, base: u32) -> StoredTriangle<4> {
+        let mut t = StoredTriangle::<4>::DEFAULT;
+        t.v =
+            [0; 3].map(|_| SubpixelPoint::new(rng.range(0, 640) as i32, rng.range(0, 480) as i32));
+        t.depth = [0; 3].map(|_| rng.range(1 << 30, 3 << 30) as u32);
+        t.base = base;
+        t
+    }
+
+    /// Every sample a piece draws (the painter's exact per-sample side of each cut) lies in its
+    /// outline's screen box, at a depth within its depth bounds, and on the side of every
+    /// other plane the outline's side bounds claim; an empty outline has no such sample.
+    #[test]
+    fn outlines_contain_their_pieces_samples() {
+        let mut rng = XorShift::new(0x0017_0011);
+        let mut checked = 0;
+        for _ in 0..400 {
+            let ts: [StoredTriangle<4>; 4] = [0, 1, 2, 3].map(|b| triangle(&mut rng, b));
+            if ts.iter().any(|t| t.twice_area() == 0) {
+                continue;
+            }
+            let normals = ts.map(|t| Plane::of(&t).normal());
+            let all = (&ts[..], &normals[..]);
+            let mut piece = ts[0];
+            let cuts = 1 + rng.below(3) as usize;
+            for (slot, cut) in (1..=cuts as u32).enumerate() {
+                piece.cuts[slot] = cut | if rng.chance(50) { CUT_FRONT } else { 0 };
+            }
+            let outline = Outline::of(all, &piece);
+            let own = Plane::stored(all, 0);
+            let other = Plane::stored(all, 3);
+            let sides = outline.side_bounds(other.oriented(&piece));
+            let depths = piece.depth.map(|d| d as i64);
+            let (d_lo, d_hi) = outline.range(depths);
+            let (x_lo, x_hi) = outline.range(piece.v.map(|p| p.x as i64));
+            let (y_lo, y_hi) = outline.range(piece.v.map(|p| p.y as i64));
+            for y in (0..480).step_by(16) {
+                for x in (0..640).step_by(16) {
+                    // Inside the base triangle (closed), on each cut's kept side.
+                    let e = |k: usize| {
+                        let (p, q) = (piece.v[k], piece.v[(k + 1) % 3]);
+                        (q.x as i64 - p.x as i64) * (y - p.y as i64)
+                            - (q.y as i64 - p.y as i64) * (x - p.x as i64)
+                    };
+                    let orient = piece.twice_area().signum();
+                    if (0..3).any(|k| e(k) * orient < 0) {
+                        continue;
+                    }
+                    let kept = piece.cuts.iter().filter(|&&c| c != NO_CUT).all(|&c| {
+                        let plane = Plane::stored(all, c & !CUT_FRONT);
+                        plane.sample_behind(&own, x, y) == (c & CUT_FRONT == 0)
+                    });
+                    if !kept {
+                        continue;
+                    }
+                    checked += 1;
+                    assert!(!outline.is_empty());
+                    assert!(x_lo <= x && x <= x_hi && y_lo <= y && y <= y_hi);
+                    // The depth of P's plane at the sample, rounded to an integer: within
+                    // the bounds.
+                    let c = |k: usize| {
+                        let p = piece.v[k];
+                        [p.x as i128, p.y as i128, piece.depth[k] as i128]
+                    };
+                    let (o, b, q) = (c(0), c(1), c(2));
+                    let (e1, e2) = (
+                        [0, 1, 2].map(|i| b[i] - o[i]),
+                        [0, 1, 2].map(|i| q[i] - o[i]),
+                    );
+                    let n = [
+                        e1[1] * e2[2] - e1[2] * e2[1],
+                        e1[2] * e2[0] - e1[0] * e2[2],
+                        e1[0] * e2[1] - e1[1] * e2[0],
+                    ];
+                    let num = -(n[0] * (x as i128 - o[0]) + n[1] * (y as i128 - o[1]));
+                    let d = o[2] + num.div_euclid(n[2]);
+                    assert!(
+                        d_lo as i128 <= d && d <= d_hi as i128,
+                        "{d} in {d_lo}..{d_hi}"
+                    );
+                    // The side of plane 3 at the sample agrees with the bounds' claims.
+                    let behind = other.sample_behind(&own, x, y);
+                    assert!(sides.0 <= 0 || behind, "{sides:?}");
+                    assert!(sides.1 >= 0 || !behind, "{sides:?}");
+                }
+            }
+        }
+        assert!(checked > 1000, "{checked} samples checked");
     }
 }

@@ -505,11 +505,11 @@ impl Plane {
         }
     }
 
-    fn normal(&self) -> Normal {
+    pub(super) fn normal(&self) -> Normal {
         Normal(self.n)
     }
 
-    fn of<const S: u32>(t: &StoredTriangle<S>) -> Plane {
+    pub(super) fn of<const S: u32>(t: &StoredTriangle<S>) -> Plane {
         let p = |k: usize| [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
         let (o, b, c) = (p(0), p(1), p(2));
         let e1 = [b[0] - o[0], b[1] - o[1], b[2] - o[2]];
@@ -549,7 +549,7 @@ impl Plane {
     /// `B + n_d'·r/|n_d|` with `B` an integer, decided by `B` alone when `|B| ≥ |n_d'|` and
     /// otherwise by `B·|n_d| + n_d'·r` (both `< 2^118`). The sample lies within `on`'s
     /// bounding box, where `|q| < 2^35`, so `B < 2^95`.
-    fn sample_behind(&self, on: &Plane, x: i64, y: i64) -> bool {
+    pub(super) fn sample_behind(&self, on: &Plane, x: i64, y: i64) -> bool {
         let [ox, oy, od] = on.origin;
         let (dx, dy) = (x - ox, y - oy);
         // D_on = od − (n_x dx + n_y dy)/n_d.
