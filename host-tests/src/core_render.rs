@@ -229,8 +229,10 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     scratch: BandScratch<'_, SB>,
 ) -> Result<(Vec<u8>, Vec<D>, RenderStats), zscan::render::RenderError> {
     let scene = renderer.scene();
-    let band = band_rows.unwrap_or(h).clamp(1, h.max(1));
-    let n = w as usize * band as usize;
+    // A 0 is passed on for the core to refuse (`BadBandRows`); a band taller than the
+    // picture is the picture.
+    let band = band_rows.unwrap_or(h);
+    let n = w as usize * band.min(h.max(1)) as usize;
     let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
     let total = w as usize * h as usize;
     let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
@@ -275,7 +277,7 @@ pub fn ram_bytes<const SB: u32>(
     use core::mem::size_of;
     let m = &stats.method;
     let frame = w as usize * h as usize;
-    let band = w as usize * band_rows.clamp(1, h.max(1)) as usize;
+    let band = w as usize * band_rows.min(h.max(1)) as usize;
     let scratch = vertices * size_of::<PreparedVertex<SB>>();
     let stored = m.stored as usize * size_of::<StoredTriangle<SB>>();
     let order = 4 * m.stored as usize;
@@ -354,8 +356,9 @@ pub fn render_visible<const SB: u32>(
             Ok((pixels, stats))
         }
         Visibility::ScanLine => {
-            let band = band_rows.clamp(1, h.max(1));
-            let n = w as usize * band as usize;
+            // A 0 is passed on for the core to refuse (`BadBandRows`).
+            let band = band_rows;
+            let n = w as usize * band.min(h.max(1)) as usize;
             let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![0u32; n]);
             let mut triangles = vec![StoredTriangle::default(); capacity];
             let (mut order, mut active) = (vec![0u32; capacity], vec![0u32; capacity]);
@@ -426,7 +429,7 @@ pub fn render_compact_picture<D: DepthValue, const SB: u32>(
         render_in_compact_bands, CompactBandScratch, CompactSizes, CompactVertex, PolygonTop,
     };
     let sizes = CompactSizes::of(scene);
-    let n = w as usize * band_rows.clamp(1, h.max(1)) as usize;
+    let n = w as usize * band_rows.min(h.max(1)) as usize;
     let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
     let mut vertices = vec![CompactVertex::default(); sizes.vertices];
     let mut levels = vec![0u8; sizes.levels];

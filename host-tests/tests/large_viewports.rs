@@ -20,7 +20,8 @@ use zscan::render::{
 use zscan::scene::Scene;
 use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
 use zscan::target::{DepthBuffer, DepthValue, Framebuffer};
-use zscan_host::core_render::CoreMesh;
+use zscan::visibility::Visibility;
+use zscan_host::core_render::{render_compact_picture, render_visible, CoreFrame, CoreMesh};
 use zscan_host::reference::compare::Rng;
 use zscan_host::reference::exact_fill::covered;
 
@@ -249,4 +250,85 @@ fn zero_band_rows_are_an_error() {
         }
     }
     assert_eq!(bands, 3);
+}
+
+/// Issue 16's slow input: a tall picture in bands of one row re-clipped every clipped polygon
+/// in every band (4,096 bands × the clipped polygons). With the polygon table a clipped
+/// polygon is clipped once per frame to find its rows, and only the bands it reaches clip it
+/// again: here a thin triangle above the eye that runs under the camera (crossing the near
+/// plane) reaches the top 20 or so rows of 4,096. The picture is one pass's.
+#[test]
+fn tall_pictures_in_thin_bands_clip_only_where_the_clipped_polygons_reach() {
+    let c = |v: f64| Coord::from_num(v);
+    let lens = Lens::new(Angle::from_degrees(60), c(0.5), c(10.0)).with_axis(FovAxis::Vertical);
+    let camera = Camera::look_at(
+        Vec3::from_int(0, 0, 3),
+        Vec3::ZERO,
+        Vec3::from_int(0, 1, 0),
+        lens,
+        Viewport::new(16, 4096),
+    )
+    .unwrap();
+    let v = |x: f64, y: f64, z: f64| Vec3::new(c(x), c(y), c(z));
+    let mesh = CoreMesh {
+        vertices: vec![v(-0.02, 3.4, -3.0), v(0.02, 3.4, -3.0), v(0.0, 3.4, 2.9)],
+        // Both windings: one is culled, whichever faces the eye is clipped and drawn.
+        indices: vec![0, 1, 2, 0, 2, 1],
+        intensities: vec![60, 120, 240],
+        per_vertex: true,
+        camera,
+    };
+    let shade = ShadeMode::GouraudExact;
+    let one: CoreFrame<u32> = mesh.render(shade, None).unwrap();
+    assert_eq!(one.stats.clipped, 1, "one triangle crosses the near plane");
+    let first_empty = (0..4096)
+        .find(|&y| one.pixels[y * 16..(y + 1) * 16].iter().all(|&p| p == 0))
+        .unwrap();
+    assert!(
+        (5..40).contains(&first_empty),
+        "drawn rows 0..{first_empty}"
+    );
+    let every: CoreFrame<u32> = mesh.render(shade, Some(1)).unwrap();
+    let table: CoreFrame<u32> = mesh.render_with(shade, Some(1), true).unwrap();
+    for b in [&every, &table] {
+        assert!(b.pixels == one.pixels && b.depth == one.depth);
+    }
+    // Without the table every band clips it; with it, about the rows it reaches (rounded).
+    println!(
+        "rows 0..{first_empty}: clipper runs {} without the table, {} with it",
+        every.stats.clipped, table.stats.clipped
+    );
+    assert_eq!(every.stats.clipped, 4096);
+    assert!(
+        (first_empty as u32..=first_empty as u32 + 2).contains(&table.stats.clipped),
+        "{} clipper runs for {first_empty} rows",
+        table.stats.clipped
+    );
+}
+
+/// Issue 16, every banded entry refuses bands of 0 rows with `BadBandRows` (the host harness
+/// and the scan-line used to make them 1 silently).
+#[test]
+fn zero_band_rows_are_an_error_in_every_banded_entry() {
+    let mesh = quad_at(32, 24, 60, (15.5, 11.5));
+    let e = mesh
+        .render::<u16>(ShadeMode::GouraudExact, Some(0))
+        .unwrap_err();
+    assert!(e.contains("bands of 0 rows"), "{e}");
+    let objects = [mesh.object(ShadeMode::GouraudExact).unwrap()];
+    let scene = Scene {
+        camera: mesh.camera,
+        objects: &objects,
+        background: 0,
+        ambient: 0,
+        lights: &[],
+    };
+    let renderer = Renderer::for_scene(&scene).unwrap();
+    let scan = render_visible(&renderer, (32, 24), Visibility::ScanLine, None, 0);
+    assert_eq!(scan.unwrap_err(), RenderError::BadBandRows { band_rows: 0 });
+    let compact = render_compact_picture::<u16, 4>(&renderer, (32, 24), 0);
+    assert_eq!(
+        compact.unwrap_err(),
+        RenderError::BadBandRows { band_rows: 0 }
+    );
 }

@@ -653,7 +653,7 @@ fn bands_give_the_same_frame() {
                     assert_eq!(s, o, "{}", scene.name);
                 }
                 // With the polygon table: the same pixels; rejection and culling counted once,
-                // the clipper still runs in every band.
+                // the clipper runs only in the bands its clipped projection reaches.
                 let t: CoreFrame<u16> = mesh.render_with(shade, Some(rows), true).unwrap();
                 assert!(t.pixels == one16.pixels && t.depth == one16.depth);
                 let ts = t.stats;
@@ -663,7 +663,7 @@ fn bands_give_the_same_frame() {
                     "{}",
                     scene.name
                 );
-                assert_eq!(ts.clipped, o.clipped * bands, "{}", scene.name);
+                assert!(ts.clipped <= o.clipped * bands, "{}", scene.name);
                 assert_eq!(
                     (ts.pixels_covered, ts.pixels_written),
                     (o.pixels_covered, o.pixels_written)

@@ -19,7 +19,8 @@ use crate::shade::span_writer::ShadeMode;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
-    /// [`PolygonRows::CLIP`] when it crosses a plane, else the rows its projection touches.
+    /// Each polygon's entry of the band table: never drawn, or the rows its projection
+    /// touches (clipped once here when it crosses a plane) and how bands draw it.
     /// Counts `polygons_in`, `rejected` and `culled` into `stats`.
     pub fn polygon_rows(
         &self,
@@ -67,7 +68,10 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         Ok(match self.verdict(poly, stats, false)? {
             Path::Skip => PolygonRows::NEVER,
             Path::Projected => self.projected_rows(poly),
-            Path::Clip => PolygonRows::CLIP,
+            Path::Clip => match self.clipped_rows(poly)? {
+                Some((top, bottom)) => PolygonRows::clipped(top, bottom),
+                None => PolygonRows::NEVER,
+            },
         })
     }
 
@@ -139,9 +143,11 @@ pub struct BandScratch<'a, const S: u32> {
     /// for every band.
     pub vertices: &'a mut [PreparedVertex<S>],
     /// Polygon table (4 bytes per polygon), used when `vertices` holds all objects and this
-    /// holds all objects' polygons: rejection, culling and each polygon's rows are decided
-    /// once per frame ([`Renderer::polygon_rows`]) and a band visits only the polygons that
-    /// reach it. Otherwise (e.g. `&mut []`) every band tests every polygon.
+    /// holds all objects' polygons: rejection, culling and each polygon's rows (a clipped
+    /// polygon's after clipping) are decided once per frame ([`Renderer::polygon_rows`]) and
+    /// a band visits only the polygons that reach it. Otherwise (e.g. `&mut []`) every band
+    /// tests every polygon, and clips every clipped polygon again: bands × clipped polygons
+    /// clipper runs, which a tall picture in thin bands feels.
     pub polygons: &'a mut [PolygonRows],
 }
 
@@ -221,10 +227,11 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
     )
 }
 
-/// The rows of each band of both banded entries: `band_rows`, at least 1
+/// The rows of each band of every banded entry (`render_in_bands`, `render_in_compact_bands`
+/// and the scan-line's `render_scan_lines`): `band_rows`, at least 1
 /// ([`RenderError::BadBandRows`] names a 0); a band taller than the picture is the whole
 /// picture in one band.
-fn band_height(band_rows: u16, height: u16) -> Result<u16, RenderError> {
+pub(crate) fn band_height(band_rows: u16, height: u16) -> Result<u16, RenderError> {
     if band_rows == 0 {
         return Err(RenderError::BadBandRows { band_rows });
     }

@@ -65,6 +65,7 @@ mod vertex_stage;
 
 pub use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
 pub use crate::project::ProjectError;
+pub(crate) use bands::band_height;
 pub use bands::{render_in_bands, render_in_compact_bands, BandScratch, CompactBandScratch};
 pub use compact::{CompactSizes, CompactVertex, PolygonTop};
 pub use error::{BandPart, RenderError};

@@ -4,14 +4,23 @@
 //! Numeric contract: band rows are `0..=65535` (a viewport's height is a `u16`); a polygon's
 //! rows are clamped to that range, which keeps the overlap test with any band exact.
 //! Projected `y` are within `±(2^28 − 1)` sub-pixel units, so `⌈y / 2^S⌉` fits `i32`.
+//!
+//! Conventions: an entry's rows are conservative (a band they meet may hold none of the
+//! polygon's pixels; the raster writes only the rows it covers). The low bit of `top` says
+//! how the polygon is drawn: even, from its prepared vertices; odd, through the clipper (a
+//! clipped polygon's rows are those of its clipped projection, found once per frame, so that
+//! bands it does not reach skip it without clipping). A projected polygon's top is rounded
+//! down to even, a clipped one's down to odd, and a clipped polygon from row 0 has a top of
+//! 65535 (read as 0): at most one band more than the exact rows is visited.
 
 use super::PreparedVertex;
 use crate::raster::edge_walker::ceil_shift;
 
 /// A polygon's fate in a frame drawn in bands, decided once by
 /// [`Renderer::polygon_rows`](super::Renderer::polygon_rows):
-/// the rows `top..bottom` its projection can touch (clamped to `0..=65535`), never drawn
-/// (rejected or culled), or needing the clipper in every band it reaches. 4 bytes: one word,
+/// never drawn (rejected or culled), or the rows `top..bottom` its projection can touch
+/// (clamped to `0..=65535`) and whether the bands it reaches draw it from its prepared vertices
+/// or through the clipper (the module doc gives the encoding). 4 bytes: one word,
 /// `top | bottom << 16`, so that a band's scan tests `bottom` with one comparison.
 #[derive(Clone, Copy, PartialEq, Eq, Default)]
 pub struct PolygonRows {
@@ -30,7 +39,8 @@ impl core::fmt::Debug for PolygonRows {
 impl PolygonRows {
     /// Rejected or culled: no band draws it.
     pub const NEVER: PolygonRows = PolygonRows::pack(u16::MAX, 0);
-    /// Crosses a frustum plane: every band runs the clipper (and the raster's own band limit).
+    /// Crosses a frustum plane, rows unknown: every band runs the clipper (and the raster's
+    /// own band limit).
     pub const CLIP: PolygonRows = PolygonRows::pack(u16::MAX, u16::MAX);
 
     const fn pack(top: u16, bottom: u16) -> PolygonRows {
@@ -49,19 +59,44 @@ impl PolygonRows {
         (self.packed >> 16) as u16
     }
 
-    /// Rows `top..bottom` (half-open, any `i32`), clamped to `0..=65535` (band rows are
-    /// within that range, so the overlap test is unchanged). A clamped `(65535, 65535)` is
-    /// [`CLIP`](Self::CLIP), which draws the same pixels by the slower path.
+    /// A polygon drawn from its prepared vertices on rows `top..bottom` (half-open, any
+    /// `i32`), clamped to `0..=65535` (band rows are within that range, so the overlap test
+    /// is unchanged) and `top` rounded down to even.
     pub fn rows(top: i32, bottom: i32) -> PolygonRows {
-        let c = |r: i32| r.clamp(0, u16::MAX as i32) as u16;
-        PolygonRows::pack(c(top), c(bottom))
+        PolygonRows::pack(clamp_row(top) & !1, clamp_row(bottom))
+    }
+
+    /// A polygon drawn through the clipper, whose clipped projection touches rows
+    /// `top..bottom` (clamped as [`rows`](Self::rows)), `top` rounded down to odd (65535 for
+    /// row 0).
+    pub fn clipped(top: i32, bottom: i32) -> PolygonRows {
+        let top = match clamp_row(top) {
+            0 => u16::MAX,
+            t => t - (1 - (t & 1)),
+        };
+        PolygonRows::pack(top, clamp_row(bottom))
+    }
+
+    /// True when the bands draw the polygon through the clipper.
+    #[inline(always)]
+    pub(super) const fn is_clipped(self) -> bool {
+        self.top() & 1 == 1
     }
 
     /// True when the polygon may touch rows `band.0..band.1`.
     #[inline(always)]
     pub(super) fn meets(self, band: (i32, i32)) -> bool {
-        (self.bottom() as i32) > band.0 && (self.top() as i32) < band.1
+        let top = match self.top() {
+            u16::MAX => 0,
+            t => t as i32,
+        };
+        (self.bottom() as i32) > band.0 && top < band.1
     }
+}
+
+/// A row clamped to the band rows' range `0..=65535`.
+fn clamp_row(r: i32) -> u16 {
+    r.clamp(0, u16::MAX as i32) as u16
 }
 
 /// The rows of a triangle whose vertices all projected: `⌈y_min⌉ .. ⌈y_max⌉`, as

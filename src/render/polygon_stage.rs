@@ -195,17 +195,17 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         draw: &mut impl TriangleConsumer<S, N>,
     ) -> Result<(), RenderError> {
-        let path = |r: PolygonRows| match r {
-            PolygonRows::CLIP => Path::Clip,
-            r if r.meets(self.rows) => Path::Projected,
-            _ => Path::Skip,
+        let path = |r: PolygonRows| match r.meets(self.rows) {
+            false => Path::Skip,
+            true if r.is_clipped() => Path::Clip,
+            true => Path::Projected,
         };
         if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
             let indices = self.object.mesh.indices();
             let table = table.get(..indices.len() / 3).unwrap_or(table);
             // The scan finds the entries that `path` may draw with one or two tests for most:
-            // rows below the band's end (clamped so that the clipping entry and rows up to
-            // 65535 pass) and above its start; `path` then decides exactly.
+            // rows below the band's end (clamped so that rows up to 65535 pass) and above its
+            // start (a top of 65535 is a clipped polygon from row 0); `path` then decides.
             let (b0, b1) = self.rows;
             let (c0, c1) = (
                 b0.clamp(-1, u16::MAX as i32 - 1),
@@ -214,7 +214,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             // `bottom > c0` on the packed word: `c0 + 1` is in `0..=65535`.
             let below = ((c0 + 1) as u32) << 16;
             let maybe = |r: &PolygonRows| {
-                r.packed >= below && ((r.top() as i32) < c1 || *r == PolygonRows::CLIP)
+                r.packed >= below && ((r.top() as i32) < c1 || r.top() == u16::MAX)
             };
             let mut one = |pi: usize, r: PolygonRows| {
                 let Some(poly) = indices.get(3 * pi..3 * pi + 3) else {
@@ -450,6 +450,37 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         draw: &mut impl TriangleConsumer<S, N>,
     ) -> Result<(), RenderError> {
         stats.clipped += 1;
+        self.each_clipped_piece(pi, poly, attrs, |corners| {
+            fan(pi, corners.len(), |k| corners[k], draw, stats)
+        })
+    }
+
+    /// The rows `⌈y_min⌉ .. ⌈y_max⌉` of a clipped polygon's projection (all its pieces), for
+    /// the band table: clipped once per frame, so that a band the polygon does not reach
+    /// skips it without clipping (not counted in `clipped`, which counts the drawing runs).
+    /// `None` when nothing of it projects.
+    pub(super) fn clipped_rows(&self, poly: &[u16]) -> Result<Option<(i32, i32)>, RenderError> {
+        let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+        self.each_clipped_piece(0, poly, &|_, _, _, _| [], |corners: &[Corner<S, 0>]| {
+            for c in corners {
+                (lo, hi) = (lo.min(c.screen.y), hi.max(c.screen.y));
+            }
+            Ok(())
+        })?;
+        Ok((lo <= hi).then(|| (ceil_shift(lo, S), ceil_shift(hi, S))))
+    }
+
+    /// Clips polygon `pi` (`poly`) against the frustum and hands each clipped piece's
+    /// projected corners to `piece`. A non-convex polygon whose clip would exceed the capacity
+    /// is clipped fan triangle by fan triangle instead (the same region as its unclipped fan),
+    /// so it draws.
+    fn each_clipped_piece<const N: usize>(
+        &self,
+        pi: usize,
+        poly: &[u16],
+        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        mut piece: impl FnMut(&[Corner<S, N>]) -> Result<(), RenderError>,
+    ) -> Result<(), RenderError> {
         let mut input: Vec<ClipVertex<N>, CLIP_CAPACITY> = Vec::new();
         for (k, &i) in poly.iter().enumerate() {
             let p = self.prepared.get(i as usize);
@@ -457,8 +488,6 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
             let _ = input.push(ClipVertex::new(view, attrs(pi, poly, k, p)));
         }
-        // A non-convex polygon whose clip would exceed the capacity is clipped fan triangle by
-        // fan triangle instead (the same region as its unclipped fan), so it draws.
         let frustum = &self.renderer.frustum;
         frustum.clip_fan::<N, CLIP_CAPACITY, RenderError>(&input, |clipped| {
             let mut corners: Vec<Corner<S, N>, CLIP_CAPACITY> = Vec::new();
@@ -475,7 +504,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
                     attrs: c.attrs,
                 });
             }
-            fan(pi, corners.len(), |k| corners[k], draw, stats)
+            piece(&corners)
         })
     }
 }

@@ -17,7 +17,9 @@ pub struct RenderStats {
     pub culled: u32,
     /// Polygons wholly outside one frustum plane.
     pub rejected: u32,
-    /// Polygons that went through the 3D clipper (in bands: once per band that runs it).
+    /// Polygons that went through the 3D clipper to be drawn (in bands: once per band that
+    /// runs it; with the band polygon table only in the bands that a clipped polygon's clipped
+    /// projection reaches, the table's one run per frame that finds those rows not counted).
     pub clipped: u32,
     /// Triangles that covered or wrote at least one pixel of the buffers (in bands: counted
     /// once per band that a triangle reaches; by the painter once per piece, by Warnock's

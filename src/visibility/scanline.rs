@@ -13,7 +13,9 @@
 //! active triangle, and the band's pixels and depth samples (`width × band_rows` each).
 
 use super::store::{collect, sort_order, StoredTriangle};
-use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
+use crate::render::{
+    band_height, PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink,
+};
 use crate::scene::Scene;
 use crate::shade::span_writer::RasterTarget;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
@@ -36,7 +38,8 @@ pub struct ScanLineMemory<'a, D, const S: u32 = 4> {
 /// Draws a `width × height` picture of the renderer's scene band by band (`band_rows` rows each, the last may be
 /// shorter) from the scene's front triangles, calling `band_done` with each finished band
 /// as [`render_in_bands`](crate::render::render_in_bands) does. The pixels are the
-/// z-buffer's (module doc).
+/// z-buffer's (module doc). `band_rows` is at least 1 ([`RenderError::BadBandRows`] names a
+/// 0); a band taller than the picture draws the picture in one band.
 #[allow(clippy::too_many_arguments)]
 pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
@@ -47,6 +50,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
     mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
     let scene = renderer.scene();
+    let band_rows = band_height(band_rows, height)?;
     let ScanLineMemory {
         triangles,
         order,
@@ -59,7 +63,6 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
     let n = collect(renderer, scratch, &mut triangles[..capacity], counts)?;
     let (triangles, order) = (&triangles[..n], &mut order[..n]);
     sort_order(order, |i| triangles[i].rows().0);
-    let band_rows = band_rows.clamp(1, height.max(1));
     let (mut next, mut live) = (0usize, 0usize);
     let mut top = 0u16;
     while top < height {

@@ -1429,7 +1429,7 @@ impl LoadedScene {
         let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
             .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
         if visibility != Visibility::ZBuffer {
-            let band = band_rows.unwrap_or(1).clamp(1, h);
+            let band = band_rows.unwrap_or(1);
             let (pixels, stats) = crate::core_render::render_visible(
                 &renderer,
                 (w, h),
@@ -1439,7 +1439,8 @@ impl LoadedScene {
             )
             .map_err(|e| render_error_words(&e))?;
             let bands = if visibility == Visibility::ScanLine {
-                h.div_ceil(band) as u32
+                // The scan-line drew, so `band` ≥ 1.
+                h.div_ceil(band.clamp(1, h)) as u32
             } else {
                 1
             };
@@ -1457,8 +1458,6 @@ impl LoadedScene {
         let polygons: usize = objects.iter().map(|o| o.mesh.polygon_count()).sum();
         let mut scratch = vec![PreparedVertex::default(); vertices];
         let mut table = vec![PolygonRows::default(); polygons];
-        let band = band_rows.unwrap_or(h).clamp(1, h);
-        let bands = h.div_ceil(band) as u32;
         let (pixels, depth, stats) = crate::core_render::render_picture(
             &renderer,
             (w, h),
@@ -1469,6 +1468,8 @@ impl LoadedScene {
             },
         )
         .map_err(|e| render_error_words(&e))?;
+        // The core drew, so the band height is at least 1 (a 0 is `BadBandRows`).
+        let bands = h.div_ceil(band_rows.unwrap_or(h).clamp(1, h)) as u32;
         Ok(Frame {
             pixels,
             depth,
@@ -1590,6 +1591,9 @@ fn finish<D: DepthValue + Into<u64>>(
             visibility
         )
         .into());
+    }
+    if args.bands == Some(0) {
+        return Err("--bands 0: a band needs at least 1 row".into());
     }
     let frame = scene.render_by::<D>(args.bands, visibility)?;
     let vp = *scene.camera.viewport();
