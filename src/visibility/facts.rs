@@ -38,11 +38,19 @@
 //! The planner does not use a certificate under a mirroring transform (negative determinant):
 //! it turns the mesh inside out, and step 2's solid would hold the eye.
 //!
+//! ## Rounding
 //! What the argument takes as given (as [`Mesh::is_convex`] does): the mesh as its vertex
 //! table places it, mapped by the object's transform and projected exactly. The renderer rounds
-//! the observer-frame positions to I16F16 and the screen positions to `2^-S` pixel; the
-//! pairs decided here are tested on those rounded screen positions, the others are argued on
-//! the mesh. The tests (`host-tests/tests/plan.rs`) compare with the z-buffer pixel by pixel.
+//! the observer-frame positions to I16F16 and the screen positions to `2^-S` pixel; the pairs
+//! decided here are tested on those rounded screen positions, the others are argued on the
+//! mesh. Where the rounding is comparable with the triangles (an object a few pixels across or
+//! less), triangles that share only a vertex can fold onto each other: a 51-vertex sphere under
+//! a pixel across drew 1 pixel wrong by back faces alone. So the planner trusts the certificate
+//! only under a **rounding guard**: the rounding, taken back to the mesh's frame, must move each
+//! vertex by at most [`MeshFacts::tolerance`], the mesh's shortest edge over [`FOLD_GUARD`]
+//! (`plan.rs` bounds the move per view). This is a guard, not a proof: the divisor is set with
+//! a margin of 2 over the smallest that keeps the picture on the tests' 9,000 random small and
+//! far objects (`host-tests/tests/plan.rs`); the tests compare with the z-buffer pixel by pixel.
 //!
 //! Numeric contract: mesh coordinates `|c| ≤ 2^26` raw, so a point–plane side
 //! `(v − p_0)·n` is below `2^27·2^63·3 < 2^92` (`i128`); projected positions are within
@@ -87,6 +95,29 @@ pub struct MeshFacts<'a> {
     pub convexity: Convexity<'a>,
     /// Smallest and largest raw coordinate per axis, over all vertices (zeros when empty).
     pub bounds: [[i32; 3]; 2],
+    /// The rounding guard: the most (raw mesh units, per coordinate) the renderer's rounding
+    /// may move a vertex, taken back to the mesh's frame, for the planner to trust the
+    /// certificate: the mesh's shortest edge (`‖·‖∞`) over [`FOLD_GUARD`] (module doc,
+    /// "Rounding").
+    pub tolerance: i32,
+}
+
+/// The rounding guard's divisor: the renderer's rounding must move each vertex by at most
+/// this fraction of the mesh's shortest edge (module doc, "Rounding").
+pub const FOLD_GUARD: i32 = 4;
+
+/// The shortest edge of `mesh`'s polygons, `‖·‖∞` raw (`i32::MAX` without an edge).
+fn shortest_edge(mesh: &Mesh<'_>) -> i32 {
+    let vertex = |i: u16| mesh.vertices().get(i as usize).map_or([0; 3], |v| v.bits());
+    let mut shortest = i32::MAX as i64;
+    for poly in mesh.polygons() {
+        for (k, &i) in poly.iter().enumerate() {
+            let (u, v) = (vertex(i), vertex(poly[(k + 1) % poly.len()]));
+            let d = (0..3).map(|a| (u[a] as i64 - v[a] as i64).abs()).max();
+            shortest = shortest.min(d.unwrap_or(0));
+        }
+    }
+    shortest.min(i32::MAX as i64) as i32
 }
 
 /// `(v − p0)·n`, exact (module doc's bound).
@@ -123,7 +154,12 @@ impl<'a> MeshFacts<'a> {
         } else {
             creases(mesh, pairs).map_or(Convexity::NotConvex, Convexity::Creased)
         };
-        MeshFacts { convexity, bounds }
+        let tolerance = shortest_edge(mesh) / FOLD_GUARD;
+        MeshFacts {
+            convexity,
+            bounds,
+            tolerance,
+        }
     }
 }
 

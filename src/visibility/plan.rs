@@ -19,7 +19,9 @@
 //! ## The rules, and why each keeps the picture
 //! 1. **Back faces alone** ([`Visibility::BackFace`], no depth buffer) when every object culls
 //!    its back faces, its mesh is [`Convexity::Convex`] or creased with creases holding in this
-//!    view, and the objects are **separable**: any two whose screen boxes overlap have depth
+//!    view, and within the rounding guard (`facts.rs`, "Rounding": the renderer's rounding,
+//!    taken back to the mesh's frame, moves no vertex by more than [`MeshFacts::tolerance`]),
+//!    and the objects are **separable**: any two whose screen boxes overlap have depth
 //!    ranges that do not (Schumacker's clusters). Objects are drawn far to near (`order`).
 //!    Within an object no two front faces overlap (`facts.rs`), so each pixel an object draws
 //!    is the one surface it shows there. Two objects that both draw a pixel overlap on screen,
@@ -51,7 +53,7 @@
 use super::facts::{Convexity, MeshFacts, View};
 use super::Visibility;
 use crate::clip::frustum::Frustum;
-use crate::geometry::fixed::Coord;
+use crate::geometry::fixed::{Coord, LINEAR_FRAC};
 use crate::geometry::vector::Vec3;
 use crate::project::Projector;
 use crate::render::{PolygonRows, PreparedVertex, RenderError};
@@ -137,6 +139,13 @@ pub enum MethodReason {
         a: usize,
         /// The other.
         b: usize,
+    },
+    /// This object's mesh is convex (or creased) as stored, but the renderer's rounding to
+    /// `2^-S` pixel may move its vertices, in the mesh's frame, by more than its
+    /// certificate's tolerance (an object small on screen): its triangles may fold.
+    RoundingMayFold {
+        /// Its index.
+        object: usize,
     },
     /// Back faces alone would do but need a whole frame: these bytes, over the budget.
     WholeFrameOverBudget {
@@ -266,6 +275,12 @@ impl core::fmt::Display for MethodReason {
                 "objects {} and {} overlap on screen and in depth",
                 a + 1,
                 b + 1
+            ),
+            MethodReason::RoundingMayFold { object } => write!(
+                f,
+                "object {} is too small on screen for its convexity certificate: the rounding \
+                 to the sub-pixel grid may fold its triangles",
+                object + 1
             ),
             MethodReason::WholeFrameOverBudget { needed } => write!(
                 f,
@@ -524,6 +539,11 @@ fn back_faces_allowed<const S: u32>(
         if !object.cull_back_faces {
             return Err((MethodReason::BackFacesDrawn { object: i }, far_z));
         }
+        if !matches!(fact.convexity, Convexity::NotConvex)
+            && !rounding_within(object, fact, scene, projector)
+        {
+            return Err((MethodReason::RoundingMayFold { object: i }, far_z));
+        }
         let reason = match fact.convexity {
             Convexity::Convex => continue,
             Convexity::NotConvex => MethodReason::NotConvex { object: i },
@@ -582,6 +602,52 @@ fn determinant(m: [[i32; 3]; 3]) -> i128 {
     e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1))
         - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))
         + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0))
+}
+
+/// True when the renderer's rounding moves `object`'s vertices, taken back to its mesh's
+/// frame, by at most the certificate's tolerance (module doc, rule 1): each observer-frame
+/// coordinate by 1 raw unit (the transform rounds to nearest) plus the projection's rounding
+/// (under 0.51 sub-pixel unit, `project.rs`) seen at the object's farthest `z`,
+/// `z/(f·2^S)` for the smaller focal length `f` in pixels; then into the mesh's frame by the
+/// inverse of the linear part, whose row sums are the adjugate's over the determinant.
+fn rounding_within<const S: u32>(
+    object: &Object<'_>,
+    fact: &MeshFacts<'_>,
+    scene: &Scene<'_>,
+    projector: &Projector<S>,
+) -> bool {
+    let (Some(mv), Some(placed)) = (
+        model_view(object, scene),
+        place(object, fact, scene, projector),
+    ) else {
+        return false;
+    };
+    let m = mv.linear_bits();
+    // The view turns the right-handed model frame into the z-forward observer frame: the
+    // sign is the view's, only the magnitude scales distances here.
+    let det = determinant(m).abs();
+    if det == 0 {
+        return false;
+    }
+    let camera = &scene.camera;
+    let focal = camera
+        .focal_x()
+        .to_bits()
+        .min(camera.focal_y().to_bits())
+        .max(1) as i128;
+    let z = placed.far_z.max(0) as i128;
+    // Observer-frame raw units: the transform's rounding and the projection's at `z`.
+    let moved = 1 + ((z << 16) + (focal << S) - 1) / (focal << S);
+    // ‖L⁻¹‖∞ = (largest row sum of |adj L|)·2^LINEAR_FRAC / det (raw entries are Q24).
+    let e = |r: usize, c: usize| m[r % 3][c % 3] as i128;
+    let cofactor =
+        |r: usize, c: usize| e(r + 1, c + 1) * e(r + 2, c + 2) - e(r + 1, c + 2) * e(r + 2, c + 1);
+    let row_sum = (0..3)
+        .map(|i| (0..3).map(|j| cofactor(j, i).abs()).sum::<i128>())
+        .max()
+        .unwrap_or(0);
+    // Below 2^66·2^24·2^33 and 2^26·2^96: no overflow.
+    row_sum * (1 << LINEAR_FRAC) * moved <= fact.tolerance.max(0) as i128 * det
 }
 
 /// True when two screen boxes are disjoint.
