@@ -16,7 +16,7 @@ use zscan::render::{BandScratch, PolygonRows, PreparedVertex, Renderer};
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::shade::span_writer::ShadeMode;
 use zscan::visibility::{
-    Convexity, DepthWidth, MeshFacts, MethodReason, Plan, PlanError, Visibility,
+    Convexity, DepthWidth, LayoutReason, MeshFacts, MethodReason, Plan, PlanError, Visibility,
 };
 use zscan_host::cli::render::load_scene;
 use zscan_host::core_render::{mesh_facts, render_picture, render_planned, to_core};
@@ -93,11 +93,19 @@ fn the_standard_scenes_take_the_cheapest_method_and_keep_the_picture() {
         assert_eq!(plan.visibility, method, "{name}: {plan}");
         assert_eq!(wrong, 0, "{name}: {plan}");
         // Under tighter budgets: bands, then 16-bit depth, then the error.
-        for budget in [200_000, 120_000, 90_000, 70_000, 60_000] {
+        for budget in [
+            200_000, 120_000, 90_000, 70_000, 60_000, 32_768, 24_000, 20_000,
+        ] {
             match check(&scene, budget) {
                 Ok((plan, wrong)) => assert_eq!(wrong, 0, "{name} at {budget}: {plan}"),
                 Err(e) => assert!(e.contains("bytes"), "{name} at {budget}: {e}"),
             }
+        }
+        // The bunny in 32 KB: compact bands, the z-buffer's picture.
+        if name == "bunny" {
+            let (plan, wrong) = check(&scene, 32_768).unwrap();
+            assert_eq!(plan.layout_reason, LayoutReason::CompactBands, "{plan}");
+            assert_eq!(wrong, 0);
         }
     }
 }
@@ -159,17 +167,60 @@ fn the_plan_sizes_every_buffer_and_names_the_bytes_it_lacks() {
         banded.band_rows as usize,
         (100_000 - 28 * 1839 - 4 * 3674) / (5 * 320)
     );
-    // 32 KB: the vertex scratch alone is 51 KB; the smallest plan (16-bit bands of one row,
-    // scratch for the mesh) is named.
-    let err = plan(32 * 1024).unwrap_err();
+    // 32 KB: the full vertex scratch alone is 51 KB; compact bands (8 bytes per vertex, a byte
+    // per polygon, no level bytes: levels given per vertex) fit with 32-bit depth.
+    let compact = plan(32 * 1024).unwrap();
+    assert_eq!(
+        compact.layout_reason,
+        LayoutReason::CompactBands,
+        "{compact}"
+    );
+    assert_eq!(compact.depth, DepthWidth::U32);
+    assert_eq!(
+        (compact.buffers.vertices, compact.buffers.polygons),
+        (8 * 1839, 3674)
+    );
+    assert_eq!(
+        compact.band_rows as usize,
+        (32 * 1024 - 8 * 1839 - 3674) / (5 * 320)
+    );
+    assert!(compact.ram_bytes() <= 32 * 1024);
+    // 16 KB: the smallest plan (compact bands of one row of 16-bit depth) is named.
+    let err = plan(16 * 1024).unwrap_err();
     assert_eq!(
         err,
         PlanError::OverBudget {
-            needed: 28 * 1839 + 3 * 320,
-            budget: 32768
+            needed: 8 * 1839 + 3674 + 3 * 320,
+            budget: 16384
         }
     );
-    assert!(err.to_string().contains("52452 bytes"), "{err}");
+    assert!(err.to_string().contains("19346 bytes"), "{err}");
+    // A vertex outside the frustum (the eye inside the bunny's box) rules compact bands out:
+    // the planner cannot promise every vertex a compact form.
+    let mut near = core.camera;
+    near = Camera::look_at(
+        Vec3::from_int(0, 0, 0),
+        Vec3::from_int(0, 0, -1),
+        Vec3::from_int(0, 1, 0),
+        *near.lens(),
+        *near.viewport(),
+    )
+    .unwrap();
+    let inside = Scene {
+        camera: near,
+        ..scene
+    };
+    let p = zscan::visibility::plan::<4>(&inside, &facts, 32 * 1024, &mut [0u16]);
+    assert!(
+        !matches!(
+            p,
+            Ok(Plan {
+                layout_reason: LayoutReason::CompactBands,
+                ..
+            })
+        ),
+        "{p:?}"
+    );
     // Too few order slots is an error too.
     assert_eq!(
         zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut []),
@@ -373,6 +424,7 @@ fn the_plan_of_random_scenes_keeps_the_picture() {
                     plan.visibility.name(),
                     plan.depth.bytes(),
                     plan.band_rows < 48,
+                    plan.layout_reason == LayoutReason::CompactBands,
                 );
                 *by_method.entry(key).or_insert(0) += 1;
                 several_back_faces += (n > 1 && plan.visibility == Visibility::BackFace) as u32;
@@ -385,13 +437,17 @@ fn the_plan_of_random_scenes_keeps_the_picture() {
             }
         }
     }
-    println!("random scenes: (method, depth bytes, banded) -> count {by_method:?}, over budget {refused}, several objects by back faces {several_back_faces}, refused by the rounding guard {guarded}");
+    println!("random scenes: (method, depth bytes, banded, compact) -> count {by_method:?}, over budget {refused}, several objects by back faces {several_back_faces}, refused by the rounding guard {guarded}");
     assert!(several_back_faces > 20, "separable scenes should be found");
     assert!(
         guarded > 20,
         "objects small enough for the rounding guard should be met"
     );
-    assert!(by_method.keys().any(|k| k.0 == "zbuffer" && k.2));
+    assert!(by_method.keys().any(|k| k.0 == "zbuffer" && k.2 && !k.3));
+    assert!(
+        by_method.keys().any(|k| k.3),
+        "compact bands should be planned"
+    );
 }
 
 /// Two convex objects whose bounding boxes overlap on screen and in depth without their

@@ -97,14 +97,14 @@ pub struct MeshFacts<'a> {
     pub bounds: [[i32; 3]; 2],
     /// The rounding guard: the most (raw mesh units, per coordinate) the renderer's rounding
     /// may move a vertex, taken back to the mesh's frame, for the planner to trust the
-    /// certificate: the mesh's shortest edge (`‖·‖∞`) over [`FOLD_GUARD`] (module doc,
+    /// certificate: the mesh's shortest edge (`‖·‖∞`) over 4 (`FOLD_GUARD`, module doc,
     /// "Rounding").
     pub tolerance: i32,
 }
 
 /// The rounding guard's divisor: the renderer's rounding must move each vertex by at most
 /// this fraction of the mesh's shortest edge (module doc, "Rounding").
-pub const FOLD_GUARD: i32 = 4;
+pub(crate) const FOLD_GUARD: i32 = 4;
 
 /// The shortest edge of `mesh`'s polygons, `‖·‖∞` raw (`i32::MAX` without an edge).
 fn shortest_edge(mesh: &Mesh<'_>) -> i32 {
