@@ -634,3 +634,41 @@ fn a_mirrored_creased_mesh_keeps_the_depth_buffer() {
         assert_eq!(wrong, 0);
     }
 }
+
+/// A drawing order naming an object the scene lacks is refused by name, nothing drawn.
+#[test]
+fn a_bad_drawing_order_names_the_object() {
+    use zscan::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer};
+    use zscan::target::Framebuffer;
+    let core = standard("cube");
+    let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
+    let scene = Scene {
+        camera: core.camera,
+        ambient: 0,
+        lights: &[],
+        objects: &objects,
+        background: 7,
+    };
+    let renderer = SceneRenderer::<4>::new(&scene).unwrap();
+    let vp = *scene.camera.viewport();
+    let mut pixels = vec![3u8; vp.width as usize * vp.height as usize];
+    let mut frame = Framebuffer::new(&mut pixels, vp.width, vp.height).unwrap();
+    let mut scratch = vec![PreparedVertex::default(); 64];
+    let err = zscan::visibility::render_back_faces_in_order(
+        &renderer,
+        &[0, 1],
+        &mut frame,
+        &mut scratch,
+        &mut RenderStats::default(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        err,
+        RenderError::NoSuchObject {
+            index: 1,
+            objects: 1
+        }
+    );
+    assert!(err.to_string().contains("object index 1"), "{err}");
+    assert!(pixels.iter().all(|&p| p == 3), "nothing drawn");
+}
