@@ -240,9 +240,10 @@ impl Creases<'_> {
     /// each of that face's front occluders. A face with a vertex outside the frustum (clipped)
     /// makes the answer `false`.
     pub(crate) fn hold<const S: u32>(&self, mesh: &Mesh<'_>, view: &View<'_, S>) -> bool {
-        let face = |f: u32| project_face(mesh, f, view);
+        let mut cache = Placed::<S>::new();
         for &[b, c] in self.mutual {
-            let (Some(tb), Some(tc)) = (face(b), face(c)) else {
+            let (Some(tb), Some(tc)) = (cache.face(mesh, b, view), cache.face(mesh, c, view))
+            else {
                 return false;
             };
             let (fb, fc) = (twice_area(&tb) < 0, twice_area(&tc) < 0);
@@ -252,7 +253,7 @@ impl Creases<'_> {
             let (front, t) = if fb { (b, tb) } else { (c, tc) };
             let from = self.occluders.partition_point(|p| p[0] < front);
             for &[_, a] in self.occluders[from..].iter().take_while(|p| p[0] == front) {
-                let Some(ta) = face(a) else {
+                let Some(ta) = cache.face(mesh, a, view) else {
                     return false;
                 };
                 if twice_area(&ta) < 0 && !separated(&t, &ta) {
@@ -264,26 +265,59 @@ impl Creases<'_> {
     }
 }
 
-/// Face `f`'s corners on screen, as the vertex stage places them, or `None` when one is
-/// outside the frustum (the polygon stage would clip it).
-fn project_face<const S: u32>(
-    mesh: &Mesh<'_>,
-    f: u32,
-    view: &View<'_, S>,
-) -> Option<[SubpixelPoint<S>; 3]> {
-    let at = f as usize * 3;
-    let idx = mesh.indices().get(at..at + 3)?;
-    let mut out = [SubpixelPoint::new(0, 0); 3];
-    for (o, &i) in out.iter_mut().zip(idx) {
-        let p = view
-            .model_view
-            .transform_point(*mesh.vertices().get(i as usize)?);
-        if view.frustum.outcode(p) != 0 {
-            return None;
+/// Entries of [`Placed`]: a power of two.
+const PLACED: usize = 128;
+
+/// The screen positions [`Creases::hold`] has placed, direct-mapped by vertex index (2 KB on
+/// the stack): neighbouring face pairs share vertices, so most are placed once, not once per
+/// face (measured on the standard sphere: `plan_sphere` in `docs/BENCHMARKS.md`).
+struct Placed<const S: u32> {
+    /// Vertex index + 1 (0: empty), and its position (`None`: outside the frustum).
+    slots: [(u32, Option<SubpixelPoint<S>>); PLACED],
+}
+
+impl<const S: u32> Placed<S> {
+    fn new() -> Self {
+        Placed {
+            slots: [(0, None); PLACED],
         }
-        *o = view.projector.project_point(p).ok()?.0;
     }
-    Some(out)
+
+    /// Face `f`'s corners on screen, as the vertex stage places them, or `None` when one is
+    /// outside the frustum (the polygon stage would clip it).
+    fn face(
+        &mut self,
+        mesh: &Mesh<'_>,
+        f: u32,
+        view: &View<'_, S>,
+    ) -> Option<[SubpixelPoint<S>; 3]> {
+        let at = f as usize * 3;
+        let idx = mesh.indices().get(at..at + 3)?;
+        let mut out = [SubpixelPoint::new(0, 0); 3];
+        for (o, &i) in out.iter_mut().zip(idx) {
+            let slot = &mut self.slots[i as usize % PLACED];
+            if slot.0 != i as u32 + 1 {
+                *slot = (i as u32 + 1, place_vertex(mesh, i, view));
+            }
+            *o = slot.1?;
+        }
+        Some(out)
+    }
+}
+
+/// Vertex `i` on screen, as the vertex stage places it, or `None` outside the frustum.
+fn place_vertex<const S: u32>(
+    mesh: &Mesh<'_>,
+    i: u16,
+    view: &View<'_, S>,
+) -> Option<SubpixelPoint<S>> {
+    let p = view
+        .model_view
+        .transform_point(*mesh.vertices().get(i as usize)?);
+    if view.frustum.outcode(p) != 0 {
+        return None;
+    }
+    Some(view.projector.project_point(p).ok()?.0)
 }
 
 /// `(q − p) × (r − p)` on screen (`< 2^59`, module doc).
