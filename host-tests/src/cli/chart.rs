@@ -840,16 +840,16 @@ fn plan_panel<DB: plotters::prelude::DrawingBackend>(
         } else {
             p.1.clone()
         };
-        // The painter sits on back faces' point on the quad and cube, the compact bands near
-        // the 16-row bands: label them below.
-        let dy = if p.1 == "painter" || p.1 == "zbuffer_compact" {
-            16
-        } else {
-            -6
+        // The painter sits on or near back faces' point on the quad and cube: label it on the
+        // left; the compact bands near the 16-row bands: below.
+        let (dx, dy, anchor) = match p.1.as_str() {
+            "painter" => (-9, 4, "end"),
+            "zbuffer_compact" => (9, 16, "start"),
+            _ => (9, -6, "start"),
         };
         texts.push(format!(
-            r#"<text x="{}" y="{}" font-size="11">{label}</text>"#,
-            px + 9,
+            r#"<text x="{}" y="{}" text-anchor="{anchor}" font-size="11">{label}</text>"#,
+            px + dx,
             py + dy
         ));
     }
