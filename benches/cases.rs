@@ -52,6 +52,9 @@ pub struct Storage {
     pub normals: [zscan::visibility::Normal; scene::MAX_STORED],
     /// The compact banded frame's memory (band, compact vertices, polygon table).
     pub compact: scene::CompactMemory,
+    /// The planner's facts of the standard meshes, computed once here (an application keeps
+    /// them in flash beside the mesh).
+    pub facts: scene::KeptFacts,
 }
 
 impl Storage {
@@ -65,6 +68,7 @@ impl Storage {
             active: [0; scene::MAX_STORED],
             normals: [zscan::visibility::Normal::DEFAULT; scene::MAX_STORED],
             compact: scene::CompactMemory::new(),
+            facts: scene::KeptFacts::new(),
         }
     }
 }
@@ -226,6 +230,26 @@ pub const CASES: &[Case] = &[
     Case {
         name: "frame_bunny_backface",
         run: |fb, st| scene::back_faces(fb, st, &scene::BUNNY),
+    },
+    Case {
+        name: "plan_sphere",
+        run: |fb, st| scene::plan_only(fb, st, &scene::SPHERE, 2),
+    },
+    Case {
+        name: "plan_bunny",
+        run: |fb, st| scene::plan_only(fb, st, &scene::BUNNY, 3),
+    },
+    Case {
+        name: "frame_quad_planned",
+        run: |fb, st| scene::planned(fb, st, &scene::QUAD, 0),
+    },
+    Case {
+        name: "frame_cube_planned",
+        run: |fb, st| scene::planned(fb, st, &scene::CUBE, 1),
+    },
+    Case {
+        name: "frame_sphere_planned",
+        run: |fb, st| scene::planned(fb, st, &scene::SPHERE, 2),
     },
     Case {
         name: "frame_quad_painter",
@@ -512,6 +536,134 @@ pub mod scene {
         };
         let mut stats = StatsWithoutWritten::default();
         match zscan::visibility::render_back_faces(&r, fb, &mut st.vertices, &mut stats) {
+            Ok(()) => stats.0.pixels_covered,
+            Err(_) => 0,
+        }
+    }
+
+    /// The planner's facts of the standard meshes (quad, cube, sphere, bunny: `which` 0 to 3),
+    /// computed once by [`MeshFacts::of`](zscan::visibility::MeshFacts::of) into pair buffers
+    /// of their own (the bunny's too short on purpose: not convex, found after a few faces).
+    pub struct KeptFacts {
+        cube: [[u32; 2]; 32],
+        sphere: [[u32; 2]; 2560],
+        kept: [Kept; 4],
+    }
+
+    /// One mesh's facts without the borrow: kind (0 not convex, 1 convex, 2 creased), pair
+    /// counts, bounds and tolerance.
+    #[derive(Clone, Copy)]
+    struct Kept(u8, usize, usize, [[i32; 3]; 2], i32);
+
+    impl Kept {
+        fn of(f: zscan::visibility::MeshFacts<'_>) -> Kept {
+            use zscan::visibility::Convexity;
+            let (kind, m, o) = match f.convexity {
+                Convexity::NotConvex => (0, 0, 0),
+                Convexity::Convex => (1, 0, 0),
+                Convexity::Creased(c) => (2, c.mutual.len(), c.occluders.len()),
+            };
+            Kept(kind, m, o, f.bounds, f.tolerance)
+        }
+    }
+
+    impl KeptFacts {
+        /// The four meshes' facts (the sphere's `O(faces²)` certificate: run once, outside the
+        /// measured regions).
+        pub fn new() -> KeptFacts {
+            use zscan::visibility::MeshFacts;
+            let none = Kept(0, 0, 0, [[0; 3]; 2], 0);
+            let mut k = KeptFacts {
+                cube: [[0; 2]; 32],
+                sphere: [[0; 2]; 2560],
+                kept: [none; 4],
+            };
+            let mut short = [[0u32; 2]; 16];
+            k.kept[0] = Kept::of(MeshFacts::of(&QUAD.mesh, &mut short));
+            k.kept[1] = Kept::of(MeshFacts::of(&CUBE.mesh, &mut k.cube));
+            k.kept[2] = Kept::of(MeshFacts::of(&SPHERE.mesh, &mut k.sphere));
+            k.kept[3] = Kept::of(MeshFacts::of(&BUNNY.mesh, &mut short));
+            k
+        }
+
+        /// Mesh `which`'s facts.
+        pub fn facts(&self, which: usize) -> zscan::visibility::MeshFacts<'_> {
+            use zscan::visibility::{Convexity, Creases, MeshFacts};
+            let Kept(kind, m, o, bounds, tolerance) = self.kept[which % 4];
+            let pairs: &[[u32; 2]] = match which {
+                1 => &self.cube,
+                2 => &self.sphere,
+                _ => &[],
+            };
+            let convexity = match kind {
+                1 => Convexity::Convex,
+                2 => Convexity::Creased(Creases {
+                    mutual: &pairs[pairs.len() - m..],
+                    occluders: &pairs[..o],
+                }),
+                _ => Convexity::NotConvex,
+            };
+            MeshFacts {
+                convexity,
+                bounds,
+                tolerance,
+            }
+        }
+    }
+
+    impl Default for KeptFacts {
+        fn default() -> KeptFacts {
+            KeptFacts::new()
+        }
+    }
+
+    /// The planner alone on the standard frame, no memory limit (`which` names the mesh's
+    /// facts): for the sphere, the per-view check of its creases (296 mutual face pairs).
+    /// Draws nothing; returns 0 pixels.
+    pub fn plan_only(
+        _fb: &mut Framebuffer<'_>,
+        st: &mut Storage,
+        s: &StandardScene,
+        which: usize,
+    ) -> u32 {
+        let Some(camera) = camera() else { return 0 };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let facts = [st.facts.facts(which)];
+        let mut order = [0u16];
+        let plan = zscan::visibility::plan::<4>(
+            &core_scene(camera, &objects),
+            &facts,
+            usize::MAX,
+            &mut order,
+        );
+        core::hint::black_box(&plan);
+        0
+    }
+
+    /// The standard frame as the planner draws it with no memory limit: the plan, then back
+    /// faces alone in its order (the quad, cube and sphere; the picture and checksum are the
+    /// z-buffer's `frame_*`). A plan that is not back faces alone draws nothing (0 pixels).
+    pub fn planned(
+        fb: &mut Framebuffer<'_>,
+        st: &mut Storage,
+        s: &StandardScene,
+        which: usize,
+    ) -> u32 {
+        use zscan::visibility::{render_back_faces_in_order, Visibility};
+        let Some(camera) = camera() else { return 0 };
+        let objects = [object(s, ShadeMode::GouraudExact)];
+        let scene = core_scene(camera, &objects);
+        let mut order = [0u16];
+        let facts = [st.facts.facts(which)];
+        match zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut order) {
+            Ok(p) if p.visibility == Visibility::BackFace => {}
+            _ => return 0,
+        }
+        let Ok(r) = Renderer::for_scene(&scene) else {
+            return 0;
+        };
+        let mut stats = StatsWithoutWritten::default();
+        match render_back_faces_in_order(&r, &order, fb, &mut st.vertices, &mut stats) {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }

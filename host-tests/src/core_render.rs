@@ -551,10 +551,21 @@ pub fn draw_plan<const SB: u32>(
     plan: &zscan::visibility::Plan,
     order: &[u16],
 ) -> Result<(Vec<u8>, RenderStats), RenderError> {
-    use zscan::visibility::{render_back_faces_in_order, DepthWidth};
+    use zscan::visibility::{render_back_faces_in_order, DepthWidth, LayoutReason};
     let scene = renderer.scene();
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
+    if plan.layout_reason == LayoutReason::CompactBands {
+        let rows = plan.band_rows;
+        let (pixels, stats) = if plan.depth == DepthWidth::U16 {
+            let (p, _, s) = render_compact_picture::<u16, SB>(renderer, (w, h), rows)?;
+            (p, s)
+        } else {
+            let (p, _, s) = render_compact_picture::<u32, SB>(renderer, (w, h), rows)?;
+            (p, s)
+        };
+        return Ok((pixels, stats));
+    }
     let largest = scene.objects.iter().map(|o| o.mesh.vertices().len());
     let all: usize = largest.clone().sum();
     let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();

@@ -146,3 +146,22 @@ fn compact_bunny_is_the_frame_and_streams_its_checksum() {
     );
     assert_eq!(h, cases::fnv1a(&frame));
 }
+
+/// The planner's frames of the quad, cube and sphere are back faces alone and draw the
+/// z-buffer's `frame_*` picture (same checksum on every core); the plan-only cases draw
+/// nothing.
+#[test]
+fn planned_frames_are_the_z_buffer_frames() {
+    for scene in ["quad", "cube", "sphere"] {
+        let (px, planned) = draw(case(&format!("frame_{scene}_planned")));
+        let (zpx, z) = draw(case(&format!("frame_{scene}")));
+        assert!(px > 0, "{scene}: the plan is back faces alone");
+        assert_eq!(px, zpx, "{scene}");
+        assert!(planned == z, "{scene}: the planned picture differs");
+    }
+    for name in ["plan_sphere", "plan_bunny"] {
+        let (px, pixels) = draw(case(name));
+        assert_eq!(px, 0);
+        assert!(pixels.iter().all(|&p| p == 0), "{name} draws nothing");
+    }
+}

@@ -377,6 +377,10 @@ fn auto(scene: &str, dir: &Path, extra: &[&str]) -> (Output, PathBuf, PathBuf) {
     (out, png, stats)
 }
 
+/// The smallest plan of the standard bunny: compact bands of one row of 16-bit depth, 8 bytes
+/// per vertex and a byte per polygon (its levels are given per vertex: no level bytes).
+const BUNNY_COMPACT_ONE_ROW: usize = 8 * 1839 + 3674 + 3 * 320;
+
 /// `--visibility auto [--ram-budget BYTES]`: the plan and its reasons printed, the stats with
 /// the method, the plan and every buffer's bytes, the z-buffer's picture; a budget too small
 /// is refused with the bytes needed.
@@ -391,6 +395,8 @@ fn auto_plans_within_a_ram_budget() {
         ("standard_sphere.toml", "backface", Some("100K")),
         ("standard_bunny.toml", "zbuffer", None),
         ("standard_bunny.toml", "zbuffer", Some("100000")),
+        // Compact bands: 8 bytes per vertex and a byte per polygon (`render/compact.rs`).
+        ("standard_bunny.toml", "zbuffer", Some("32K")),
     ] {
         let (z_png, _, _) = render(&scenes().join(scene), &dir.join("z"), &[]);
         let extra: Vec<&str> = budget.map_or(vec![], |b| vec!["--ram-budget", b]);
@@ -437,12 +443,20 @@ fn auto_plans_within_a_ram_budget() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
     assert!(json["plan"]["band_rows"].as_u64().unwrap() < 240);
-    // 32K is too little for the bunny's vertex scratch alone: refused, with the bytes needed.
-    let (out, _, _) = auto("standard_bunny.toml", &dir, &["--ram-budget", "32K"]);
+    // 32K is too little for the bunny's full vertex scratch (51,492 bytes) but not for compact
+    // bands, which the plan names and sizes.
+    let (out, _, stats) = auto("standard_bunny.toml", &dir, &["--ram-budget", "32K"]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("compact bands"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(json["plan"]["buffers"]["polygons"], 3674);
+    assert!(json["plan"]["buffers"]["vertices"].as_u64().unwrap() >= 8 * 1839);
+    // 16K is too little even for compact bands of one row: refused, with the bytes needed.
+    let (out, _, _) = auto("standard_bunny.toml", &dir, &["--ram-budget", "16K"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(
-        err.contains("52452 bytes") && err.contains("32768 bytes"),
+        err.contains(&format!("{} bytes", BUNNY_COMPACT_ONE_ROW)) && err.contains("16384 bytes"),
         "{err}"
     );
     // A malformed budget, and a budget without auto, are named.

@@ -14,8 +14,7 @@ use super::{
     RenderError, RenderStats, Renderer, SceneRenderer, StatsSink,
 };
 use crate::geometry::mesh::PolygonSizes;
-use crate::scene::{Intensities, Object, Scene};
-use crate::shade::span_writer::ShadeMode;
+use crate::scene::{Object, Scene};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
@@ -379,10 +378,7 @@ fn check_compact_memory(
             });
         }
     }
-    let phong = |o: &Object<'_>| {
-        matches!(o.intensities, Intensities::Lit { .. }) && o.shade == ShadeMode::Phong
-    };
-    if scene.objects.iter().any(phong) {
+    if !scene.objects.iter().all(super::compact::compact_draws) {
         return Err(RenderError::PhongUnsupported);
     }
     Ok(())

@@ -182,6 +182,12 @@ impl CompactSizes {
     }
 }
 
+/// True when compact bands can draw `object`: all but lit Phong objects (whose per-pixel
+/// normals the compact vertices do not hold, [`RenderError::PhongUnsupported`]).
+pub(crate) fn compact_draws(object: &Object<'_>) -> bool {
+    !(matches!(object.intensities, Intensities::Lit { .. }) && object.shade == ShadeMode::Phong)
+}
+
 /// True when the vertex stage lights `object`'s vertices (lit Gouraud): its levels need a
 /// byte per vertex.
 pub(super) fn vertex_lit(object: &Object<'_>) -> bool {

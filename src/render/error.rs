@@ -72,6 +72,13 @@ pub enum RenderError {
     PhongUnsupported,
     /// A scene with more objects than a stored triangle can name (256).
     TooManyObjects,
+    /// A drawing order names an object the scene does not have.
+    NoSuchObject {
+        /// The index named.
+        index: u16,
+        /// Objects in the scene.
+        objects: usize,
+    },
     /// [`render_in_bands`](crate::render::render_in_bands) was asked for bands of
     /// `band_rows` rows, below its minimum of 1.
     BadBandRows {
@@ -177,6 +184,11 @@ impl core::fmt::Display for RenderError {
                 "a Phong object cannot be stored by this visibility method (use the z-buffer)"
             ),
             RenderError::TooManyObjects => write!(f, "more than 256 objects in the scene"),
+            RenderError::NoSuchObject { index, objects } => write!(
+                f,
+                "the drawing order names object index {index}, but the scene has {objects} \
+                 objects (indices 0 to {objects} − 1)"
+            ),
             RenderError::BadBandRows { band_rows } => {
                 write!(f, "bands of {band_rows} rows: a band needs at least 1 row")
             }

@@ -51,7 +51,7 @@
 //! principal point render. Intensities are `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
 
 mod bands;
-mod compact;
+pub(crate) mod compact;
 pub(crate) mod consumer;
 mod cull;
 mod error;

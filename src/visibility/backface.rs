@@ -38,7 +38,8 @@ pub fn render_back_faces<const S: u32>(
 
 /// [`render_back_faces`] with the objects drawn in `order` (indices into the scene's objects,
 /// e.g. far to near as [`plan`](super::plan) sorts separable objects: Schumacker's clusters).
-/// An index past the scene's objects is [`RenderError::TooManyObjects`].
+/// An index past the scene's objects is [`RenderError::NoSuchObject`], naming it; nothing is
+/// drawn then.
 pub fn render_back_faces_in_order<const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     order: &[u16],
@@ -47,8 +48,9 @@ pub fn render_back_faces_in_order<const S: u32>(
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
     let (scene, renderer) = (renderer.scene(), renderer.renderer());
-    if order.iter().any(|&i| i as usize >= scene.objects.len()) {
-        return Err(RenderError::TooManyObjects);
+    let objects = scene.objects.len();
+    if let Some(&index) = order.iter().find(|&&i| i as usize >= objects) {
+        return Err(RenderError::NoSuchObject { index, objects });
     }
     let order = order.iter().map(|&i| i as usize);
     draw_objects(renderer, scene, order, frame, scratch, stats)

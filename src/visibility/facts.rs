@@ -38,11 +38,19 @@
 //! The planner does not use a certificate under a mirroring transform (negative determinant):
 //! it turns the mesh inside out, and step 2's solid would hold the eye.
 //!
+//! ## Rounding
 //! What the argument takes as given (as [`Mesh::is_convex`] does): the mesh as its vertex
 //! table places it, mapped by the object's transform and projected exactly. The renderer rounds
-//! the observer-frame positions to I16F16 and the screen positions to `2^-S` pixel; the
-//! pairs decided here are tested on those rounded screen positions, the others are argued on
-//! the mesh. The tests (`host-tests/tests/plan.rs`) compare with the z-buffer pixel by pixel.
+//! the observer-frame positions to I16F16 and the screen positions to `2^-S` pixel; the pairs
+//! decided here are tested on those rounded screen positions, the others are argued on the
+//! mesh. Where the rounding is comparable with the triangles (an object a few pixels across or
+//! less), triangles that share only a vertex can fold onto each other: a 51-vertex sphere under
+//! a pixel across drew 1 pixel wrong by back faces alone. So the planner trusts the certificate
+//! only under a **rounding guard**: the rounding, taken back to the mesh's frame, must move each
+//! vertex by at most [`MeshFacts::tolerance`], the mesh's shortest edge over [`FOLD_GUARD`]
+//! (`plan.rs` bounds the move per view). This is a guard, not a proof: the divisor is set with
+//! a margin of 2 over the smallest that keeps the picture on the tests' 9,000 random small and
+//! far objects (`host-tests/tests/plan.rs`); the tests compare with the z-buffer pixel by pixel.
 //!
 //! Numeric contract: mesh coordinates `|c| ≤ 2^26` raw, so a point–plane side
 //! `(v − p_0)·n` is below `2^27·2^63·3 < 2^92` (`i128`); projected positions are within
@@ -87,6 +95,29 @@ pub struct MeshFacts<'a> {
     pub convexity: Convexity<'a>,
     /// Smallest and largest raw coordinate per axis, over all vertices (zeros when empty).
     pub bounds: [[i32; 3]; 2],
+    /// The rounding guard: the most (raw mesh units, per coordinate) the renderer's rounding
+    /// may move a vertex, taken back to the mesh's frame, for the planner to trust the
+    /// certificate: the mesh's shortest edge (`‖·‖∞`) over 4 (`FOLD_GUARD`, module doc,
+    /// "Rounding").
+    pub tolerance: i32,
+}
+
+/// The rounding guard's divisor: the renderer's rounding must move each vertex by at most
+/// this fraction of the mesh's shortest edge (module doc, "Rounding").
+pub(crate) const FOLD_GUARD: i32 = 4;
+
+/// The shortest edge of `mesh`'s polygons, `‖·‖∞` raw (`i32::MAX` without an edge).
+fn shortest_edge(mesh: &Mesh<'_>) -> i32 {
+    let vertex = |i: u16| mesh.vertices().get(i as usize).map_or([0; 3], |v| v.bits());
+    let mut shortest = i32::MAX as i64;
+    for poly in mesh.polygons() {
+        for (k, &i) in poly.iter().enumerate() {
+            let (u, v) = (vertex(i), vertex(poly[(k + 1) % poly.len()]));
+            let d = (0..3).map(|a| (u[a] as i64 - v[a] as i64).abs()).max();
+            shortest = shortest.min(d.unwrap_or(0));
+        }
+    }
+    shortest.min(i32::MAX as i64) as i32
 }
 
 /// `(v − p0)·n`, exact (module doc's bound).
@@ -123,7 +154,12 @@ impl<'a> MeshFacts<'a> {
         } else {
             creases(mesh, pairs).map_or(Convexity::NotConvex, Convexity::Creased)
         };
-        MeshFacts { convexity, bounds }
+        let tolerance = shortest_edge(mesh) / FOLD_GUARD;
+        MeshFacts {
+            convexity,
+            bounds,
+            tolerance,
+        }
     }
 }
 
@@ -204,9 +240,10 @@ impl Creases<'_> {
     /// each of that face's front occluders. A face with a vertex outside the frustum (clipped)
     /// makes the answer `false`.
     pub(crate) fn hold<const S: u32>(&self, mesh: &Mesh<'_>, view: &View<'_, S>) -> bool {
-        let face = |f: u32| project_face(mesh, f, view);
+        let mut cache = Placed::<S>::new();
         for &[b, c] in self.mutual {
-            let (Some(tb), Some(tc)) = (face(b), face(c)) else {
+            let (Some(tb), Some(tc)) = (cache.face(mesh, b, view), cache.face(mesh, c, view))
+            else {
                 return false;
             };
             let (fb, fc) = (twice_area(&tb) < 0, twice_area(&tc) < 0);
@@ -216,7 +253,7 @@ impl Creases<'_> {
             let (front, t) = if fb { (b, tb) } else { (c, tc) };
             let from = self.occluders.partition_point(|p| p[0] < front);
             for &[_, a] in self.occluders[from..].iter().take_while(|p| p[0] == front) {
-                let Some(ta) = face(a) else {
+                let Some(ta) = cache.face(mesh, a, view) else {
                     return false;
                 };
                 if twice_area(&ta) < 0 && !separated(&t, &ta) {
@@ -228,26 +265,59 @@ impl Creases<'_> {
     }
 }
 
-/// Face `f`'s corners on screen, as the vertex stage places them, or `None` when one is
-/// outside the frustum (the polygon stage would clip it).
-fn project_face<const S: u32>(
-    mesh: &Mesh<'_>,
-    f: u32,
-    view: &View<'_, S>,
-) -> Option<[SubpixelPoint<S>; 3]> {
-    let at = f as usize * 3;
-    let idx = mesh.indices().get(at..at + 3)?;
-    let mut out = [SubpixelPoint::new(0, 0); 3];
-    for (o, &i) in out.iter_mut().zip(idx) {
-        let p = view
-            .model_view
-            .transform_point(*mesh.vertices().get(i as usize)?);
-        if view.frustum.outcode(p) != 0 {
-            return None;
+/// Entries of [`Placed`]: a power of two.
+const PLACED: usize = 128;
+
+/// The screen positions [`Creases::hold`] has placed, direct-mapped by vertex index (2 KB on
+/// the stack): neighbouring face pairs share vertices, so most are placed once, not once per
+/// face (measured on the standard sphere: `plan_sphere` in `docs/BENCHMARKS.md`).
+struct Placed<const S: u32> {
+    /// Vertex index + 1 (0: empty), and its position (`None`: outside the frustum).
+    slots: [(u32, Option<SubpixelPoint<S>>); PLACED],
+}
+
+impl<const S: u32> Placed<S> {
+    fn new() -> Self {
+        Placed {
+            slots: [(0, None); PLACED],
         }
-        *o = view.projector.project_point(p).ok()?.0;
     }
-    Some(out)
+
+    /// Face `f`'s corners on screen, as the vertex stage places them, or `None` when one is
+    /// outside the frustum (the polygon stage would clip it).
+    fn face(
+        &mut self,
+        mesh: &Mesh<'_>,
+        f: u32,
+        view: &View<'_, S>,
+    ) -> Option<[SubpixelPoint<S>; 3]> {
+        let at = f as usize * 3;
+        let idx = mesh.indices().get(at..at + 3)?;
+        let mut out = [SubpixelPoint::new(0, 0); 3];
+        for (o, &i) in out.iter_mut().zip(idx) {
+            let slot = &mut self.slots[i as usize % PLACED];
+            if slot.0 != i as u32 + 1 {
+                *slot = (i as u32 + 1, place_vertex(mesh, i, view));
+            }
+            *o = slot.1?;
+        }
+        Some(out)
+    }
+}
+
+/// Vertex `i` on screen, as the vertex stage places it, or `None` outside the frustum.
+fn place_vertex<const S: u32>(
+    mesh: &Mesh<'_>,
+    i: u16,
+    view: &View<'_, S>,
+) -> Option<SubpixelPoint<S>> {
+    let p = view
+        .model_view
+        .transform_point(*mesh.vertices().get(i as usize)?);
+    if view.frustum.outcode(p) != 0 {
+        return None;
+    }
+    Some(view.projector.project_point(p).ok()?.0)
 }
 
 /// `(q − p) × (r − p)` on screen (`< 2^59`, module doc).

@@ -19,7 +19,9 @@
 //! ## The rules, and why each keeps the picture
 //! 1. **Back faces alone** ([`Visibility::BackFace`], no depth buffer) when every object culls
 //!    its back faces, its mesh is [`Convexity::Convex`] or creased with creases holding in this
-//!    view, and the objects are **separable**: any two whose screen boxes overlap have depth
+//!    view, and within the rounding guard (`facts.rs`, "Rounding": the renderer's rounding,
+//!    taken back to the mesh's frame, moves no vertex by more than [`MeshFacts::tolerance`]),
+//!    and the objects are **separable**: any two whose screen boxes overlap have depth
 //!    ranges that do not (Schumacker's clusters). Objects are drawn far to near (`order`).
 //!    Within an object no two front faces overlap (`facts.rs`), so each pixel an object draws
 //!    is the one surface it shows there. Two objects that both draw a pixel overlap on screen,
@@ -30,9 +32,13 @@
 //! 2. Otherwise the **z-buffer**, in the first layout that fits the budget, tried in this
 //!    order: the whole frame; bands of `H` rows (`H` as tall as fits) with the vertex stage
 //!    run once per frame and the polygon table ([`BandScratch`](crate::render::BandScratch)
-//!    holding every object's vertices and polygons); bands with the vertex stage run again per
-//!    band (scratch for the largest mesh only). Every layout gives the same pixels
-//!    (`render_in_bands`).
+//!    holding every object's vertices and polygons); **compact bands**
+//!    ([`render_in_compact_bands`](crate::render::render_in_compact_bands): 8 bytes per vertex,
+//!    a level byte per vertex of lit Gouraud objects, a byte per polygon), only when every
+//!    object's bounding box lies inside the frustum within the 16-bit sub-pixel range (the
+//!    renderer's `NotCompact` cannot then occur: every vertex lies in its object's box) and no
+//!    object is lit Phong; bands with the vertex stage run again per band (scratch for the
+//!    largest mesh only). Every layout gives the same pixels (`render_in_bands`).
 //! 3. **Depth width**: `u32` in the first layout that fits with it; `u16` only when no `u32`
 //!    layout fits. The picture is then the 16-bit z-buffer's (not always the 32-bit one's: two
 //!    surfaces closer than the 16-bit step `Δz ≈ z²·(far − near)/(far·near·2^16)` may swap);
@@ -41,8 +47,7 @@
 //!
 //! The painter and the scan-line are never picked: their tables cost more memory than bands of
 //! the z-buffer and their frames more instructions (`docs/BENCHMARKS.md`, "Visibility
-//! methods"). The compact banded mode of issue 18 (compact vertex scratch, polygons binned by
-//! band) is not planned yet: its layout joins the list in [`zbuffer_layouts`] when it exists.
+//! methods").
 //!
 //! Numeric contract: sizes in bytes as `usize` (saturating: a size that does not fit a
 //! `usize` is over any budget); observer-frame bounds are I16F16 (saturating, as the vertex
@@ -51,10 +56,11 @@
 use super::facts::{Convexity, MeshFacts, View};
 use super::Visibility;
 use crate::clip::frustum::Frustum;
-use crate::geometry::fixed::Coord;
+use crate::geometry::fixed::{Coord, LINEAR_FRAC};
 use crate::geometry::vector::Vec3;
 use crate::project::Projector;
-use crate::render::{PolygonRows, PreparedVertex, RenderError};
+use crate::render::compact::compact_draws;
+use crate::render::{CompactSizes, PolygonRows, PreparedVertex, RenderError};
 use crate::scene::{Object, Scene};
 
 /// Units of the 2^32 depth range each object's depth range is widened by on each side.
@@ -91,9 +97,12 @@ pub struct Buffers {
     pub frame: usize,
     /// Depth samples (whole frame, or one band).
     pub depth: usize,
-    /// Vertex scratch ([`PreparedVertex`], 28 bytes each).
+    /// Vertex scratch ([`PreparedVertex`], 28 bytes each; for compact bands
+    /// [`CompactVertex`](crate::render::CompactVertex)es, 8 bytes each, and a level byte per
+    /// vertex of the lit Gouraud objects).
     pub vertices: usize,
-    /// Polygon table ([`PolygonRows`], 4 bytes each).
+    /// Polygon table ([`PolygonRows`], 4 bytes each; for compact bands
+    /// [`PolygonTop`](crate::render::PolygonTop)s, 1 byte each).
     pub polygons: usize,
     /// A method's own tables (none for the methods planned today).
     pub tables: usize,
@@ -138,6 +147,13 @@ pub enum MethodReason {
         /// The other.
         b: usize,
     },
+    /// This object's mesh is convex (or creased) as stored, but the renderer's rounding to
+    /// `2^-S` pixel may move its vertices, in the mesh's frame, by more than its
+    /// certificate's tolerance (an object small on screen): its triangles may fold.
+    RoundingMayFold {
+        /// Its index.
+        object: usize,
+    },
     /// Back faces alone would do but need a whole frame: these bytes, over the budget.
     WholeFrameOverBudget {
         /// Bytes back faces alone need.
@@ -168,7 +184,14 @@ pub enum LayoutReason {
     /// The whole frame does not fit; bands of the plan's height do, with the vertex stage run
     /// once per frame and the polygon table.
     BandsVertexStageOnce,
-    /// Neither fits; bands of the plan's height do, with the vertex stage run again per band.
+    /// Neither fits; compact bands of the plan's height do
+    /// ([`render_in_compact_bands`](crate::render::render_in_compact_bands)): the vertex stage
+    /// once per frame into 8 bytes per vertex and a byte per polygon. Planned only when every
+    /// object's bounding box lies inside the frustum within the 16-bit sub-pixel range (so no
+    /// vertex is [`NotCompact`](RenderError::NotCompact)) and no object is lit Phong.
+    CompactBands,
+    /// None of these fits; bands of the plan's height do, with the vertex stage run again per
+    /// band.
     BandsVertexStagePerBand,
 }
 
@@ -267,6 +290,12 @@ impl core::fmt::Display for MethodReason {
                 a + 1,
                 b + 1
             ),
+            MethodReason::RoundingMayFold { object } => write!(
+                f,
+                "object {} is too small on screen for its convexity certificate: the rounding \
+                 to the sub-pixel grid may fold its triangles",
+                object + 1
+            ),
             MethodReason::WholeFrameOverBudget { needed } => write!(
                 f,
                 "back faces alone would do but need a whole frame ({needed} bytes)"
@@ -295,6 +324,10 @@ impl core::fmt::Display for LayoutReason {
             LayoutReason::WholeFrame => "the whole frame fits",
             LayoutReason::BandsVertexStageOnce => {
                 "bands, the vertex stage once per frame with the polygon table"
+            }
+            LayoutReason::CompactBands => {
+                "compact bands, the vertex stage once per frame into 8 bytes per vertex and a \
+                 byte per polygon"
             }
             LayoutReason::BandsVertexStagePerBand => "bands, the vertex stage again per band",
         })
@@ -368,12 +401,18 @@ pub fn plan<const S: u32>(
         .unwrap_or(0);
     let all = meshes.clone().map(|m| m.vertices().len()).sum::<usize>();
     let polygons = meshes.map(|m| m.polygon_count()).sum::<usize>();
+    let compact = compact_fits(scene, facts, &projector, &frustum).then(|| {
+        let sizes = CompactSizes::of(scene);
+        let vertices = sizes.bytes(0, 0, 0).saturating_sub(sizes.polygons);
+        (vertices, sizes.polygons)
+    });
     let counts = Counts {
         w,
         h,
         largest: largest.saturating_mul(vertex_bytes),
         all: all.saturating_mul(vertex_bytes),
         table: polygons.saturating_mul(core::mem::size_of::<PolygonRows>()),
+        compact,
     };
     let reason = match n {
         0 => Ok(MethodReason::Empty),
@@ -425,7 +464,9 @@ fn zbuffer_plan(
 ) -> Result<Plan, PlanError> {
     let mut smallest = usize::MAX;
     for depth in [DepthWidth::U32, DepthWidth::U16] {
-        for (band_rows, buffers, layout_reason) in zbuffer_layouts(counts, depth, budget) {
+        for (band_rows, buffers, layout_reason) in
+            zbuffer_layouts(counts, depth, budget).into_iter().flatten()
+        {
             smallest = smallest.min(buffers.total());
             if buffers.total() > budget {
                 continue;
@@ -463,16 +504,20 @@ struct Counts {
     largest: usize,
     all: usize,
     table: usize,
+    /// Compact bands' vertex scratch (vertices and levels) and table, in bytes, when the scene
+    /// can be drawn so.
+    compact: Option<(usize, usize)>,
 }
 
 /// The z-buffer's layouts at `depth`, in the planner's order of preference, as
 /// `(band_rows, buffers, why)`: the whole frame, then bands as tall as `budget` allows (one row
-/// when even that does not fit: the layout's smallest size).
+/// when even that does not fit: the layout's smallest size); compact bands only when the scene
+/// can be drawn so.
 fn zbuffer_layouts(
     c: &Counts,
     depth: DepthWidth,
     budget: usize,
-) -> [(u16, Buffers, LayoutReason); 3] {
+) -> [Option<(u16, Buffers, LayoutReason)>; 4] {
     let at = |rows: usize, vertices: usize, polygons: usize| Buffers {
         frame: c.w * rows,
         depth: c.w * rows * depth.bytes(),
@@ -487,21 +532,53 @@ fn zbuffer_layouts(
     };
     let once = rows(c.all.saturating_add(c.table));
     let per_band = rows(c.largest);
+    let compact = c.compact.map(|(vertices, table)| {
+        let r = rows(vertices.saturating_add(table));
+        (r as u16, at(r, vertices, table), LayoutReason::CompactBands)
+    });
     [
-        (c.h as u16, at(c.h, c.largest, 0), LayoutReason::WholeFrame),
-        (
+        Some((c.h as u16, at(c.h, c.largest, 0), LayoutReason::WholeFrame)),
+        Some((
             once as u16,
             at(once, c.all, c.table),
             LayoutReason::BandsVertexStageOnce,
-        ),
-        // The compact banded mode (issue 18, item 3: compact vertex scratch, polygons binned
-        // by band) is not planned yet: its layout goes here, before the vertex stage per band.
-        (
+        )),
+        compact,
+        Some((
             per_band as u16,
             at(per_band, c.largest, 0),
             LayoutReason::BandsVertexStagePerBand,
-        ),
+        )),
     ]
+}
+
+/// True when compact bands draw `scene` (their module doc): no object is lit Phong, and every
+/// object's bounding box, as the planner places it (module doc), lies inside the frustum (the
+/// frustum is convex, so its 8 corners do) and projects within `±32767` sub-pixel units: then
+/// every vertex the vertex stage places has a compact form.
+fn compact_fits<const S: u32>(
+    scene: &Scene<'_>,
+    facts: &[MeshFacts<'_>],
+    projector: &Projector<S>,
+    frustum: &Frustum,
+) -> bool {
+    scene.objects.iter().zip(facts).all(|(object, fact)| {
+        let inside = observer_box(object, fact, scene).is_some_and(|b| {
+            (0..8).all(|k| {
+                let pick = |axis: usize| b[k >> axis & 1][axis];
+                frustum.outcode(Vec3::from_bits(pick(0), pick(1), pick(2))) == 0
+            })
+        });
+        let on_screen = place(object, fact, scene, projector)
+            .and_then(|p| p.screen)
+            .is_some_and(|s| {
+                s[0] >= i16::MIN as i64
+                    && s[1] >= i16::MIN as i64
+                    && s[2] <= i16::MAX as i64
+                    && s[3] <= i16::MAX as i64
+            });
+        compact_draws(object) && inside && on_screen
+    })
 }
 
 /// Back faces alone for `scene` (rule 1), with `order` sorted far to near; else the reason
@@ -523,6 +600,11 @@ fn back_faces_allowed<const S: u32>(
     for (i, (object, fact)) in scene.objects.iter().zip(facts).enumerate() {
         if !object.cull_back_faces {
             return Err((MethodReason::BackFacesDrawn { object: i }, far_z));
+        }
+        if !matches!(fact.convexity, Convexity::NotConvex)
+            && !rounding_within(object, fact, scene, projector)
+        {
+            return Err((MethodReason::RoundingMayFold { object: i }, far_z));
         }
         let reason = match fact.convexity {
             Convexity::Convex => continue,
@@ -584,6 +666,52 @@ fn determinant(m: [[i32; 3]; 3]) -> i128 {
         + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0))
 }
 
+/// True when the renderer's rounding moves `object`'s vertices, taken back to its mesh's
+/// frame, by at most the certificate's tolerance (module doc, rule 1): each observer-frame
+/// coordinate by 1 raw unit (the transform rounds to nearest) plus the projection's rounding
+/// (under 0.51 sub-pixel unit, `project.rs`) seen at the object's farthest `z`,
+/// `z/(f·2^S)` for the smaller focal length `f` in pixels; then into the mesh's frame by the
+/// inverse of the linear part, whose row sums are the adjugate's over the determinant.
+fn rounding_within<const S: u32>(
+    object: &Object<'_>,
+    fact: &MeshFacts<'_>,
+    scene: &Scene<'_>,
+    projector: &Projector<S>,
+) -> bool {
+    let (Some(mv), Some(placed)) = (
+        model_view(object, scene),
+        place(object, fact, scene, projector),
+    ) else {
+        return false;
+    };
+    let m = mv.linear_bits();
+    // The view turns the right-handed model frame into the z-forward observer frame: the
+    // sign is the view's, only the magnitude scales distances here.
+    let det = determinant(m).abs();
+    if det == 0 {
+        return false;
+    }
+    let camera = &scene.camera;
+    let focal = camera
+        .focal_x()
+        .to_bits()
+        .min(camera.focal_y().to_bits())
+        .max(1) as i128;
+    let z = placed.far_z.max(0) as i128;
+    // Observer-frame raw units: the transform's rounding and the projection's at `z`.
+    let moved = 1 + ((z << 16) + (focal << S) - 1) / (focal << S);
+    // ‖L⁻¹‖∞ = (largest row sum of |adj L|)·2^LINEAR_FRAC / det (raw entries are Q24).
+    let e = |r: usize, c: usize| m[r % 3][c % 3] as i128;
+    let cofactor =
+        |r: usize, c: usize| e(r + 1, c + 1) * e(r + 2, c + 2) - e(r + 1, c + 2) * e(r + 2, c + 1);
+    let row_sum = (0..3)
+        .map(|i| (0..3).map(|j| cofactor(j, i).abs()).sum::<i128>())
+        .max()
+        .unwrap_or(0);
+    // Below 2^66·2^24·2^33 and 2^26·2^96: no overflow.
+    row_sum * (1 << LINEAR_FRAC) * moved <= fact.tolerance.max(0) as i128 * det
+}
+
 /// True when two screen boxes are disjoint.
 fn screens_apart(p: &Placed, q: &Placed) -> bool {
     match (p.screen, q.screen) {
@@ -597,14 +725,14 @@ fn model_view(object: &Object<'_>, scene: &Scene<'_>) -> Option<crate::geometry:
     object.transform.then(scene.camera.view_transform()).ok()
 }
 
-/// The object's depth range and screen box in this view (module doc), `None` when its
-/// transform cannot be composed.
-fn place<const S: u32>(
+/// The box of the object's mesh bounds' 8 corners taken to the observer frame (raw
+/// `[min, max]` per axis), `None` when its transform cannot be composed; every vertex the
+/// vertex stage places lies in it (module doc).
+fn observer_box(
     object: &Object<'_>,
     fact: &MeshFacts<'_>,
     scene: &Scene<'_>,
-    projector: &Projector<S>,
-) -> Option<Placed> {
+) -> Option<[[i32; 3]; 2]> {
     let mv = model_view(object, scene)?;
     let [lo, hi] = fact.bounds;
     let corner = |k: usize| {
@@ -626,6 +754,18 @@ fn place<const S: u32>(
             b[1][a] = b[1][a].max(c[a]);
         }
     }
+    Some(b)
+}
+
+/// The object's depth range and screen box in this view (module doc), `None` when its
+/// transform cannot be composed.
+fn place<const S: u32>(
+    object: &Object<'_>,
+    fact: &MeshFacts<'_>,
+    scene: &Scene<'_>,
+    projector: &Projector<S>,
+) -> Option<Placed> {
+    let b = observer_box(object, fact, scene)?;
     let near = projector.near().to_bits();
     let depth_at = |z: i32| {
         projector

@@ -667,8 +667,9 @@ fn read_m4(path: &std::path::Path) -> Result<std::collections::HashMap<String, u
     Ok(out)
 }
 
-/// One point of the plan chart: `(scene, method, ram bytes, Cortex-M4 instructions, peer)`.
-type PlanPoint = (String, String, f64, f64, bool);
+/// One point of the plan chart: `(scene, method, ram bytes, [Cortex-M4, Cortex-M0]
+/// instructions (`None` where not measured), peer)`.
+type PlanPoint = (String, String, f64, [Option<f64>; 2], bool);
 
 /// The planner's pick on standard scene `name` (no budget limit), as the data file's method.
 fn planner_pick(name: &str) -> Result<String, CliError> {
@@ -702,13 +703,18 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
         }
         let f: Vec<&str> = line.split(',').map(str::trim).collect();
         let num = |i: usize| f.get(i).and_then(|v| v.parse::<f64>().ok());
-        match (f.first(), f.get(1), num(2), num(3), f.get(4)) {
-            (Some(s), Some(m), Some(r), Some(i), Some(k)) => {
-                points.push((s.to_string(), m.to_string(), r, i, *k == "peer"))
+        // An instruction count, or "-" where the data has none (the peers on the Cortex-M0).
+        let count = |i: usize| match f.get(i) {
+            Some(&"-") => Some(None),
+            _ => num(i).map(Some),
+        };
+        match (f.first(), f.get(1), num(2), count(3), count(4), f.get(5)) {
+            (Some(s), Some(m), Some(r), Some(m4), Some(m0), Some(k)) => {
+                points.push((s.to_string(), m.to_string(), r, [m4, m0], *k == "peer"))
             }
             _ => {
                 return Err(format!(
-                    "{}:{}: expected scene,method,ram,m4,kind",
+                    "{}:{}: expected scene,method,ram,m4,m0,kind (a count or -)",
                     data.display(),
                     n + 1
                 )
@@ -716,21 +722,24 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
             }
         }
     }
-    let (width, height) = (1000u32, 760u32);
+    let (width, height) = (1600u32, 800u32);
     let mut svg = String::new();
     let mut texts: Vec<String> = Vec::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(|x| e(&x))?;
-        let areas = root.margin(50, 60, 10, 10).split_evenly((2, 2));
-        for (area, name) in areas.iter().zip(["quad", "cube", "sphere", "bunny"]) {
-            plan_panel(area, name, &points, &mut texts)?;
+        let areas = root.margin(50, 60, 10, 10).split_evenly((2, 4));
+        let panels = [0, 1]
+            .into_iter()
+            .flat_map(|core| ["quad", "cube", "sphere", "bunny"].map(|name| (core, name)));
+        for (area, (core, name)) in areas.iter().zip(panels) {
+            plan_panel(area, (name, core), &points, &mut texts)?;
         }
         root.present().map_err(|x| e(&x))?;
     }
     let w = width as i32;
-    texts.push(format!(r#"<text x="{}" y="26" text-anchor="middle" font-size="16" font-weight="bold">Visibility methods: caller RAM against Cortex-M4 instructions per frame (standard scenes, 320x240)</text>"#, w / 2));
-    texts.push(format!(r#"<text x="{}" y="46" text-anchor="middle" font-size="12">blue: zscan methods; ringed red: the planner's pick (no budget limit); grey squares: peers (frame + depth, SCENES.md). x: bytes, log scale; data: docs/plan_chart.csv</text>"#, w / 2));
+    texts.push(format!(r#"<text x="{}" y="26" text-anchor="middle" font-size="16" font-weight="bold">Visibility methods: caller RAM against instructions per frame, Cortex-M4 (top) and Cortex-M0 (bottom), standard scenes at 320x240</text>"#, w / 2));
+    texts.push(format!(r#"<text x="{}" y="46" text-anchor="middle" font-size="12">blue: zscan methods; ringed red: the planner's pick (no budget limit); grey squares: peers (frame + depth, SCENES.md; Cortex-M4F only). x: bytes, log scale; data: docs/plan_chart.csv</text>"#, w / 2));
     let body = texts.join("\n");
     Ok(match svg.rfind("</svg>") {
         Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
@@ -738,18 +747,23 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
     })
 }
 
-/// One panel of the plan chart: scene `name`'s points, the planner's pick ringed.
+/// One panel of the plan chart: scene `name`'s points on core `core` (0: Cortex-M4, 1:
+/// Cortex-M0), the planner's pick ringed.
 fn plan_panel<DB: plotters::prelude::DrawingBackend>(
     area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
-    name: &str,
+    (name, core): (&str, usize),
     points: &[PlanPoint],
     texts: &mut Vec<String>,
 ) -> Result<(), CliError> {
     use plotters::prelude::*;
     let e = |x: &dyn std::fmt::Display| -> CliError { x.to_string().into() };
     let pick = planner_pick(name)?;
-    let rows: Vec<&PlanPoint> = points.iter().filter(|p| p.0 == name).collect();
-    let ymax = rows.iter().map(|p| p.3).fold(0.0, f64::max) * 1.15 / 1e6;
+    let rows: Vec<(&PlanPoint, f64)> = points
+        .iter()
+        .filter(|p| p.0 == name)
+        .filter_map(|p| p.3[core].map(|i| (p, i)))
+        .collect();
+    let ymax = rows.iter().map(|p| p.1).fold(0.0, f64::max) * 1.15 / 1e6;
     let mut chart = ChartBuilder::on(area)
         .margin(30)
         .build_cartesian_2d((20_000f64..600_000f64).log_scale(), 0f64..ymax)
@@ -775,8 +789,9 @@ fn plan_panel<DB: plotters::prelude::DrawingBackend>(
         ));
     }
     let (tx, ty) = chart.backend_coord(&(20_000.0, ymax));
+    let core_name = ["Cortex-M4", "Cortex-M0"][core];
     texts.push(format!(
-        r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{name}</text>"#,
+        r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{name}, {core_name}</text>"#,
         tx + 6,
         ty + 14
     ));
@@ -792,8 +807,8 @@ fn plan_panel<DB: plotters::prelude::DrawingBackend>(
         ty + 10,
         ymax
     ));
-    for p in rows {
-        let (x, y) = (p.2, p.3 / 1e6);
+    for (p, count) in rows {
+        let (x, y) = (p.2, count / 1e6);
         let (px, py) = chart.backend_coord(&(x, y));
         if p.4 {
             chart
@@ -825,11 +840,16 @@ fn plan_panel<DB: plotters::prelude::DrawingBackend>(
         } else {
             p.1.clone()
         };
-        // The painter sits on back faces' point on the quad and cube: label it below.
-        let dy = if p.1 == "painter" { 16 } else { -6 };
+        // The painter sits on or near back faces' point on the quad and cube: label it on the
+        // left; the compact bands near the 16-row bands: below.
+        let (dx, dy, anchor) = match p.1.as_str() {
+            "painter" => (-9, 4, "end"),
+            "zbuffer_compact" => (9, 16, "start"),
+            _ => (9, -6, "start"),
+        };
         texts.push(format!(
-            r#"<text x="{}" y="{}" font-size="11">{label}</text>"#,
-            px + 9,
+            r#"<text x="{}" y="{}" text-anchor="{anchor}" font-size="11">{label}</text>"#,
+            px + dx,
             py + dy
         ));
     }
