@@ -32,7 +32,8 @@ use super::dither::Bayer4;
 use super::lighting::{unit_q15, Illumination, Material, ONE};
 use super::span_writer::{depth_span, DrawError, LuminanceRamp, Quantizer, Shading};
 use crate::geometry::vector::Vec3;
-use crate::raster::triangle::fill_triangle_in_range;
+use crate::raster::setup::TriangleSetup;
+use crate::raster::triangle::fill_setup;
 use crate::raster::SubpixelPoint;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
@@ -132,20 +133,19 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     corners: [PhongVertex<S>; 3],
     ctx: &PhongContext<'_>,
 ) -> Result<(u32, u32), DrawError> {
-    let v = corners.map(|c| c.screen);
-    crate::raster::range::check_range(&v).map_err(DrawError::Fill)?;
+    let t = TriangleSetup::new(corners.map(|c| c.screen)).map_err(DrawError::Fill)?;
     // Depths clamp to the deepest value that stores below FAR (target::depth's module doc).
     let values = corners.map(|c| {
         let mut a = corner_values(&c);
         a[0] = a[0].min(D::MAX_DEPTH32);
         a
     });
-    let plane = match AttributePlane::<7, S>::new(v, values) {
+    let plane = match AttributePlane::<7, S>::of(&t, values) {
         Ok(p) => p,
         Err(PlaneError::Degenerate) => return Ok((0, 0)),
-        Err(PlaneError::TooLarge) => return Ok(draw_wide(frame, depth, v, values, ctx)),
+        Err(PlaneError::TooLarge) => return Ok(draw_wide(frame, depth, &t, values, ctx)),
     };
-    Ok(draw_spans(frame, depth, v, RowStarts::new(&plane), ctx))
+    Ok(draw_spans(frame, depth, &t, RowStarts::new(&plane), ctx))
 }
 
 /// [`draw_triangle_phong`] for a triangle too large for the [`AttributePlane`]: the
@@ -155,12 +155,12 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
 fn draw_wide<D: DepthValue, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
-    v: [SubpixelPoint<S>; 3],
+    t: &TriangleSetup<S>,
     values: [[u32; 7]; 3],
     ctx: &PhongContext<'_>,
 ) -> (u32, u32) {
-    match WidePlane::<7, S>::new(v, values) {
-        Ok(plane) => draw_spans(frame, depth, v, plane, ctx),
+    match WidePlane::<7, S>::of(t, values) {
+        Ok(plane) => draw_spans(frame, depth, t, plane, ctx),
         Err(_) => (0, 0), // zero area: covers nothing
     }
 }
@@ -170,13 +170,13 @@ fn draw_wide<D: DepthValue, const S: u32>(
 fn draw_spans<D: DepthValue, St: SpanStarts<7>, const S: u32>(
     frame: &mut Framebuffer<'_>,
     depth: &mut DepthBuffer<'_, D>,
-    v: [SubpixelPoint<S>; 3],
+    t: &TriangleSetup<S>,
     mut starts: St,
     ctx: &PhongContext<'_>,
 ) -> (u32, u32) {
     let window = super::span_writer::drawable_window(frame, depth);
     let (mut covered, mut written) = (0u32, 0u32);
-    fill_triangle_in_range(v, &window, |s| {
+    fill_setup(t, &window, |s| {
         let (x0, x1) = (s.x0 as usize, s.x1 as usize);
         covered += (x1 - x0) as u32;
         let (Some(c), Some(z)) = (frame.span_mut(s.y, x0, x1), depth.span_mut(s.y, x0, x1)) else {
