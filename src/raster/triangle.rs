@@ -20,6 +20,17 @@ use super::range::FillError;
 use super::setup::TriangleSetup;
 use super::{Span, SubpixelPoint, Window};
 
+/// Twice the signed area of triangle `a, b, c` in sub-pixel units squared, `(b − a) × (c − a)`,
+/// for any `i32` coordinates (the set-up's twice-area is the same value, formed with 32-bit
+/// differences inside the raster's range). With screen axes (`x` right, `y` down) it is
+/// negative when the vertices turn counter-clockwise on screen, and, for `a` above `c`, when
+/// `b` lies left of the line `a → c`.
+#[inline(always)]
+pub fn cross<const S: u32>(a: SubpixelPoint<S>, b: SubpixelPoint<S>, c: SubpixelPoint<S>) -> i64 {
+    (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
+        - (b.y as i64 - a.y as i64) * (c.x as i64 - a.x as i64)
+}
+
 /// Fills a triangle with the default (incremental) walker, emitting its spans inside `window`
 /// row by row from the top. Same coverage as [`fill_polygon`](super::polygon::fill_polygon).
 #[inline]

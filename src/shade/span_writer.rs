@@ -35,7 +35,7 @@ use super::attributes::{
 };
 pub use super::span::LuminanceRamp;
 pub(crate) use super::span::{
-    depth_span, depth_span_with, CountWritten, Gouraud, Quantizer, Shading, SkipWritten,
+    depth_span, CountWritten, Gouraud, Quantizer, Shading, SkipWritten,
     WrittenCount,
 };
 use super::span::{Direct, InRange, Targets};
@@ -450,6 +450,26 @@ fn draw_general<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     }
 }
 
+/// Triangle `t` with the `N` vertex attributes `values` (attribute 0 the depth, at most
+/// [`DepthValue::MAX_DEPTH32`]) drawn by span kind `kind` over the general or wide plane, each
+/// span started exactly ([`Exact`]): the writer of kinds whose every attribute is
+/// interpolated per pixel (Phong's seven).
+#[inline(always)]
+pub(crate) fn draw_general_exact<D: DepthValue, C: WrittenCount, K: SpanKind<N>, const N: usize, const S: u32>(
+    target: &mut RasterTarget<'_, D, C>,
+    t: &TriangleSetup<S>,
+    values: [[u32; N]; 3],
+    kind: K,
+) -> (u32, u32) {
+    let spans = TriangleSpans {
+        t,
+        window: target.window,
+        targets: &mut target.targets,
+        count: target.count,
+    };
+    spans.general(values, kind, false)
+}
+
 /// The tiny-triangle writer for luminances of `0..=255` mapped by `quantizer_at` (a ramp of
 /// fewer than 256 levels, or dithered), or `None` where it does not apply. Out of line: a
 /// second set-up inlined into [`draw_in_range`] cost its 256-level path registers
@@ -507,8 +527,10 @@ impl FromExact<Exact> for ExactRunFrom {
 }
 
 /// What one span of a triangle writes, given its `N` exact interpolants at the span start:
-/// chosen once per triangle, so the span loop holds one kind only.
-trait SpanKind<const N: usize> {
+/// chosen once per triangle, so the span loop holds one kind only. The kinds: constant depth
+/// and colour (no plane: [`TriangleSpans::constant`]), [`FlatKind`], [`ExactKind`],
+/// [`FastKind`] here, and Phong's (`shade/phong.rs`).
+pub(crate) trait SpanKind<const N: usize> {
     /// Writes the span (`colours`, `depths`: its pixels) starting at pixel `(x, y)`; `attrs[0]`
     /// is the depth. Returns the pixels written (0 when `count` does not count them).
     fn write<D: DepthValue, I: Interpolant, St: SpanStarts<N>, C: WrittenCount>(
@@ -543,7 +565,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<1> for FlatKind<QF> {
             luminance: self.luminance,
             quantizer: (self.quantizer_at)(x, y),
         };
-        depth_span_with(colours, depths, z, shading, count)
+        depth_span(colours, depths, z, shading, count)
     }
 }
 
@@ -565,7 +587,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for ExactKind<QF> {
             luminance,
             quantizer: (self.0)(x, y),
         };
-        depth_span_with(colours, depths, z, shading, count)
+        depth_span(colours, depths, z, shading, count)
     }
 }
 
@@ -590,7 +612,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
             luminance: starts.dda_at(1, x, y),
             quantizer: (self.0)(x, y),
         };
-        depth_span_with(colours, depths, z, shading, count)
+        depth_span(colours, depths, z, shading, count)
     }
 }
 
@@ -623,7 +645,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
                 luminance: Constant(lum),
                 quantizer: quantizer_at(s.x0, s.y),
             };
-            written += depth_span_with(c, zs, Constant(z), shading, self.count);
+            written += depth_span(c, zs, Constant(z), shading, self.count);
         });
         (covered, written)
     }
@@ -637,6 +659,18 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
         if let Some(small) = SmallPlane::<N, S>::of(self.t, values) {
             return self.run::<Exact, _, K, N>(small, kind);
         }
+        self.general(values, kind, true)
+    }
+
+    /// [`Self::planar`] without the small plane: the general plane (its span starts
+    /// [`ExactRun`]s for mid-width triangles when `runs`), or the wide one.
+    #[inline(always)]
+    fn general<K: SpanKind<N>, const N: usize>(
+        self,
+        values: [[u32; N]; 3],
+        kind: K,
+        runs: bool,
+    ) -> (u32, u32) {
         let plane = match AttributePlane::<N, S>::of(self.t, values) {
             Ok(p) => p,
             Err(PlaneError::Degenerate) => return (0, 0),
@@ -647,7 +681,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
         // ExactRun costs a 64-bit division per span start and saves ~6 instructions per pixel.
         // Threshold measured with callgrind on the standard cube, sphere and bunny (4, 16, 32 and
         // never tried; 16 was best on all three), when every triangle took the general plane.
-        if (MIN_RUN_WIDTH..=plane.run_limit()).contains(&width) {
+        if runs && (MIN_RUN_WIDTH..=plane.run_limit()).contains(&width) {
             self.run::<ExactRunFrom, _, K, N>(RowStarts::new(&plane), kind)
         } else {
             self.run::<Exact, _, K, N>(RowStarts::new(&plane), kind)

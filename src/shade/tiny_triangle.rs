@@ -2,7 +2,7 @@
 //!
 //! Role in the pipeline: a fast path of the span writers
 //! ([`draw_triangle_on`](super::span_writer::draw_triangle_on)), between the projected
-//! triangle and the per-pixel loop ([`depth_span_with`]). It draws exactly what the general
+//! triangle and the per-pixel loop ([`depth_span`]). It draws exactly what the general
 //! path (the [`fill_triangle`](crate::raster::triangle::fill_triangle) walkers feeding a
 //! [`SmallPlane`](super::attributes::SmallPlane)) draws: the same pixels, depths and
 //! luminances, and the same covered and written counts (tested on random triangles against
@@ -52,7 +52,7 @@
 //! - Both attributes round half up, `A0 + ⌊(2M + D) / 2D⌋`, as [`Exact`] everywhere.
 
 use super::attributes::{small_bits, Exact};
-use super::span::{depth_span_with, in_range, Quantizer, Targets, WrittenCount};
+use super::span::{depth_span, in_range, Quantizer, Targets, WrittenCount};
 use crate::arith::euclid::div_floor_i32;
 use crate::raster::setup::TriangleSetup;
 use crate::raster::Window;
@@ -267,7 +267,7 @@ impl<const S: u32> TinyTriangle<S> {
             .wrapping_add(gx.wrapping_mul(x0))
             .wrapping_add(gy.wrapping_mul(y as u32));
         let lum = Exact::from_parts(l_min + t / two_d, t % two_d, self.l_step, two_d.get());
-        depth_span_with(cs, zs, z, in_range(lum, quantizer_at(px, py)), count)
+        depth_span(cs, zs, z, in_range(lum, quantizer_at(px, py)), count)
     }
 }
 
