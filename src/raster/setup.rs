@@ -62,7 +62,10 @@ impl<const S: u32> TriangleSetup<S> {
     /// vertex, the span writers once per triangle); asserted in checked builds.
     #[inline(always)]
     pub(crate) fn in_range(v: [SubpixelPoint<S>; 3]) -> Self {
-        debug_assert!(check_range(&v).is_ok(), "vertices outside the raster's range");
+        debug_assert!(
+            check_range(&v).is_ok(),
+            "vertices outside the raster's range"
+        );
         let swaps = sort_swaps(v.map(|p| p.y));
         let sorted @ [a, b, c] = sort_by(swaps, v);
         let (dx1, dy1) = (b.x.wrapping_sub(a.x), b.y.wrapping_sub(a.y));
@@ -162,7 +165,11 @@ mod tests {
                 - (p[1].y as i64 - p[0].y as i64) * (p[2].x as i64 - p[0].x as i64)
         };
         for i in 0..5000 {
-            let m = if i % 2 == 0 { 3 } else { super::super::MAX_COORD };
+            let m = if i % 2 == 0 {
+                3
+            } else {
+                super::super::MAX_COORD
+            };
             let v = [0; 3].map(|_| SubpixelPoint::<4>::new(rnd(m), rnd(m)));
             let t = TriangleSetup::new(v).unwrap();
             let idx = t.sort([0usize, 1, 2]);

@@ -29,8 +29,8 @@ use super::attributes::{Interpolant, SpanStarts};
 use super::dither::Bayer4;
 use super::lighting::{unit_q15, Illumination, Material, ONE};
 use super::span_writer::{
-    depth_span, draw_general_exact, DrawError, LuminanceRamp, Quantizer, RasterTarget,
-    Shading, SpanKind, WrittenCount,
+    depth_span, draw_general_exact, DrawError, LuminanceRamp, Quantizer, RasterTarget, Shading,
+    SpanKind, WrittenCount,
 };
 use crate::geometry::vector::Vec3;
 use crate::raster::setup::TriangleSetup;

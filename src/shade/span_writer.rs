@@ -35,8 +35,7 @@ use super::attributes::{
 };
 pub use super::span::LuminanceRamp;
 pub(crate) use super::span::{
-    depth_span, CountWritten, Gouraud, Quantizer, Shading, SkipWritten,
-    WrittenCount,
+    depth_span, CountWritten, Gouraud, Quantizer, Shading, SkipWritten, WrittenCount,
 };
 use super::span::{Direct, InRange, Targets};
 use super::tiny_triangle::TinyTriangle;
@@ -175,21 +174,18 @@ impl<D, C> RasterTarget<'_, D, C> {
     }
 }
 
-/// What draws one triangle: the span kind ([`span_kind`]) and whether the tiny-triangle writer
-/// is tried first ([`tiny_kind`]), composed by `plan` for the tests. Decided once per
-/// triangle, before any set-up; the size class (tiny box, small
-/// plane, general plane) follows from the set-up itself, each smaller class falling back to
-/// the next when the triangle does not fit it.
-#[cfg(test)]
+/// How one triangle is drawn: what each span writes and which set-up its spans start from.
+/// Decided once per triangle by [`plan`], from the set-up's size facts ([`Fits`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct TrianglePlan {
     /// What each span writes.
     pub(crate) kind: Kind,
-    /// Whether, and how, small triangles take the tiny-triangle writer.
-    pub(crate) tiny: Tiny,
+    /// Which set-up the spans start from.
+    pub(crate) class: SizeClass,
 }
 
-/// The span kinds of [`draw_triangle_on`].
+/// The span kinds of the one span loop (`TriangleSpans::run`); Phong's seven-attribute kind
+/// is `shade/phong.rs`'s, drawn through [`draw_general_exact`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Kind {
     /// Constant depth and colour: no plane at all (`TriangleSpans::constant`).
@@ -202,11 +198,25 @@ pub(crate) enum Kind {
     Fast,
 }
 
-/// Whether the tiny-triangle writer (`shade/tiny_triangle.rs`) is tried first.
+/// The set-up a triangle's spans start from, smallest first; each holds every triangle the
+/// next smaller one does not.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Tiny {
-    /// Not for this triangle (or not on this core).
-    No,
+pub(crate) enum SizeClass {
+    /// No plane: constant depth and colour, the fill's spans alone (any size).
+    Fill,
+    /// The tiny-triangle writer (`shade/tiny_triangle.rs`): edges and planes set up together.
+    Tiny(TinyForm),
+    /// The [`SmallPlane`]: bounding box below `2^K` units, 32-bit arithmetic.
+    Small,
+    /// The [`AttributePlane`]: `2D < 2^30`.
+    General,
+    /// The [`WidePlane`], out of line: any other triangle of the raster's range.
+    Wide,
+}
+
+/// How the tiny-triangle writer takes the luminance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum TinyForm {
     /// With the ramp's first index added to the luminance and stored as it is (a 256-level
     /// ramp).
     Direct,
@@ -215,77 +225,79 @@ pub(crate) enum Tiny {
     Mapped,
 }
 
-/// The one decision of how a triangle is drawn (the two halves below, composed): from the
-/// shading mode asked for, whether the depth and the luminance are constant over the triangle
-/// (equal vertex values), whether the quantizer is a 256-level ramp whose index can be
-/// interpolated directly ([`Quantizer::offset`]), and whether the core takes the tiny-triangle
-/// writer (`arith::TINY_WRITER`). [`draw_triangle_on`] asks the halves in turn, so that the
-/// quantizer is consulted only for triangles that may take the tiny writer.
-#[cfg(test)]
+/// What a triangle's size admits, from its set-up: the size classes it fits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Fits {
+    /// The tiny writer's: a box below `2^K` inside the window's columns, `S + K ≤ 19`, on a
+    /// core that takes the writer (`arith::TINY_WRITER`).
+    pub(crate) tiny: bool,
+    /// The small plane's: a box below `2^K` on both axes.
+    pub(crate) small: bool,
+    /// The general plane's: `2D < 2^30`.
+    pub(crate) general: bool,
+}
+
+impl Fits {
+    /// The size facts of set-up `t` drawn inside `window`.
+    #[inline(always)]
+    pub(crate) fn of<const S: u32>(t: &TriangleSetup<S>, window: &Window) -> Self {
+        Fits {
+            tiny: TINY_WRITER && TinyTriangle::fits(t, window),
+            small: SmallPlane::<1, S>::fits(t),
+            general: t.twice_area.unsigned_abs() < 1 << 30,
+        }
+    }
+}
+
+/// The one decision of how a triangle is drawn: from the shading mode asked for, whether the
+/// depth and the luminance are constant over the triangle (equal vertex values), whether the
+/// quantizer is a 256-level ramp whose index can be interpolated directly
+/// ([`Quantizer::offset`]), and the set-up's size facts.
+///
+/// A constant luminance is flat whatever the mode, and flat at constant depth needs no plane
+/// ([`Kind::Constant`]); Phong without normals is exact Gouraud. The tiny writer takes exact
+/// Gouraud through any quantizer and flat colour only through a 256-level ramp (a flat
+/// triangle of another ramp maps once per span on the general path, which measured faster:
+/// the lit flat sphere of a 32-level ramp +17 % through the tiny writer), never fast Gouraud.
+#[inline(always)]
 pub(crate) const fn plan(
     mode: ShadeMode,
     depth_constant: bool,
     luminance_constant: bool,
     direct_ramp: bool,
-    tiny_writer: bool,
+    fits: Fits,
 ) -> TrianglePlan {
-    let kind = span_kind(mode, depth_constant, luminance_constant);
-    let tiny = if tiny_writer && kind.may_take_tiny() {
-        tiny_kind(kind, direct_ramp)
-    } else {
-        Tiny::No
-    };
-    TrianglePlan { kind, tiny }
-}
-
-/// The span kind: a constant luminance is flat whatever the mode, and flat at constant depth
-/// needs no plane ([`Kind::Constant`]); Phong without normals is exact Gouraud.
-#[inline(always)]
-pub(crate) const fn span_kind(
-    mode: ShadeMode,
-    depth_constant: bool,
-    luminance_constant: bool,
-) -> Kind {
-    match mode {
-        _ if luminance_constant => {
-            if depth_constant {
-                Kind::Constant
-            } else {
-                Kind::Flat
-            }
-        }
+    let kind = match mode {
+        _ if luminance_constant && depth_constant => Kind::Constant,
+        _ if luminance_constant => Kind::Flat,
         ShadeMode::Flat if depth_constant => Kind::Constant,
         ShadeMode::Flat => Kind::Flat,
         ShadeMode::GouraudFast => Kind::Fast,
         ShadeMode::GouraudExact | ShadeMode::Phong => Kind::Exact,
-    }
+    };
+    let class = match kind {
+        Kind::Constant => SizeClass::Fill,
+        Kind::Exact | Kind::Flat if fits.tiny && direct_ramp => SizeClass::Tiny(TinyForm::Direct),
+        Kind::Exact if fits.tiny => SizeClass::Tiny(TinyForm::Mapped),
+        _ => plane_class(fits),
+    };
+    TrianglePlan { kind, class }
 }
 
-impl Kind {
-    /// True for the kinds the tiny-triangle writer draws: exact Gouraud and flat colour over a
-    /// depth plane (never fast Gouraud, nor constant depth and colour).
-    #[inline(always)]
-    pub(crate) const fn may_take_tiny(self) -> bool {
-        matches!(self, Kind::Exact | Kind::Flat)
-    }
-}
-
-/// How a kind that [`may take the tiny writer`](Kind::may_take_tiny) takes it: exact Gouraud
-/// through any quantizer, flat colour only through a 256-level ramp (a flat triangle of
-/// another ramp maps once per span on the general path, which measured faster: the lit flat
-/// sphere of a 32-level ramp +17 % through the tiny writer).
+/// The plane for a triangle of size facts `fits`: small, general or wide.
 #[inline(always)]
-pub(crate) const fn tiny_kind(kind: Kind, direct_ramp: bool) -> Tiny {
-    match kind {
-        _ if direct_ramp => Tiny::Direct,
-        Kind::Exact => Tiny::Mapped,
-        _ => Tiny::No,
+pub(crate) const fn plane_class(fits: Fits) -> SizeClass {
+    if fits.small {
+        SizeClass::Small
+    } else if fits.general {
+        SizeClass::General
+    } else {
+        SizeClass::Wide
     }
 }
 
 /// [`draw_triangle_quantized`] into a prepared [`RasterTarget`] (the renderer's form: one
-/// target per object and band). The one place that decides which path draws a triangle:
-/// `plan`, then the set-up of that path.
+/// target per object and band).
 ///
 /// Vertices outside the raster's range (`|x|, |y| ≤ 2^28 − 1` sub-pixel units, `S ≤ 16`) are
 /// [`DrawError::Fill`] with [`FillError::CoordinateOutOfRange`], checked here once, before any
@@ -323,9 +335,8 @@ fn draw_clamped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
 /// `±(2^28 − 1)` (checked there once per vertex, asserted by the set-up in checked builds).
 /// Cannot fail: every triangle of the range is drawn.
 ///
-/// The one place that decides which path draws a triangle: its set-up, the span kind
-/// ([`span_kind`]), the tiny writer where it applies ([`tiny_kind`], [`draw_tiny`]), else
-/// the plane of the kind ([`draw_general`]).
+/// The one place that decides which path draws a triangle: its set-up, then [`plan`], then
+/// the tiny writer ([`draw_tiny`]) or the plane of the kind ([`draw_general`]).
 pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
@@ -346,21 +357,27 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
     let values = values.map(|[z, l]| [z, l.min(255)]);
     // A plane is flat exactly when its vertex values are equal (the triangle has area).
     let constant = |i: usize| values[0][i] == values[1][i] && values[0][i] == values[2][i];
-    // The depth plane's flatness matters only for a flat luminance (`span_kind`): tested
-    // there alone, so that Gouraud triangles do not pay its four compares.
+    // The depth plane's flatness matters only for a flat luminance: tested there alone, so
+    // that Gouraud triangles do not pay its four compares.
     let luminance_constant = constant(1);
     let depth_constant = (luminance_constant || mode == ShadeMode::Flat) && constant(0);
-    let kind = span_kind(mode, depth_constant, luminance_constant);
-    if TINY_WRITER && kind.may_take_tiny() {
-        if let Some(drawn) = draw_tiny(target, &t, values, kind, &quantizer_at) {
-            return drawn;
-        }
+    let first = quantizer_at(t.given[0].x >> S, t.given[0].y >> S).offset();
+    let fits = Fits::of(&t, &target.window);
+    let plan = plan(
+        mode,
+        depth_constant,
+        luminance_constant,
+        first.is_some(),
+        fits,
+    );
+    if let SizeClass::Tiny(form) = plan.class {
+        return draw_tiny(target, &t, values, plan.kind, form, &quantizer_at);
     }
-    // (After the tiny writer, which tests the columns itself and clips the rows.)
+    // (After the tiny writer, which clips its rows itself.)
     if !bounds_meet(&t, &target.window) {
         return (0, 0);
     }
-    draw_general(target, &t, values, kind, quantizer_at)
+    draw_general(target, &t, values, plan, first, quantizer_at)
 }
 
 /// The luminance of a flat triangle: the vertices' one value, or their rounded mean.
@@ -374,21 +391,20 @@ fn flat_luminance(values: &[[u32; 2]; 3]) -> u32 {
     }
 }
 
-/// The tiny-triangle writer for a kind that may take it, as [`tiny_kind`] says, or `None`
-/// where it does not apply (the general path draws the triangle then).
+/// The tiny-triangle writer, in the form the plan chose ([`TinyForm`]).
 #[inline(always)]
 fn draw_tiny<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     t: &TriangleSetup<S>,
     values: [[u32; 2]; 3],
     kind: Kind,
+    form: TinyForm,
     quantizer_at: &impl Fn(i32, i32) -> Q,
-) -> Option<(u32, u32)> {
-    let v0 = t.given[0];
-    let first = quantizer_at(v0.x >> S, v0.y >> S).offset();
-    match tiny_kind(kind, first.is_some()) {
-        Tiny::Direct => {
-            let first = first.unwrap_or(0) as u32;
+) -> (u32, u32) {
+    match form {
+        TinyForm::Direct => {
+            let v0 = t.given[0];
+            let first = quantizer_at(v0.x >> S, v0.y >> S).offset().unwrap_or(0) as u32;
             let lum = |l: u32| {
                 if kind == Kind::Flat {
                     flat_luminance(&values)
@@ -397,22 +413,22 @@ fn draw_tiny<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
                 }
             } + first;
             let values = values.map(|[z, l]| [z, lum(l)]);
-            let tiny = TinyTriangle::<S>::new(t, values, &target.window)?;
-            Some(tiny.draw(&mut target.targets, target.count, &|_, _| Direct))
+            let tiny = TinyTriangle::<S>::new(t, values, &target.window);
+            tiny.draw(&mut target.targets, target.count, &|_, _| Direct)
         }
-        Tiny::Mapped => tiny_mapped(target, t, values, quantizer_at),
-        Tiny::No => None,
+        TinyForm::Mapped => tiny_mapped(target, t, values, quantizer_at),
     }
 }
 
-/// The general path of [`draw_in_range`]: the span loop of `kind` over the fill, with the plane
-/// the kind needs.
+/// The general path of [`draw_in_range`]: the span loop of the plan's kind over the fill,
+/// with the plane of its size class. `first`: the 256-level ramp's first index, if it is one.
 #[inline(always)]
 fn draw_general<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     t: &TriangleSetup<S>,
     values: [[u32; 2]; 3],
-    kind: Kind,
+    plan: TrianglePlan,
+    first: Option<u8>,
     quantizer_at: impl Fn(i32, i32) -> Q,
 ) -> (u32, u32) {
     let spans = TriangleSpans {
@@ -421,41 +437,49 @@ fn draw_general<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
         targets: &mut target.targets,
         count: target.count,
     };
-    match kind {
+    let class = plan.class;
+    match plan.kind {
         Kind::Constant => spans.constant(values[0][0], flat_luminance(&values), quantizer_at),
         Kind::Flat => spans.planar(
+            class,
             values.map(|a| [a[0]]),
             FlatKind {
                 luminance: Constant(flat_luminance(&values)),
                 quantizer_at,
             },
         ),
-        Kind::Exact | Kind::Fast => {
+        kind => {
             // A 256-level ramp adds its first index: interpolating `first + lum` gives the
             // same values shifted (exact rounding and the 16.16 start commute with adding an
             // integer), and the loops store them as they are, with two fewer live values.
-            let v0 = t.given[0];
-            if let Some(first) = quantizer_at(v0.x >> S, v0.y >> S).offset() {
+            if let Some(first) = first {
                 let values = values.map(|[z, l]| [z, l + first as u32]);
                 return match kind {
-                    Kind::Fast => spans.planar(values, FastKind(|_, _| Direct)),
-                    _ => spans.planar(values, ExactKind(|_, _| Direct)),
+                    Kind::Fast => spans.planar(class, values, FastKind(|_, _| Direct)),
+                    _ => spans.planar(class, values, ExactKind(|_, _| Direct)),
                 };
             }
             match kind {
-                Kind::Fast => spans.planar(values, FastKind(quantizer_at)),
-                _ => spans.planar(values, ExactKind(quantizer_at)),
+                Kind::Fast => spans.planar(class, values, FastKind(quantizer_at)),
+                _ => spans.planar(class, values, ExactKind(quantizer_at)),
             }
         }
     }
 }
 
 /// Triangle `t` with the `N` vertex attributes `values` (attribute 0 the depth, at most
-/// [`DepthValue::MAX_DEPTH32`]) drawn by span kind `kind` over the general or wide plane, each
-/// span started exactly ([`Exact`]): the writer of kinds whose every attribute is
-/// interpolated per pixel (Phong's seven).
+/// [`DepthValue::MAX_DEPTH32`]) drawn by span kind `kind` over the general plane, or the wide
+/// one when `2D ≥ 2^30` ([`plane_class`]'s rule, applied by the plane itself), each span
+/// started exactly ([`Exact`]): the writer of kinds whose every attribute is interpolated per
+/// pixel (Phong's seven).
 #[inline(always)]
-pub(crate) fn draw_general_exact<D: DepthValue, C: WrittenCount, K: SpanKind<N>, const N: usize, const S: u32>(
+pub(crate) fn draw_general_exact<
+    D: DepthValue,
+    C: WrittenCount,
+    K: SpanKind<N>,
+    const N: usize,
+    const S: u32,
+>(
     target: &mut RasterTarget<'_, D, C>,
     t: &TriangleSetup<S>,
     values: [[u32; N]; 3],
@@ -471,7 +495,7 @@ pub(crate) fn draw_general_exact<D: DepthValue, C: WrittenCount, K: SpanKind<N>,
 }
 
 /// The tiny-triangle writer for luminances of `0..=255` mapped by `quantizer_at` (a ramp of
-/// fewer than 256 levels, or dithered), or `None` where it does not apply. Out of line: a
+/// fewer than 256 levels, or dithered), for a set-up the plan classed tiny. Out of line: a
 /// second set-up inlined into [`draw_in_range`] cost its 256-level path registers
 /// (measured on the Cortex-M4: the standard bunny frame +1.4 %).
 #[inline(never)]
@@ -480,9 +504,9 @@ fn tiny_mapped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     t: &TriangleSetup<S>,
     values: [[u32; 2]; 3],
     quantizer_at: &impl Fn(i32, i32) -> Q,
-) -> Option<(u32, u32)> {
-    let tiny = TinyTriangle::<S>::new(t, values, &target.window)?;
-    Some(tiny.draw(&mut target.targets, target.count, quantizer_at))
+) -> (u32, u32) {
+    let tiny = TinyTriangle::<S>::new(t, values, &target.window);
+    tiny.draw(&mut target.targets, target.count, quantizer_at)
 }
 
 /// Bounding-box width (pixels) from which a triangle's spans use [`ExactRun`].
@@ -650,20 +674,29 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
         (covered, written)
     }
 
-    /// The exact plane of `values` (attribute 0 is the depth), small, general or wide, and the
-    /// span loop over it with span kind `kind`.
+    /// The exact plane of `values` (attribute 0 is the depth) of size class `class` (small,
+    /// general or wide), and the span loop over it with span kind `kind`.
     #[inline(always)]
-    fn planar<K: SpanKind<N>, const N: usize>(self, values: [[u32; N]; 3], kind: K) -> (u32, u32) {
-        // Small planes step plain Exact values: their spans are short, and ExactRun starts
-        // (a 64-bit division each) measured dearer on the Cortex-M4 (standard sphere +10 %).
-        if let Some(small) = SmallPlane::<N, S>::of(self.t, values) {
-            return self.run::<Exact, _, K, N>(small, kind);
+    fn planar<K: SpanKind<N>, const N: usize>(
+        self,
+        class: SizeClass,
+        values: [[u32; N]; 3],
+        kind: K,
+    ) -> (u32, u32) {
+        match class {
+            // Small planes step plain Exact values: their spans are short, and ExactRun starts
+            // (a 64-bit division each) measured dearer on the Cortex-M4 (standard sphere +10 %).
+            SizeClass::Small => match SmallPlane::<N, S>::of(self.t, values) {
+                Some(small) => self.run::<Exact, _, K, N>(small, kind),
+                None => (0, 0), // zero area: covers nothing
+            },
+            SizeClass::Wide => self.wide(values, kind),
+            _ => self.general(values, kind, true),
         }
-        self.general(values, kind, true)
     }
 
-    /// [`Self::planar`] without the small plane: the general plane (its span starts
-    /// [`ExactRun`]s for mid-width triangles when `runs`), or the wide one.
+    /// The general plane (its span starts [`ExactRun`]s for mid-width triangles when `runs`),
+    /// or the wide one should its arithmetic not hold the triangle.
     #[inline(always)]
     fn general<K: SpanKind<N>, const N: usize>(
         self,
@@ -800,15 +833,17 @@ mod tests {
             let mut target = RasterTarget::new(&mut fb, &mut zb);
             let t = TriangleSetup::in_range(v);
             let counts = if tiny {
-                tiny_mapped(&mut target, &t, values, &quantizer_at)
+                TinyTriangle::fits(&t, &target.window)
+                    .then(|| tiny_mapped(&mut target, &t, values, &quantizer_at))
             } else {
+                let class = plane_class(Fits::of(&t, &target.window));
                 let spans = TriangleSpans {
                     t: &t,
                     window: target.window,
                     targets: &mut target.targets,
                     count: target.count,
                 };
-                Some(spans.planar(values, ExactKind(quantizer_at)))
+                Some(spans.planar(class, values, ExactKind(quantizer_at)))
             };
             (counts, px, zs)
         };
@@ -942,59 +977,123 @@ mod tests {
 
     /// The dispatch decisions, as a table: each row is what the module doc and the span
     /// kinds promise for one combination (mode; constant depth, constant luminance, 256-level
-    /// ramp, tiny writer on the core).
+    /// ramp, size facts of the set-up).
     #[test]
     fn plan_decides_as_documented() {
         use ShadeMode::*;
-        let p = |kind, tiny| TrianglePlan { kind, tiny };
+        use SizeClass::*;
+        let p = |kind, class| TrianglePlan { kind, class };
+        let fits = |tiny, small, general| Fits {
+            tiny,
+            small,
+            general,
+        };
+        let (tiny, small, general, wide) = (
+            fits(true, true, true),
+            fits(false, true, true),
+            fits(false, false, true),
+            fits(false, false, false),
+        );
         let rows = [
-            // A constant luminance is flat whatever the mode; at constant depth, no plane.
+            // A constant luminance is flat whatever the mode; at constant depth, no plane
+            // whatever the size.
             (
-                (GouraudExact, true, true, true, true),
-                p(Kind::Constant, Tiny::No),
+                (GouraudExact, true, true, true, tiny),
+                p(Kind::Constant, Fill),
             ),
             (
-                (Phong, false, true, true, true),
-                p(Kind::Flat, Tiny::Direct),
+                (GouraudFast, true, true, false, wide),
+                p(Kind::Constant, Fill),
             ),
             (
-                (GouraudFast, false, true, false, true),
-                p(Kind::Flat, Tiny::No),
+                (Phong, false, true, true, tiny),
+                p(Kind::Flat, Tiny(TinyForm::Direct)),
             ),
-            ((Flat, true, false, true, true), p(Kind::Constant, Tiny::No)),
             (
-                (Flat, false, false, true, true),
-                p(Kind::Flat, Tiny::Direct),
+                (GouraudFast, false, true, false, tiny),
+                p(Kind::Flat, Small),
             ),
-            ((Flat, false, false, false, true), p(Kind::Flat, Tiny::No)),
+            ((Flat, true, false, true, tiny), p(Kind::Constant, Fill)),
+            (
+                (Flat, false, false, true, tiny),
+                p(Kind::Flat, Tiny(TinyForm::Direct)),
+            ),
+            // Flat through another ramp: the general path, with the plane of its size.
+            ((Flat, false, false, false, tiny), p(Kind::Flat, Small)),
+            ((Flat, false, false, false, general), p(Kind::Flat, General)),
+            ((Flat, false, false, true, wide), p(Kind::Flat, Wide)),
             // Phong without normals is exact Gouraud; exact takes the tiny writer through
             // any quantizer, fast never does.
             (
-                (Phong, false, false, true, true),
-                p(Kind::Exact, Tiny::Direct),
+                (Phong, false, false, true, tiny),
+                p(Kind::Exact, Tiny(TinyForm::Direct)),
             ),
             (
-                (GouraudExact, true, false, false, true),
-                p(Kind::Exact, Tiny::Mapped),
+                (GouraudExact, true, false, false, tiny),
+                p(Kind::Exact, Tiny(TinyForm::Mapped)),
             ),
             (
-                (GouraudFast, false, false, true, true),
-                p(Kind::Fast, Tiny::No),
+                (GouraudFast, false, false, true, tiny),
+                p(Kind::Fast, Small),
             ),
-            // Cores without the tiny writer never try it.
             (
-                (GouraudExact, false, false, true, false),
-                p(Kind::Exact, Tiny::No),
+                (GouraudFast, false, false, true, general),
+                p(Kind::Fast, General),
             ),
-            ((Flat, false, false, true, false), p(Kind::Flat, Tiny::No)),
+            (
+                (GouraudFast, false, false, false, wide),
+                p(Kind::Fast, Wide),
+            ),
+            // A triangle the tiny writer does not take (too large, across the window's
+            // columns, or a core without it): the smallest plane that holds it.
+            (
+                (GouraudExact, false, false, true, small),
+                p(Kind::Exact, Small),
+            ),
+            (
+                (GouraudExact, false, false, false, general),
+                p(Kind::Exact, General),
+            ),
+            (
+                (GouraudExact, false, false, true, wide),
+                p(Kind::Exact, Wide),
+            ),
         ];
-        for ((mode, z, l, direct, tiny), expected) in rows {
+        for ((mode, z, l, direct, fits), expected) in rows {
             assert_eq!(
-                plan(mode, z, l, direct, tiny),
+                plan(mode, z, l, direct, fits),
                 expected,
-                "{mode:?} {z} {l} {direct}"
+                "{mode:?} {z} {l} {direct} {fits:?}"
             );
         }
+    }
+
+    /// The size facts of set-ups at the classes' limits: a box of `2^K − 1` units is small
+    /// and `2^K` is not; the tiny writer's box
+    /// must also lie within the window's columns (on cores that take it).
+    /// `2D = 2^30 − 2^15` is general and `2^30` is not.
+    #[test]
+    fn size_facts_at_the_limits() {
+        let q = |x: i32, y: i32| SubpixelPoint::<4>::new(x, y);
+        let window = Window::new(0, 0, 80, 80);
+        let facts = |v| Fits::of(&TriangleSetup::in_range(v), &window);
+        let largest = facts([q(8, 8), q(8 + 1023, 8 + 500), q(8 + 300, 8 + 1023)]);
+        assert_eq!(
+            (largest.tiny, largest.small, largest.general),
+            (TINY_WRITER, true, true)
+        );
+        let wider = facts([q(8, 8), q(8 + 1024, 8 + 500), q(8 + 300, 8 + 100)]);
+        assert_eq!(
+            (wider.tiny, wider.small, wider.general),
+            (false, false, true)
+        );
+        let left = facts([q(-1, 20), q(50, 40), q(20, 60)]);
+        assert_eq!((left.tiny, left.small), (false, true));
+        // A right triangle of legs a, b has 2D = a·b: 2^15·(2^15 − 1) < 2^30, 2^15·2^15 not.
+        let general = facts([q(0, 0), q(1 << 15, 0), q(0, (1 << 15) - 1)]);
+        assert!(general.general && !general.small);
+        let wide = facts([q(0, 0), q(1 << 15, 0), q(0, 1 << 15)]);
+        assert!(!wide.general && !wide.small && !wide.tiny);
     }
 
     #[test]
@@ -1062,16 +1161,20 @@ mod tests {
         // The widest box of the raster's range (2^29 units) is not a small box.
         let huge = [q(-MAX_COORD, 16), q(MAX_COORD, 16), q(0, 40)];
         let window = Window::new(0, 0, TW as i32, TH as i32);
-        let t = TriangleSetup::in_range(huge);
-        assert!(TinyTriangle::<4>::new(&t, ends, &window).is_none());
+        assert!(!TinyTriangle::<4>::fits(
+            &TriangleSetup::in_range(huge),
+            &window
+        ));
         // S + K > 19: never taken.
         let v12 = [
             SubpixelPoint::<12>::new(0, 0),
             SubpixelPoint::<12>::new(3000, 0),
             SubpixelPoint::<12>::new(0, 3000),
         ];
-        let t = TriangleSetup::in_range(v12);
-        assert!(TinyTriangle::<12>::new(&t, ends, &window).is_none());
+        assert!(!TinyTriangle::<12>::fits(
+            &TriangleSetup::in_range(v12),
+            &window
+        ));
     }
 
     /// A [`SkipWritten`] target draws exactly what a counting one draws, covers the same

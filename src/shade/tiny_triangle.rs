@@ -18,8 +18,8 @@
 //! below `2^K` sub-pixel units on both axes (`K =` [`small_bits`]`(S)`: 64 pixels at
 //! `S = 4`) whose columns lie inside the drawable window
 //! (its rows are clipped to the window's, so a band draws the triangles across its edges
-//! here too). `S + K ≤ 19` (every `S ≤ 9`). Other triangles return `None` from
-//! [`TinyTriangle::new`] and take the general path.
+//! here too). `S + K ≤ 19` (every `S ≤ 9`). [`TinyTriangle::fits`] says so, for the span
+//! writers' plan; other triangles take the general path.
 //!
 //! The luminance reaches the palette through the span's [`Quantizer`], as on the general
 //! path: through a 256-level ramp the writers interpolate the palette index itself (the
@@ -112,22 +112,24 @@ fn div_floor(n: i32, d: u32) -> (u32, u32) {
 }
 
 impl<const S: u32> TinyTriangle<S> {
-    /// The tiny writer's form of set-up `t` with `values[i] = [depth, luminance]` at the given
-    /// vertex `i` (luminance `0..=510`), or `None` when the writer does not apply (see the
-    /// module doc). A triangle of zero area draws nothing.
+    /// True when the writer applies to set-up `t` drawn inside `window`: a box below `2^K`
+    /// units on both axes whose columns lie inside the window's, and `S + K ≤ 19` (module
+    /// doc).
     #[inline(always)]
-    pub(crate) fn new(
-        t: &TriangleSetup<S>,
-        values: [[u32; 2]; 3],
-        window: &Window,
-    ) -> Option<Self> {
-        if S + small_bits(S) > 19 || !t.box_below(small_bits(S)) {
-            return None;
-        }
-        let ([x_lo, x_hi], [y_lo, _]) = (t.x, t.y);
-        if (x_lo >> S) < window.x0 || (x_hi >> S) >= window.x1 {
-            return None;
-        }
+    pub(crate) fn fits(t: &TriangleSetup<S>, window: &Window) -> bool {
+        S + small_bits(S) <= 19
+            && t.box_below(small_bits(S))
+            && (t.x[0] >> S) >= window.x0
+            && (t.x[1] >> S) < window.x1
+    }
+
+    /// The tiny writer's form of set-up `t` with `values[i] = [depth, luminance]` at the given
+    /// vertex `i` (luminance `0..=510`), for a set-up it [`fits`](Self::fits) (asserted in
+    /// checked builds). A triangle of zero area draws nothing.
+    #[inline(always)]
+    pub(crate) fn new(t: &TriangleSetup<S>, values: [[u32; 2]; 3], window: &Window) -> Self {
+        debug_assert!(Self::fits(t, window), "not a tiny triangle");
+        let ([x_lo, _], [y_lo, _]) = (t.x, t.y);
         let (ox, oy) = (x_lo >> S, y_lo >> S);
         // Local sub-pixel coordinates from the pixel-aligned origin (0..2^K + F), sorted by
         // row with their values.
@@ -150,9 +152,9 @@ impl<const S: u32> TinyTriangle<S> {
                 [p[2].0 - p[1].0, p[0].0 - p[2].0, p[1].0 - p[0].0],
             )
         };
-        if d == 0 {
-            return Some(TinyTriangle::EMPTY);
-        }
+        let Some(two_d) = NonZeroU32::new(2 * d) else {
+            return TinyTriangle::EMPTY;
+        };
         let corner = (x_lo - (ox << S), y_lo - (oy << S));
         let (z, z_step) = depth_terms::<S>(p[0], values.map(|a| a[0]), d, (ey, ex), corner);
         let (l, l_step) = luminance_terms::<S>(p[0], values.map(|a| a[1] as i32), d, (ey, ex));
@@ -160,19 +162,19 @@ impl<const S: u32> TinyTriangle<S> {
         // nothing either way, makes them wrap.
         let (top, bottom) = (window.y0.wrapping_sub(oy), window.y1.wrapping_sub(oy));
         let (rows, long, short) = edges::<S>(p, top, bottom);
-        Some(TinyTriangle {
+        TinyTriangle {
             ox,
             oy,
             rows,
             long,
             short,
             middle_left,
-            two_d: NonZeroU32::new(2 * d)?,
+            two_d,
             z,
             z_step,
             l,
             l_step,
-        })
+        }
     }
 
     /// Nothing to draw (zero area).
