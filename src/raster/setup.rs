@@ -10,8 +10,9 @@
 //! ## Conventions
 //! - Screen axes: `x` right, `y` down; sub-pixel units of `2^-S` pixel ([`SubpixelPoint`]).
 //! - The sort is stable: three compare-and-swaps of rows (`<`, so equal rows keep the given
-//!   order), `a` top, `b` middle, `c` bottom. [`TriangleSetup::sort`] replays the same swaps
-//!   on the per-vertex values of a writer.
+//!   order), `a` top, `b` middle, `c` bottom. A writer whose per-vertex values need no order
+//!   (the exact planes' values do not depend on it) takes them in the given order with the
+//!   vertices as given; the edges are the sorted vertices'.
 //! - The twice-area is `(b − a) × (c − a)` of the sorted vertices: negative when the middle
 //!   vertex lies left of the long edge `a → c` (the edges walked from `b` are then the left
 //!   ones), and when the sorted vertices turn counter-clockwise on screen.
@@ -39,7 +40,8 @@ pub(crate) struct TriangleSetup<const S: u32> {
     pub(crate) given: [SubpixelPoint<S>; 3],
     /// The vertices sorted by row: top `a`, middle `b`, bottom `c`.
     pub(crate) sorted: [SubpixelPoint<S>; 3],
-    /// The three compare-and-swaps of the sort, in order (true: swapped).
+    /// The three compare-and-swaps of the sort, in order (true: swapped): their parity is
+    /// the sign between the given and the sorted orientation.
     swaps: [bool; 3],
     /// `(b − a) × (c − a)` of the sorted vertices.
     pub(crate) twice_area: i64,
@@ -83,8 +85,9 @@ impl<const S: u32> TriangleSetup<S> {
         }
     }
 
-    /// `values` (one per given vertex) in the order of [`Self::sorted`].
-    #[inline(always)]
+    /// `values` (one per given vertex) in the order of [`Self::sorted`] (the tests' check of
+    /// the sort).
+    #[cfg(test)]
     pub(crate) fn sort<T: Copy>(&self, values: [T; 3]) -> [T; 3] {
         sort_by(self.swaps, values)
     }

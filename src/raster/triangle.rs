@@ -119,7 +119,11 @@ fn start_rows<W: EdgeWalker, const S: u32>(
 }
 
 /// The fill itself, for a set-up triangle: one row loop for both halves (the span code is
-/// inlined once), the short walker replaced by the bottom edge's at row `rows_end`.
+/// inlined once), the short walker replaced by the bottom edge's at row `rows_end`. Inlined
+/// into each writer, so that its span code reaches the writer's values in registers (out of
+/// line, the span writers' per-span state went through memory: Cortex-M4 `frame_cube_backface`
+/// +7.6 %).
+#[inline(always)]
 fn fill_setup_with<W: EdgeWalker, const S: u32>(
     t: &TriangleSetup<S>,
     window: &Window,

@@ -18,8 +18,8 @@
 //! below `2^K` sub-pixel units on both axes (`K =` [`small_bits`]`(S)`: 64 pixels at
 //! `S = 4`) whose columns lie inside the drawable window
 //! (its rows are clipped to the window's, so a band draws the triangles across its edges
-//! here too). `S + K ≤ 19` (every `S ≤ 9`). [`TinyTriangle::fits`] says so, for the span
-//! writers' plan; other triangles take the general path.
+//! here too). `S + K ≤ 19` (every `S ≤ 9`). Other triangles return `None` from
+//! [`TinyTriangle::new`] and take the general path.
 //!
 //! The luminance reaches the palette through the span's [`Quantizer`], as on the general
 //! path: through a 256-level ramp the writers interpolate the palette index itself (the
@@ -55,7 +55,7 @@ use super::attributes::{small_bits, Exact};
 use super::span::{depth_span, in_range, Quantizer, Targets, WrittenCount};
 use crate::arith::euclid::div_floor_i32;
 use crate::raster::setup::TriangleSetup;
-use crate::raster::Window;
+use crate::raster::{SubpixelPoint, Window};
 use crate::target::DepthValue;
 use core::num::NonZeroU32;
 
@@ -112,36 +112,34 @@ fn div_floor(n: i32, d: u32) -> (u32, u32) {
 }
 
 impl<const S: u32> TinyTriangle<S> {
-    /// True when the writer applies to set-up `t` drawn inside `window`: a box below `2^K`
-    /// units on both axes whose columns lie inside the window's, and `S + K ≤ 19` (module
-    /// doc).
-    #[inline(always)]
-    pub(crate) fn fits(t: &TriangleSetup<S>, window: &Window) -> bool {
-        S + small_bits(S) <= 19
-            && t.box_below(small_bits(S))
-            && (t.x[0] >> S) >= window.x0
-            && (t.x[1] >> S) < window.x1
-    }
-
     /// The tiny writer's form of set-up `t` with `values[i] = [depth, luminance]` at the given
-    /// vertex `i` (luminance `0..=510`), for a set-up it [`fits`](Self::fits) (asserted in
-    /// checked builds). A triangle of zero area draws nothing.
+    /// vertex `i` (luminance `0..=510`), or `None` when the writer does not apply (see the
+    /// module doc). A triangle of zero area draws nothing.
     #[inline(always)]
-    pub(crate) fn new(t: &TriangleSetup<S>, values: [[u32; 2]; 3], window: &Window) -> Self {
-        debug_assert!(Self::fits(t, window), "not a tiny triangle");
-        let ([x_lo, _], [y_lo, _]) = (t.x, t.y);
+    pub(crate) fn new(
+        t: &TriangleSetup<S>,
+        values: [[u32; 2]; 3],
+        window: &Window,
+    ) -> Option<Self> {
+        if S + small_bits(S) > 19 || !t.box_below(small_bits(S)) {
+            return None;
+        }
+        let ([x_lo, x_hi], [y_lo, _]) = (t.x, t.y);
+        if (x_lo >> S) < window.x0 || (x_hi >> S) >= window.x1 {
+            return None;
+        }
         let (ox, oy) = (x_lo >> S, y_lo >> S);
-        // Local sub-pixel coordinates from the pixel-aligned origin (0..2^K + F), sorted by
-        // row with their values.
-        let p = t.sorted.map(|q| (q.x - (ox << S), q.y - (oy << S)));
-        let values = t.sort(values);
+        // Local sub-pixel coordinates from the pixel-aligned origin (0..2^K + F). The planes
+        // take the vertices in the given order, with their values (the exact values do not
+        // depend on the order, and the values need no sort); the edges the sorted ones.
+        let local = |q: SubpixelPoint<S>| (q.x - (ox << S), q.y - (oy << S));
+        let p = t.given.map(local);
         // |2A| < 2^(2K) (the box is below 2^K): the set-up's twice-area is its low 32 bits.
-        let cross = t.twice_area as i32;
+        let cross = t.given_twice_area() as i32;
         let d = cross.unsigned_abs();
-        let middle_left = cross < 0;
         // Per vertex, the factors of the gradients: gx = Σ A_i·ey_i, gy = Σ A_i·ex_i, signed by
         // the orientation, so that the gradients are those of `2M` over the positive `2D`.
-        let (ey, ex) = if middle_left {
+        let (ey, ex) = if cross < 0 {
             (
                 [p[2].1 - p[1].1, p[0].1 - p[2].1, p[1].1 - p[0].1],
                 [p[1].0 - p[2].0, p[2].0 - p[0].0, p[0].0 - p[1].0],
@@ -152,29 +150,29 @@ impl<const S: u32> TinyTriangle<S> {
                 [p[2].0 - p[1].0, p[0].0 - p[2].0, p[1].0 - p[0].0],
             )
         };
-        let Some(two_d) = NonZeroU32::new(2 * d) else {
-            return TinyTriangle::EMPTY;
-        };
+        if d == 0 {
+            return Some(TinyTriangle::EMPTY);
+        }
         let corner = (x_lo - (ox << S), y_lo - (oy << S));
         let (z, z_step) = depth_terms::<S>(p[0], values.map(|a| a[0]), d, (ey, ex), corner);
         let (l, l_step) = luminance_terms::<S>(p[0], values.map(|a| a[1] as i32), d, (ey, ex));
         // Wrapping: only a box about 2^31 rows from the window (possible at S = 0), which draws
         // nothing either way, makes them wrap.
         let (top, bottom) = (window.y0.wrapping_sub(oy), window.y1.wrapping_sub(oy));
-        let (rows, long, short) = edges::<S>(p, top, bottom);
-        TinyTriangle {
+        let (rows, long, short) = edges::<S>(t.sorted.map(local), top, bottom);
+        Some(TinyTriangle {
             ox,
             oy,
             rows,
             long,
             short,
-            middle_left,
-            two_d,
+            middle_left: t.middle_left(),
+            two_d: NonZeroU32::new(2 * d)?,
             z,
             z_step,
             l,
             l_step,
-        }
+        })
     }
 
     /// Nothing to draw (zero area).
@@ -274,7 +272,7 @@ impl<const S: u32> TinyTriangle<S> {
 }
 
 /// The depth terms of [`TinyTriangle`] (its fields `z` and `z_step`) for depths `z` at the
-/// sorted local vertices, whose first is `p0`; `(ey, ex)` the gradient factors and `corner`
+/// local vertices (in any order), whose first is `p0`; `(ey, ex)` the gradient factors and `corner`
 /// the bounding box's local corner `C` (module doc, numeric contract).
 #[inline(always)]
 fn depth_terms<const S: u32>(
@@ -329,7 +327,7 @@ fn depth_terms<const S: u32>(
 }
 
 /// The luminance terms of [`TinyTriangle`] (its fields `l` and `l_step`) for luminances `l`
-/// at the sorted local vertices, whose first is `p0`: `T = 2M + D + 2D·(L0 − L_min)` in
+/// at the local vertices (in any order), whose first is `p0`: `T = 2M + D + 2D·(L0 − L_min)` in
 /// `0..2^30` (module doc).
 #[inline(always)]
 fn luminance_terms<const S: u32>(
