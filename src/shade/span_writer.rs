@@ -1,10 +1,13 @@
 //! Span writers: the per-pixel loops that turn a triangle's spans into framebuffer writes.
 //!
-//! Role in the pipeline: the last step of the raster stage. [`draw_triangle`] sets up the
-//! triangle's exact plane once (attribute 0 is depth, attribute 1 luminance), then for each
-//! span of the fill (`fill_triangle`, without its second range check) takes the exact values
-//! at the span start from it and runs one generic loop, `depth_span`: depth test (strict,
-//! nearer wins, see [`DepthValue`]), palette index from a `Shading`, two stores.
+//! Role in the pipeline: the last step of the raster stage. [`draw_triangle`] sets the
+//! triangle up once (`raster/setup.rs`: sorted vertices, twice-area, orientation, box, edges),
+//! decides its span kind once (`draw_in_range`, the one dispatch point), sets up the exact
+//! plane of the kind (attribute 0 is depth, attribute 1 luminance), then for each span of the
+//! fill (`fill_setup`, on the same set-up) takes the exact values at the span start from it
+//! and runs one generic loop, `depth_span`: depth test (strict, nearer wins, see
+//! [`DepthValue`]), palette index from a `Shading`, two stores. Phong's seven attributes are
+//! one more span kind of the same loop (`shade/phong.rs`, through `draw_general_exact`).
 //!
 //! Small triangles (bounding box below `2^K` sub-pixel units on both axes,
 //! `K =` `small_bits``(S)`: 64 pixels at `S = 4`) get a
