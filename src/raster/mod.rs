@@ -19,6 +19,7 @@ pub(crate) mod edge_walker;
 pub mod line;
 pub mod polygon;
 pub(crate) mod range;
+pub(crate) mod setup;
 pub mod triangle;
 
 pub use edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};

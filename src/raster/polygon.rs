@@ -152,44 +152,12 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
         window: &Window,
         mut emit: impl FnMut(Span),
     ) {
-        if window.is_empty() {
+        let Some(mut pending) = self.pending::<S>(window) else {
             return;
-        }
-        // Edges sorted by first row, both sides in one table with their winding direction.
-        let mut pending: Vec<(Edge, EdgeSide), MAX_EDGES> = Vec::new();
-        for (edges, side) in [(&self.left, EdgeSide::Left), (&self.right, EdgeSide::Right)] {
-            for e in edges.iter() {
-                let first = e.first_row::<S>().max(window.y0);
-                let end = e.end_row::<S>().min(window.y1);
-                if first < end {
-                    // Capacity holds: `build` checked left + right ≤ MAX_EDGES.
-                    let _ = pending.push((*e, side));
-                }
-            }
-        }
-        if pending.is_empty() {
-            return;
-        }
-        pending.sort_unstable_by_key(|(e, _)| core::cmp::Reverse(e.first_row::<S>()));
+        };
         let first_row = pending
             .last()
             .map_or(window.y0, |(e, _)| e.first_row::<S>().max(window.y0));
-
-        struct Active<W> {
-            walker: W,
-            end_row: i32,
-            side: EdgeSide,
-        }
-        impl<W: EdgeWalker> Active<W> {
-            /// The row's winding event position: `xG` for a left edge, `xD + 1` for a right one.
-            #[inline(always)]
-            fn key(&self) -> i32 {
-                match self.side {
-                    EdgeSide::Left => self.walker.x(),
-                    EdgeSide::Right => self.walker.x() + 1,
-                }
-            }
-        }
         // The active edges stay sorted by their event position from row to row: a row only
         // reorders edges that cross, so the insertion sort below costs O(n + crossings), and
         // it hands over to an O(n log n) sort when a row holds many inversions (many new or
@@ -214,11 +182,7 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
             sort_nearly_sorted(&mut active, Active::key);
             ends.clear();
             for a in active.iter() {
-                let ev = match a.side {
-                    EdgeSide::Left => (a.key(), 1),
-                    EdgeSide::Right => (a.key(), -1),
-                };
-                let _ = ends.push(ev);
+                let _ = ends.push((a.key(), a.winding()));
             }
             emit_row(y, &ends, window, &mut emit);
             // Step, retiring edges whose last row this was (keeping the others' order).
@@ -237,6 +201,58 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
                     y = y.max(e.first_row::<S>().max(window.y0));
                 }
             }
+        }
+    }
+
+    /// The edges that cover a row of `window`, both sides in one table with their winding
+    /// direction, sorted by first row, the first last; `None` when there are none (or the
+    /// window is empty).
+    fn pending<const S: u32>(&self, window: &Window) -> Option<Vec<(Edge, EdgeSide), MAX_EDGES>> {
+        if window.is_empty() {
+            return None;
+        }
+        let mut pending: Vec<(Edge, EdgeSide), MAX_EDGES> = Vec::new();
+        for (edges, side) in [(&self.left, EdgeSide::Left), (&self.right, EdgeSide::Right)] {
+            for e in edges.iter() {
+                let first = e.first_row::<S>().max(window.y0);
+                let end = e.end_row::<S>().min(window.y1);
+                if first < end {
+                    // Capacity holds: `build` checked left + right ≤ MAX_EDGES.
+                    let _ = pending.push((*e, side));
+                }
+            }
+        }
+        if pending.is_empty() {
+            return None;
+        }
+        pending.sort_unstable_by_key(|(e, _)| core::cmp::Reverse(e.first_row::<S>()));
+        Some(pending)
+    }
+}
+
+/// An edge of the fill's active table: its walker, the row past its last, its side.
+struct Active<W> {
+    walker: W,
+    end_row: i32,
+    side: EdgeSide,
+}
+
+impl<W: EdgeWalker> Active<W> {
+    /// The row's winding event position: `xG` for a left edge, `xD + 1` for a right one.
+    #[inline(always)]
+    fn key(&self) -> i32 {
+        match self.side {
+            EdgeSide::Left => self.walker.x(),
+            EdgeSide::Right => self.walker.x() + 1,
+        }
+    }
+
+    /// The winding change at [`Self::key`]: +1 for a left edge, −1 for a right one.
+    #[inline(always)]
+    fn winding(&self) -> i8 {
+        match self.side {
+            EdgeSide::Left => 1,
+            EdgeSide::Right => -1,
         }
     }
 }

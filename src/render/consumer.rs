@@ -17,16 +17,14 @@
 //! (I16F16), `attrs` a level (`0..=255` at prepared vertices, interpolated at clipped ones)
 //! or an observer-frame normal (Q15 components).
 
-use core::marker::PhantomData;
-
 use super::{PreparedVertex, RenderError};
 use crate::geometry::vector::Vec3;
 use crate::raster::SubpixelPoint;
 use crate::scene::Object;
 use crate::shade::dither::Bayer4;
-use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
+use crate::shade::phong::{draw_phong_on, PhongContext, PhongVertex};
 use crate::shade::span_writer::{draw_in_range, RasterTarget, WrittenCount};
-use crate::target::{DepthBuffer, DepthValue, Framebuffer};
+use crate::target::DepthValue;
 
 /// One triangle corner handed to a consumer: screen position, depth, observer-frame position
 /// and `N` attributes (a level, or a normal), from the vertex stage or the clipper.
@@ -105,21 +103,17 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 1>
 }
 
 /// The z-buffer consumer of Phong triangles: corners whose three attributes are the
-/// observer-frame normal, lit per pixel ([`draw_triangle_phong`]). `C` says whether written
-/// pixels are reported.
-pub(crate) struct PhongWriter<'a, 'f, 'd, D: DepthValue, C> {
-    /// The frame.
-    pub(crate) frame: &'a mut Framebuffer<'f>,
-    /// Its depth buffer.
-    pub(crate) depth: &'a mut DepthBuffer<'d, D>,
+/// observer-frame normal, lit per pixel ([`draw_phong_on`]), drawn at once into a
+/// [`RasterTarget`] prepared once per object.
+pub(crate) struct PhongWriter<'a, 't, D, C> {
+    /// The object's frame and depth buffer.
+    pub(crate) target: &'a mut RasterTarget<'t, D, C>,
     /// Lights, material, ramp and dither.
     pub(crate) context: PhongContext<'a>,
-    /// Whether written pixels are reported.
-    pub(crate) count: PhantomData<C>,
 }
 
 impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 3>
-    for PhongWriter<'_, '_, '_, D, C>
+    for PhongWriter<'_, '_, D, C>
 {
     #[inline(always)]
     fn triangle(&mut self, _: usize, c: [Corner<S, 3>; 3]) -> Result<(u32, u32), RenderError> {
@@ -130,9 +124,6 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 3>
             normal: Vec3::from_bits(c.attrs[0], c.attrs[1], c.attrs[2]),
         };
         let corners = [corner(&c[0]), corner(&c[1]), corner(&c[2])];
-        let (covered, written) =
-            draw_triangle_phong(self.frame, self.depth, corners, &self.context)
-                .map_err(RenderError::Draw)?;
-        Ok((covered, if C::COUNTS { written } else { 0 }))
+        draw_phong_on(self.target, corners, &self.context).map_err(RenderError::Draw)
     }
 }

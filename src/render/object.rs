@@ -2,7 +2,6 @@
 //! vertex or per polygon, or a normal for Phong) and which consumer draws its triangles.
 
 use core::cell::Cell;
-use core::marker::PhantomData;
 
 use super::consumer::{LevelWriter, PhongWriter, TriangleConsumer};
 use super::polygon_stage::PolygonStage;
@@ -72,6 +71,8 @@ impl<const S: u32> Renderer<S> {
             f.min(depth.top() + depth.height() as i32)
         });
         let stage = self.stage(object, prepared, rows, table);
+        // The buffers prepared once for the object.
+        let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
         if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
             (object.intensities, object.shade)
         {
@@ -86,16 +87,13 @@ impl<const S: u32> Renderer<S> {
                 let n = normals.get(i as usize).copied().unwrap_or(Vec3::ZERO);
                 model_view.transform_vector(n).bits()
             };
-            let writer = PhongWriter::<D, T::Count> {
-                frame,
-                depth,
+            let writer = PhongWriter {
+                target: &mut target,
                 context,
-                count: PhantomData,
             };
             return stage.run(stats, |_, poly, k, _| normal(poly[k]), writer);
         }
-        // Luminance triangles: the buffers prepared once for the object.
-        let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
+        // Luminance triangles.
         let writer = LevelWriter {
             target: &mut target,
             object,

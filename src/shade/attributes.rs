@@ -50,6 +50,7 @@
 
 use crate::arith::euclid::{div_floor_i64, Divisor, DivisorU32};
 use crate::arith::{HARDWARE_DIVIDE, WIDE_REGISTERS};
+use crate::raster::setup::TriangleSetup;
 use crate::raster::SubpixelPoint;
 use core::num::NonZeroU32;
 
@@ -338,19 +339,21 @@ pub struct AttributePlane<const N: usize, const S: u32> {
 }
 
 impl<const N: usize, const S: u32> AttributePlane<N, S> {
-    /// Sets up the plane of `values[i]` at vertex `v[i]`.
-    #[inline(always)]
+    /// Sets up the plane of `values[i]` at vertex `v[i]` (vertices within the raster's range).
+    #[cfg(test)]
     pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Result<Self, PlaneError> {
-        // The raster's range, on which the products below rely (|dx|, |dy| < 2^29).
-        debug_assert!(
-            v.iter()
-                .all(|p| p.x.unsigned_abs() < 1 << 28 && p.y.unsigned_abs() < 1 << 28),
-            "plane vertices outside ±(2^28 − 1)"
-        );
+        Self::of(&TriangleSetup::in_range(v), values)
+    }
+
+    /// The plane of `values[i]` at the given vertex `i` of set-up `t`.
+    #[inline(always)]
+    pub(crate) fn of(t: &TriangleSetup<S>, values: [[u32; N]; 3]) -> Result<Self, PlaneError> {
+        let v = t.given;
+        // The raster's range (the set-up's), on which the products below rely (|dx|, |dy| < 2^29).
         let (x0, y0) = (v[0].x as i64, v[0].y as i64);
         let (dx1, dy1) = (v[1].x as i64 - x0, v[1].y as i64 - y0);
         let (dx2, dy2) = (v[2].x as i64 - x0, v[2].y as i64 - y0);
-        let mut d = dx1 * dy2 - dy1 * dx2;
+        let mut d = t.given_twice_area();
         if d == 0 {
             return Err(PlaneError::Degenerate);
         }
@@ -554,18 +557,28 @@ pub struct SmallPlane<const N: usize, const S: u32> {
 }
 
 impl<const N: usize, const S: u32> SmallPlane<N, S> {
-    /// The plane of `values[i]` at vertex `v[i]`, or `None` when the bounding box is not below
-    /// `2^K` units on both axes ([`small_bits`]) or the triangle has zero area.
-    #[inline(always)]
+    /// The plane of `values[i]` at vertex `v[i]` (vertices within the raster's range), as
+    /// [`Self::of`].
+    #[cfg(test)]
     pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Option<Self> {
-        if !Self::fits(&v) {
+        Self::of(&TriangleSetup::in_range(v), values)
+    }
+
+    /// The plane of `values[i]` at the given vertex `i` of set-up `t`, or `None` when the
+    /// bounding box is not below `2^K` units on both axes ([`small_bits`]) or the triangle has
+    /// zero area.
+    #[inline(always)]
+    pub(crate) fn of(t: &TriangleSetup<S>, values: [[u32; N]; 3]) -> Option<Self> {
+        if !Self::fits(t) {
             return None;
         }
+        let v = t.given;
         let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
         let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
-        // |products| < 2^(2K): the box is below 2^K on both axes (`fits`).
+        // |2A| < 2^(2K): the box is below 2^K on both axes (`fits`), so the set-up's
+        // twice-area is its low 32 bits.
         debug_assert!(dx1.unsigned_abs().max(dy1.unsigned_abs()) < 1 << small_bits(S));
-        let cross = dx1 * dy2 - dy1 * dx2;
+        let cross = t.given_twice_area() as i32;
         let negative = cross < 0;
         let d = NonZeroU32::new(cross.unsigned_abs())?;
         // Every set-up division is by D: prepared once (a reciprocal where there is no divider).
@@ -613,21 +626,11 @@ impl<const N: usize, const S: u32> SmallPlane<N, S> {
         })
     }
 
-    /// True when the bounding box of `v` is below `2^K` units on both axes ([`small_bits`]):
-    /// the triangles [`SmallPlane::new`] accepts, if they have area.
+    /// True when the bounding box of set-up `t` is below `2^K` units on both axes
+    /// ([`small_bits`]): the triangles [`SmallPlane::of`] accepts, if they have area.
     #[inline(always)]
-    pub fn fits(v: &[SubpixelPoint<S>; 3]) -> bool {
-        let lim = 1i32 << small_bits(S);
-        let (dx1, dy1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
-        let (dx2, dy2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
-        // |δ| < 2^K for the three edges' differences: the bounding box is below 2^K.
-        let small = |t: i32| (t.wrapping_add(lim - 1) as u32) < (2 * lim - 1) as u32;
-        small(dx1)
-            && small(dx2)
-            && small(dx2.wrapping_sub(dx1))
-            && small(dy1)
-            && small(dy2)
-            && small(dy2.wrapping_sub(dy1))
+    pub(crate) fn fits(t: &TriangleSetup<S>) -> bool {
+        t.box_below(small_bits(S))
     }
 
     /// `(px, py) = (x·F − Cx, y·F − Cy)` for pixel `(x, y)`: in `0..=W`, `0..=H` when covered.
@@ -803,19 +806,22 @@ pub struct WidePlane<const N: usize, const S: u32> {
 }
 
 impl<const N: usize, const S: u32> WidePlane<N, S> {
-    /// Sets up the plane of `values[i]` at vertex `v[i]` (vertices within the raster's range);
-    /// [`PlaneError::Degenerate`] for a triangle of zero area, never `TooLarge`.
+    /// Sets up the plane of `values[i]` at vertex `v[i]` (vertices within the raster's range),
+    /// as [`Self::of`].
+    #[cfg(test)]
     pub fn new(v: [SubpixelPoint<S>; 3], values: [[u32; N]; 3]) -> Result<Self, PlaneError> {
-        debug_assert!(
-            v.iter()
-                .all(|p| p.x.unsigned_abs() < 1 << 28 && p.y.unsigned_abs() < 1 << 28),
-            "plane vertices outside ±(2^28 − 1)"
-        );
+        Self::of(&TriangleSetup::in_range(v), values)
+    }
+
+    /// The plane of `values[i]` at the given vertex `i` of set-up `t`;
+    /// [`PlaneError::Degenerate`] for a triangle of zero area, never `TooLarge`.
+    pub(crate) fn of(t: &TriangleSetup<S>, values: [[u32; N]; 3]) -> Result<Self, PlaneError> {
+        let v = t.given;
         let (x0, y0) = (v[0].x as i64, v[0].y as i64);
         let (dx1, dy1) = (v[1].x as i64 - x0, v[1].y as i64 - y0);
         let (dx2, dy2) = (v[2].x as i64 - x0, v[2].y as i64 - y0);
-        // Products below 2^58: exact in i64.
-        let cross = dx1 * dy2 - dy1 * dx2;
+        // The set-up's twice-area, below 2^59.
+        let cross = t.given_twice_area();
         if cross == 0 {
             return Err(PlaneError::Degenerate);
         }

@@ -25,14 +25,15 @@
 //!   triangle.
 //! - Lighting as [`lighting`](super::lighting): integer only.
 
-use super::attributes::{
-    AttributePlane, Interpolant, PlaneError, RowStarts, SpanStarts, WidePlane,
-};
+use super::attributes::{Interpolant, SpanStarts};
 use super::dither::Bayer4;
 use super::lighting::{unit_q15, Illumination, Material, ONE};
-use super::span_writer::{depth_span, DrawError, LuminanceRamp, Quantizer, Shading};
+use super::span_writer::{
+    depth_span, draw_general_exact, DrawError, LuminanceRamp, Quantizer, RasterTarget, Shading,
+    SpanKind, WrittenCount,
+};
 use crate::geometry::vector::Vec3;
-use crate::raster::triangle::fill_triangle_in_range;
+use crate::raster::setup::TriangleSetup;
 use crate::raster::SubpixelPoint;
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
@@ -123,7 +124,7 @@ fn corner_values<const S: u32>(v: &PhongVertex<S>) -> [u32; 7] {
 
 /// Draws a depth-tested, Phong-shaded triangle. Pixels, bands and the return value
 /// `(covered, written)` as [`draw_triangle`](super::span_writer::draw_triangle): vertices
-/// outside the raster's range are [`DrawError::Fill`] (checked once, before the plane), any
+/// outside the raster's range are [`DrawError::Fill`] (checked once, by the set-up), any
 /// triangle within it is drawn (one too large for the `AttributePlane` through the
 /// `WidePlane`, out of line).
 pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
@@ -132,66 +133,50 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
     corners: [PhongVertex<S>; 3],
     ctx: &PhongContext<'_>,
 ) -> Result<(u32, u32), DrawError> {
-    let v = corners.map(|c| c.screen);
-    crate::raster::range::check_range(&v).map_err(DrawError::Fill)?;
+    draw_phong_on(&mut RasterTarget::new(frame, depth), corners, ctx)
+}
+
+/// [`draw_triangle_phong`] into a prepared [`RasterTarget`] (the renderer's form: one target
+/// per object and band), counting written pixels as the target says.
+pub(crate) fn draw_phong_on<D: DepthValue, C: WrittenCount, const S: u32>(
+    target: &mut RasterTarget<'_, D, C>,
+    corners: [PhongVertex<S>; 3],
+    ctx: &PhongContext<'_>,
+) -> Result<(u32, u32), DrawError> {
+    let t = TriangleSetup::new(corners.map(|c| c.screen)).map_err(DrawError::Fill)?;
     // Depths clamp to the deepest value that stores below FAR (target::depth's module doc).
     let values = corners.map(|c| {
         let mut a = corner_values(&c);
         a[0] = a[0].min(D::MAX_DEPTH32);
         a
     });
-    let plane = match AttributePlane::<7, S>::new(v, values) {
-        Ok(p) => p,
-        Err(PlaneError::Degenerate) => return Ok((0, 0)),
-        Err(PlaneError::TooLarge) => return Ok(draw_wide(frame, depth, v, values, ctx)),
-    };
-    Ok(draw_spans(frame, depth, v, RowStarts::new(&plane), ctx))
+    Ok(draw_general_exact(target, &t, values, PhongKind(ctx)))
 }
 
-/// [`draw_triangle_phong`] for a triangle too large for the [`AttributePlane`]: the
-/// [`WidePlane`], out of line so that the common triangles' path stays as it was.
-#[cold]
-#[inline(never)]
-fn draw_wide<D: DepthValue, const S: u32>(
-    frame: &mut Framebuffer<'_>,
-    depth: &mut DepthBuffer<'_, D>,
-    v: [SubpixelPoint<S>; 3],
-    values: [[u32; 7]; 3],
-    ctx: &PhongContext<'_>,
-) -> (u32, u32) {
-    match WidePlane::<7, S>::new(v, values) {
-        Ok(plane) => draw_spans(frame, depth, v, plane, ctx),
-        Err(_) => (0, 0), // zero area: covers nothing
-    }
-}
+/// Phong's span kind: depth, and the normal and position lit at every pixel (7 exact
+/// attributes), through the ramp or dithered.
+struct PhongKind<'c, 'a>(&'c PhongContext<'a>);
 
-/// The span loop of [`draw_triangle_phong`] over the exact starts `starts` (vertices in range).
-#[inline(always)]
-fn draw_spans<D: DepthValue, St: SpanStarts<7>, const S: u32>(
-    frame: &mut Framebuffer<'_>,
-    depth: &mut DepthBuffer<'_, D>,
-    v: [SubpixelPoint<S>; 3],
-    mut starts: St,
-    ctx: &PhongContext<'_>,
-) -> (u32, u32) {
-    let window = super::span_writer::drawable_window(frame, depth);
-    let (mut covered, mut written) = (0u32, 0u32);
-    fill_triangle_in_range(v, &window, |s| {
-        let (x0, x1) = (s.x0 as usize, s.x1 as usize);
-        covered += (x1 - x0) as u32;
-        let (Some(c), Some(z)) = (frame.span_mut(s.y, x0, x1), depth.span_mut(s.y, x0, x1)) else {
-            return;
-        };
-        let e = starts.exact_at(s.x0, s.y);
-        let attrs = [e[1], e[2], e[3], e[4], e[5], e[6]];
-        written += if ctx.dither {
+impl SpanKind<7> for PhongKind<'_, '_> {
+    #[inline(always)]
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<7>, C: WrittenCount>(
+        &self,
+        colours: &mut [u8],
+        depths: &mut [D],
+        [z, attrs @ ..]: [I; 7],
+        _: &St,
+        (x, y): (i32, i32),
+        count: C,
+    ) -> u32 {
+        let ctx = self.0;
+        if ctx.dither {
             let sh = PhongShading {
                 attrs,
                 illumination: ctx.illumination,
                 material: ctx.material,
-                quantizer: Bayer4::at(ctx.ramp, s.x0, s.y),
+                quantizer: Bayer4::at(ctx.ramp, x, y),
             };
-            depth_span(c, z, e[0], sh)
+            depth_span(colours, depths, z, sh, count)
         } else {
             let sh = PhongShading {
                 attrs,
@@ -199,10 +184,9 @@ fn draw_spans<D: DepthValue, St: SpanStarts<7>, const S: u32>(
                 material: ctx.material,
                 quantizer: ctx.ramp,
             };
-            depth_span(c, z, e[0], sh)
-        };
-    });
-    (covered, written)
+            depth_span(colours, depths, z, sh, count)
+        }
+    }
 }
 
 #[cfg(test)]

@@ -211,20 +211,10 @@ impl WrittenCount for SkipWritten {
 
 /// Writes one span with a depth test: every pixel of `colours`/`depths` (two row slices of
 /// equal length, the span's pixels), with depth `z` and colour `shading` at the first pixel.
-/// Returns the number of pixels written (that passed the test).
+/// Returns the number of pixels written (that passed the test), counted as `C` says (0 when
+/// it does not count).
 #[inline(always)]
-pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading>(
-    colours: &mut [u8],
-    depths: &mut [D],
-    z: Z,
-    shading: Sh,
-) -> u32 {
-    depth_span_with(colours, depths, z, shading, CountWritten)
-}
-
-/// [`depth_span`], counting written pixels or not as `C` says (returns 0 when it does not).
-#[inline(always)]
-pub fn depth_span_with<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
+pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
     colours: &mut [u8],
     depths: &mut [D],
     mut z: Z,

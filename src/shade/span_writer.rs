@@ -1,10 +1,13 @@
 //! Span writers: the per-pixel loops that turn a triangle's spans into framebuffer writes.
 //!
-//! Role in the pipeline: the last step of the raster stage. [`draw_triangle`] sets up the
-//! triangle's exact plane once (attribute 0 is depth, attribute 1 luminance), then for each
-//! span of the fill (`fill_triangle`, without its second range check) takes the exact values
-//! at the span start from it and runs one generic loop, `depth_span`: depth test (strict,
-//! nearer wins, see [`DepthValue`]), palette index from a `Shading`, two stores.
+//! Role in the pipeline: the last step of the raster stage. [`draw_triangle`] sets the
+//! triangle up once (`raster/setup.rs`: sorted vertices, twice-area, orientation, box, edges),
+//! decides its span kind once (`draw_in_range`, the one dispatch point), sets up the exact
+//! plane of the kind (attribute 0 is depth, attribute 1 luminance), then for each span of the
+//! fill (`fill_setup`, on the same set-up) takes the exact values at the span start from it
+//! and runs one generic loop, `depth_span`: depth test (strict, nearer wins, see
+//! [`DepthValue`]), palette index from a `Shading`, two stores. Phong's seven attributes are
+//! one more span kind of the same loop (`shade/phong.rs`, through `draw_general_exact`).
 //!
 //! Small triangles (bounding box below `2^K` sub-pixel units on both axes,
 //! `K =` `small_bits``(S)`: 64 pixels at `S = 4`) get a
@@ -35,8 +38,7 @@ use super::attributes::{
 };
 pub use super::span::LuminanceRamp;
 pub(crate) use super::span::{
-    depth_span, depth_span_with, CountWritten, Gouraud, Quantizer, Shading, SkipWritten,
-    WrittenCount,
+    depth_span, CountWritten, Gouraud, Quantizer, Shading, SkipWritten, WrittenCount,
 };
 use super::span::{Direct, InRange, Targets};
 use super::tiny_triangle::TinyTriangle;
@@ -44,7 +46,8 @@ use crate::arith::euclid::Divisor;
 use crate::arith::TINY_WRITER;
 use crate::raster::polygon::FillError;
 use crate::raster::range::check_range;
-use crate::raster::triangle::{bounds, fill_triangle_in_range};
+use crate::raster::setup::TriangleSetup;
+use crate::raster::triangle::fill_setup;
 use crate::raster::{SubpixelPoint, Window};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
@@ -302,7 +305,8 @@ pub(crate) fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, con
 }
 
 /// [`draw_in_range`] for a triangle with a vertex depth above [`DepthValue::MAX_DEPTH32`]: the
-/// depths clamped to it, then drawn as any other.
+/// depths clamped to it, then drawn as any other (set up again: rare, and one body of the
+/// writer kept).
 #[cold]
 #[inline(never)]
 fn draw_clamped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
@@ -318,8 +322,12 @@ fn draw_clamped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
 
 /// [`draw_triangle_on`] for vertices already within the raster's range: the renderer's
 /// consumers call it with projected vertices, which the projector keeps within
-/// `±(2^28 − 1)` (checked there once per vertex, asserted here in checked builds). Cannot
-/// fail: every triangle of the range is drawn.
+/// `±(2^28 − 1)` (checked there once per vertex, asserted by the set-up in checked builds).
+/// Cannot fail: every triangle of the range is drawn.
+///
+/// The one place that decides which path draws a triangle: its set-up, the span kind
+/// ([`span_kind`]), the tiny writer where it applies ([`tiny_kind`], [`draw_tiny`]), else
+/// the plane of the kind ([`draw_general`]).
 pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
     v: [SubpixelPoint<S>; 3],
@@ -327,10 +335,6 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
     mode: ShadeMode,
     quantizer_at: impl Fn(i32, i32) -> Q,
 ) -> (u32, u32) {
-    debug_assert!(
-        check_range(&v).is_ok(),
-        "vertices outside the raster's range"
-    );
     // Depths clamp to the deepest value that stores below FAR, so a surface just before `far`
     // still wins against the clear (target::depth's module doc). Rare, so out of line: three
     // clamped values kept in this writer took registers from its span loops (Cortex-M4
@@ -338,59 +342,93 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
     if values.iter().any(|[z, _]| *z > D::MAX_DEPTH32) {
         return draw_clamped(target, v, values, mode, quantizer_at);
     }
-    let window = target.window;
+    let t = TriangleSetup::in_range(v);
     // Luminances above 255 saturate at the vertices: every interpolated value then lies in
     // 0..=255, which the span loops rely on ([`InRange`]).
     let values = values.map(|[z, l]| [z, l.min(255)]);
     // A plane is flat exactly when its vertex values are equal (the triangle has area).
     let constant = |i: usize| values[0][i] == values[1][i] && values[0][i] == values[2][i];
-    let flat_lum = || {
-        if constant(1) {
-            values[0][1]
-        } else {
-            (values[0][1] + values[1][1] + values[2][1] + 1) / 3
-        }
-    };
     // The depth plane's flatness matters only for a flat luminance (`span_kind`): tested
-    // there alone, as before the plan, so that Gouraud triangles do not pay its four compares.
+    // there alone, so that Gouraud triangles do not pay its four compares.
     let luminance_constant = constant(1);
     let depth_constant = (luminance_constant || mode == ShadeMode::Flat) && constant(0);
     let kind = span_kind(mode, depth_constant, luminance_constant);
     if TINY_WRITER && kind.may_take_tiny() {
-        let first = quantizer_at(v[0].x >> S, v[0].y >> S).offset();
-        match tiny_kind(kind, first.is_some()) {
-            Tiny::Direct => {
-                let first = first.unwrap_or(0) as u32;
-                let lum = |l: u32| if kind == Kind::Flat { flat_lum() } else { l } + first;
-                let values = values.map(|[z, l]| [z, lum(l)]);
-                if let Some(t) = TinyTriangle::<S>::new(v, values, &window) {
-                    return t.draw(&mut target.targets, target.count, &|_, _| Direct);
-                }
-            }
-            Tiny::Mapped => {
-                if let Some(drawn) = tiny_mapped(target, v, values, &quantizer_at) {
-                    return drawn;
-                }
-            }
-            Tiny::No => {}
+        if let Some(drawn) = draw_tiny(target, &t, values, kind, &quantizer_at) {
+            return drawn;
         }
     }
     // (After the tiny writer, which tests the columns itself and clips the rows.)
-    if !bounds_meet(&v, &window) {
+    if !bounds_meet(&t, &target.window) {
         return (0, 0);
     }
+    draw_general(target, &t, values, kind, quantizer_at)
+}
+
+/// The luminance of a flat triangle: the vertices' one value, or their rounded mean.
+#[inline(always)]
+fn flat_luminance(values: &[[u32; 2]; 3]) -> u32 {
+    let l = values.map(|[_, l]| l);
+    if l[0] == l[1] && l[0] == l[2] {
+        l[0]
+    } else {
+        (l[0] + l[1] + l[2] + 1) / 3
+    }
+}
+
+/// The tiny-triangle writer for a kind that may take it, as [`tiny_kind`] says, or `None`
+/// where it does not apply (the general path draws the triangle then).
+#[inline(always)]
+fn draw_tiny<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
+    target: &mut RasterTarget<'_, D, C>,
+    t: &TriangleSetup<S>,
+    values: [[u32; 2]; 3],
+    kind: Kind,
+    quantizer_at: &impl Fn(i32, i32) -> Q,
+) -> Option<(u32, u32)> {
+    let v0 = t.given[0];
+    let first = quantizer_at(v0.x >> S, v0.y >> S).offset();
+    match tiny_kind(kind, first.is_some()) {
+        Tiny::Direct => {
+            let first = first.unwrap_or(0) as u32;
+            let lum = |l: u32| {
+                if kind == Kind::Flat {
+                    flat_luminance(&values)
+                } else {
+                    l
+                }
+            } + first;
+            let values = values.map(|[z, l]| [z, lum(l)]);
+            let tiny = TinyTriangle::<S>::new(t, values, &target.window)?;
+            Some(tiny.draw(&mut target.targets, target.count, &|_, _| Direct))
+        }
+        Tiny::Mapped => tiny_mapped(target, *t, values, quantizer_at),
+        Tiny::No => None,
+    }
+}
+
+/// The general path of [`draw_in_range`]: the span loop of `kind` over the fill, with the plane
+/// the kind needs.
+#[inline(always)]
+fn draw_general<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
+    target: &mut RasterTarget<'_, D, C>,
+    t: &TriangleSetup<S>,
+    values: [[u32; 2]; 3],
+    kind: Kind,
+    quantizer_at: impl Fn(i32, i32) -> Q,
+) -> (u32, u32) {
     let spans = TriangleSpans {
-        v,
-        window,
+        t: *t,
+        window: target.window,
         targets: &mut target.targets,
         count: target.count,
     };
     match kind {
-        Kind::Constant => spans.constant(values[0][0], flat_lum(), quantizer_at),
+        Kind::Constant => spans.constant(values[0][0], flat_luminance(&values), quantizer_at),
         Kind::Flat => spans.planar(
             values.map(|a| [a[0]]),
             FlatKind {
-                luminance: Constant(flat_lum()),
+                luminance: Constant(flat_luminance(&values)),
                 quantizer_at,
             },
         ),
@@ -398,7 +436,8 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
             // A 256-level ramp adds its first index: interpolating `first + lum` gives the
             // same values shifted (exact rounding and the 16.16 start commute with adding an
             // integer), and the loops store them as they are, with two fewer live values.
-            if let Some(first) = quantizer_at(v[0].x >> S, v[0].y >> S).offset() {
+            let v0 = t.given[0];
+            if let Some(first) = quantizer_at(v0.x >> S, v0.y >> S).offset() {
                 let values = values.map(|[z, l]| [z, l + first as u32]);
                 return match kind {
                     Kind::Fast => spans.planar(values, FastKind(|_, _| Direct)),
@@ -413,19 +452,45 @@ pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const 
     }
 }
 
+/// Triangle `t` with the `N` vertex attributes `values` (attribute 0 the depth, at most
+/// [`DepthValue::MAX_DEPTH32`]) drawn by span kind `kind` over the general or wide plane, each
+/// span started exactly ([`Exact`]): the writer of kinds whose every attribute is
+/// interpolated per pixel (Phong's seven).
+#[inline(always)]
+pub(crate) fn draw_general_exact<
+    D: DepthValue,
+    C: WrittenCount,
+    K: SpanKind<N>,
+    const N: usize,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C>,
+    t: &TriangleSetup<S>,
+    values: [[u32; N]; 3],
+    kind: K,
+) -> (u32, u32) {
+    let spans = TriangleSpans {
+        t: *t,
+        window: target.window,
+        targets: &mut target.targets,
+        count: target.count,
+    };
+    spans.general(values, kind, false)
+}
+
 /// The tiny-triangle writer for luminances of `0..=255` mapped by `quantizer_at` (a ramp of
 /// fewer than 256 levels, or dithered), or `None` where it does not apply. Out of line: a
-/// second set-up inlined into [`draw_triangle_on`] cost its 256-level path registers
+/// second set-up inlined into [`draw_in_range`] cost its 256-level path registers
 /// (measured on the Cortex-M4: the standard bunny frame +1.4 %).
 #[inline(never)]
 fn tiny_mapped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
     target: &mut RasterTarget<'_, D, C>,
-    v: [SubpixelPoint<S>; 3],
+    t: TriangleSetup<S>,
     values: [[u32; 2]; 3],
     quantizer_at: &impl Fn(i32, i32) -> Q,
 ) -> Option<(u32, u32)> {
-    let t = TinyTriangle::<S>::new(v, values, &target.window)?;
-    Some(t.draw(&mut target.targets, target.count, quantizer_at))
+    let tiny = TinyTriangle::<S>::new(&t, values, &target.window)?;
+    Some(tiny.draw(&mut target.targets, target.count, quantizer_at))
 }
 
 /// Bounding-box width (pixels) from which a triangle's spans use [`ExactRun`].
@@ -470,8 +535,10 @@ impl FromExact<Exact> for ExactRunFrom {
 }
 
 /// What one span of a triangle writes, given its `N` exact interpolants at the span start:
-/// chosen once per triangle, so the span loop holds one kind only.
-trait SpanKind<const N: usize> {
+/// chosen once per triangle, so the span loop holds one kind only. The kinds: constant depth
+/// and colour (no plane: [`TriangleSpans::constant`]), [`FlatKind`], [`ExactKind`],
+/// [`FastKind`] here, and Phong's (`shade/phong.rs`).
+pub(crate) trait SpanKind<const N: usize> {
     /// Writes the span (`colours`, `depths`: its pixels) starting at pixel `(x, y)`; `attrs[0]`
     /// is the depth. Returns the pixels written (0 when `count` does not count them).
     fn write<D: DepthValue, I: Interpolant, St: SpanStarts<N>, C: WrittenCount>(
@@ -506,7 +573,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<1> for FlatKind<QF> {
             luminance: self.luminance,
             quantizer: (self.quantizer_at)(x, y),
         };
-        depth_span_with(colours, depths, z, shading, count)
+        depth_span(colours, depths, z, shading, count)
     }
 }
 
@@ -528,7 +595,7 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for ExactKind<QF> {
             luminance,
             quantizer: (self.0)(x, y),
         };
-        depth_span_with(colours, depths, z, shading, count)
+        depth_span(colours, depths, z, shading, count)
     }
 }
 
@@ -553,13 +620,18 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
             luminance: starts.dda_at(1, x, y),
             quantizer: (self.0)(x, y),
         };
-        depth_span_with(colours, depths, z, shading, count)
+        depth_span(colours, depths, z, shading, count)
     }
 }
 
 /// One triangle's span drawing, set up (see [`draw_triangle_quantized`]).
+///
+/// The set-up is held by value, like every argument of an out-of-line callee
+/// (`TriangleSpans::wide`, `tiny_mapped`): a reference would keep the whole set-up in memory
+/// on every path (Cortex-M4 `frame_bunny` +3.8 %, measured), a copy is made only on the
+/// path that calls.
 struct TriangleSpans<'a, 't, D, C, const S: u32> {
-    v: [SubpixelPoint<S>; 3],
+    t: TriangleSetup<S>,
     window: Window,
     targets: &'a mut Targets<'t, D>,
     count: C,
@@ -577,7 +649,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
     ) -> (u32, u32) {
         let (mut covered, mut written) = (0u32, 0u32);
         let targets = &mut *self.targets;
-        fill_triangle_in_range(self.v, &self.window, |s| {
+        fill_setup(&self.t, &self.window, |s| {
             covered += s.x1.wrapping_sub(s.x0) as u32;
             let Some((c, zs)) = targets.span(&s) else {
                 return;
@@ -586,7 +658,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
                 luminance: Constant(lum),
                 quantizer: quantizer_at(s.x0, s.y),
             };
-            written += depth_span_with(c, zs, Constant(z), shading, self.count);
+            written += depth_span(c, zs, Constant(z), shading, self.count);
         });
         (covered, written)
     }
@@ -597,22 +669,32 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
     fn planar<K: SpanKind<N>, const N: usize>(self, values: [[u32; N]; 3], kind: K) -> (u32, u32) {
         // Small planes step plain Exact values: their spans are short, and ExactRun starts
         // (a 64-bit division each) measured dearer on the Cortex-M4 (standard sphere +10 %).
-        if let Some(small) = SmallPlane::<N, S>::new(self.v, values) {
+        if let Some(small) = SmallPlane::<N, S>::of(&self.t, values) {
             return self.run::<Exact, _, K, N>(small, kind);
         }
-        let plane = match AttributePlane::<N, S>::new(self.v, values) {
+        self.general(values, kind, true)
+    }
+
+    /// [`Self::planar`] without the small plane: the general plane (its span starts
+    /// [`ExactRun`]s for mid-width triangles when `runs`), or the wide one.
+    #[inline(always)]
+    fn general<K: SpanKind<N>, const N: usize>(
+        self,
+        values: [[u32; N]; 3],
+        kind: K,
+        runs: bool,
+    ) -> (u32, u32) {
+        let plane = match AttributePlane::<N, S>::of(&self.t, values) {
             Ok(p) => p,
             Err(PlaneError::Degenerate) => return (0, 0),
             Err(PlaneError::TooLarge) => return self.wide(values, kind),
         };
         // The longest span is at most the bounding box's width in pixels plus one.
-        let xs = self.v.map(|p| p.x);
-        let width =
-            ((xs.iter().max().unwrap_or(&0) - xs.iter().min().unwrap_or(&0)) >> S) as u32 + 2;
+        let width = ((self.t.x[1] - self.t.x[0]) >> S) as u32 + 2;
         // ExactRun costs a 64-bit division per span start and saves ~6 instructions per pixel.
         // Threshold measured with callgrind on the standard cube, sphere and bunny (4, 16, 32 and
         // never tried; 16 was best on all three), when every triangle took the general plane.
-        if (MIN_RUN_WIDTH..=plane.run_limit()).contains(&width) {
+        if runs && (MIN_RUN_WIDTH..=plane.run_limit()).contains(&width) {
             self.run::<ExactRunFrom, _, K, N>(RowStarts::new(&plane), kind)
         } else {
             self.run::<Exact, _, K, N>(RowStarts::new(&plane), kind)
@@ -624,7 +706,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
     #[cold]
     #[inline(never)]
     fn wide<K: SpanKind<N>, const N: usize>(self, values: [[u32; N]; 3], kind: K) -> (u32, u32) {
-        match WidePlane::<N, S>::new(self.v, values) {
+        match WidePlane::<N, S>::of(&self.t, values) {
             Ok(plane) => self.run::<ExactWide, _, K, N>(plane, kind),
             Err(_) => (0, 0), // zero area: covers nothing
         }
@@ -641,7 +723,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S
         let (mut covered, mut written) = (0u32, 0u32);
         let mut per_triangle: Option<[F; N]> = None;
         let targets = &mut *self.targets;
-        fill_triangle_in_range(self.v, &self.window, |s| {
+        fill_setup(&self.t, &self.window, |s| {
             covered += s.x1.wrapping_sub(s.x0) as u32;
             let Some((c, z)) = targets.span(&s) else {
                 return;
@@ -669,10 +751,10 @@ pub(crate) fn drawable_window<D: DepthValue>(
     ))
 }
 
-/// True when the bounding box of `v` (rounded outward to pixels) meets `window`.
+/// True when the bounding box of `t` (rounded outward to pixels) meets `window`.
 #[inline(always)]
-fn bounds_meet<const S: u32>(v: &[SubpixelPoint<S>; 3], window: &Window) -> bool {
-    let ([x_lo, x_hi], [y_lo, y_hi]) = bounds(v);
+fn bounds_meet<const S: u32>(t: &TriangleSetup<S>, window: &Window) -> bool {
+    let ([x_lo, x_hi], [y_lo, y_hi]) = (t.x, t.y);
     (x_hi >> S) >= window.x0
         && (x_lo >> S) < window.x1
         && (y_hi >> S) >= window.y0
@@ -682,6 +764,7 @@ fn bounds_meet<const S: u32>(v: &[SubpixelPoint<S>; 3], window: &Window) -> bool
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::MAX_COORD;
 
     fn p(x: i32, y: i32) -> SubpixelPoint<4> {
         SubpixelPoint::from_pixel(x, y)
@@ -728,13 +811,12 @@ mod tests {
             let mut fb = Framebuffer::band(&mut px[..n], TW as u16, height, top).unwrap();
             let mut zb = DepthBuffer::band(&mut zs[..n], TW as u16, height, top).unwrap();
             let mut target = RasterTarget::new(&mut fb, &mut zb);
+            let t = TriangleSetup::in_range(v);
             let counts = if tiny {
-                let window = target.window;
-                TinyTriangle::<S>::new(v, values, &window)
-                    .map(|t| t.draw(&mut target.targets, target.count, &quantizer_at))
+                tiny_mapped(&mut target, t, values, &quantizer_at)
             } else {
                 let spans = TriangleSpans {
-                    v,
+                    t,
                     window: target.window,
                     targets: &mut target.targets,
                     count: target.count,
@@ -990,17 +1072,19 @@ mod tests {
         ] {
             assert_eq!(tiny_vs_general(flat, ends, &init), Some((0, 0)));
         }
-        // Differences that wrap 32 bits are not small boxes.
-        let huge = [q(i32::MIN, 16), q(i32::MAX, 16), q(0, 40)];
+        // The widest box of the raster's range (2^29 units) is not a small box.
+        let huge = [q(-MAX_COORD, 16), q(MAX_COORD, 16), q(0, 40)];
         let window = Window::new(0, 0, TW as i32, TH as i32);
-        assert!(TinyTriangle::<4>::new(huge, ends, &window).is_none());
+        let t = TriangleSetup::in_range(huge);
+        assert!(TinyTriangle::<4>::new(&t, ends, &window).is_none());
         // S + K > 19: never taken.
         let v12 = [
             SubpixelPoint::<12>::new(0, 0),
             SubpixelPoint::<12>::new(3000, 0),
             SubpixelPoint::<12>::new(0, 3000),
         ];
-        assert!(TinyTriangle::<12>::new(v12, ends, &window).is_none());
+        let t = TriangleSetup::in_range(v12);
+        assert!(TinyTriangle::<12>::new(&t, ends, &window).is_none());
     }
 
     /// A [`SkipWritten`] target draws exactly what a counting one draws, covers the same

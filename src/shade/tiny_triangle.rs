@@ -2,7 +2,7 @@
 //!
 //! Role in the pipeline: a fast path of the span writers
 //! ([`draw_triangle_on`](super::span_writer::draw_triangle_on)), between the projected
-//! triangle and the per-pixel loop ([`depth_span_with`]). It draws exactly what the general
+//! triangle and the per-pixel loop ([`depth_span`]). It draws exactly what the general
 //! path (the [`fill_triangle`](crate::raster::triangle::fill_triangle) walkers feeding a
 //! [`SmallPlane`](super::attributes::SmallPlane)) draws: the same pixels, depths and
 //! luminances, and the same covered and written counts (tested on random triangles against
@@ -52,9 +52,9 @@
 //! - Both attributes round half up, `A0 + ⌊(2M + D) / 2D⌋`, as [`Exact`] everywhere.
 
 use super::attributes::{small_bits, Exact};
-use super::span::{depth_span_with, in_range, Quantizer, Targets, WrittenCount};
+use super::span::{depth_span, in_range, Quantizer, Targets, WrittenCount};
 use crate::arith::euclid::div_floor_i32;
-use crate::raster::triangle::bounds;
+use crate::raster::setup::TriangleSetup;
 use crate::raster::{SubpixelPoint, Window};
 use crate::target::DepthValue;
 use core::num::NonZeroU32;
@@ -112,53 +112,34 @@ fn div_floor(n: i32, d: u32) -> (u32, u32) {
 }
 
 impl<const S: u32> TinyTriangle<S> {
-    /// The set-up of triangle `v` with `values[i] = [depth, luminance]` at `v[i]`
-    /// (luminance `0..=510`), or `None` when the writer does not apply (see the module doc).
-    /// A triangle of zero area draws nothing.
+    /// The tiny writer's form of set-up `t` with `values[i] = [depth, luminance]` at the given
+    /// vertex `i` (luminance `0..=510`), or `None` when the writer does not apply (see the
+    /// module doc). A triangle of zero area draws nothing.
     #[inline(always)]
     pub(crate) fn new(
-        v: [SubpixelPoint<S>; 3],
+        t: &TriangleSetup<S>,
         values: [[u32; 2]; 3],
         window: &Window,
     ) -> Option<Self> {
-        if S + small_bits(S) > 19 {
+        if S + small_bits(S) > 19 || !t.box_below(small_bits(S)) {
             return None;
         }
-        let lim = 1u32 << small_bits(S);
-        let ([x_lo, x_hi], [y_lo, y_hi]) = bounds(&v);
-        // Unsigned: the true difference of `hi ≥ lo` is below 2^32.
-        if x_hi.wrapping_sub(x_lo) as u32 >= lim
-            || y_hi.wrapping_sub(y_lo) as u32 >= lim
-            || (x_lo >> S) < window.x0
-            || (x_hi >> S) >= window.x1
-        {
+        let ([x_lo, x_hi], [y_lo, _]) = (t.x, t.y);
+        if (x_lo >> S) < window.x0 || (x_hi >> S) >= window.x1 {
             return None;
         }
         let (ox, oy) = (x_lo >> S, y_lo >> S);
-        // Local sub-pixel coordinates from the pixel-aligned origin: 0..2^K + F.
-        let p = v.map(|p| (p.x - (ox << S), p.y - (oy << S)));
-        // Sort by row, carrying the values (selects, no memory).
-        let t = [0, 1, 2].map(|i| (p[i], values[i]));
-        type V = ((i32, i32), [u32; 2]);
-        let order = |u: V, w: V| if w.0 .1 < u.0 .1 { (w, u) } else { (u, w) };
-        let (t0, t1) = order(t[0], t[1]);
-        let (t1, t2) = order(t1, t[2]);
-        let (t0, t1) = order(t0, t1);
-        let p = [t0.0, t1.0, t2.0];
-        let values = [t0.1, t1.1, t2.1];
-        let [a, b, c] = p;
-        // Twice the signed area.
-        let (dx1, dy1) = (p[1].0 - p[0].0, p[1].1 - p[0].1);
-        let (dx2, dy2) = (p[2].0 - p[0].0, p[2].1 - p[0].1);
-        let cross = dx1 * dy2 - dy1 * dx2;
+        // Local sub-pixel coordinates from the pixel-aligned origin (0..2^K + F). The planes
+        // take the vertices in the given order, with their values (the exact values do not
+        // depend on the order, and the values need no sort); the edges the sorted ones.
+        let local = |q: SubpixelPoint<S>| (q.x - (ox << S), q.y - (oy << S));
+        let p = t.given.map(local);
+        // |2A| < 2^(2K) (the box is below 2^K): the set-up's twice-area is its low 32 bits.
+        let cross = t.given_twice_area() as i32;
         let d = cross.unsigned_abs();
-        let two_d = 2 * d;
-        let neg = cross < 0;
-        // Depth: A_i − A_min = D·Q_i + R_i; gx = Σ (A_i − A_min)·(Y_{i+1} − Y_{i+2}) (signed
-        // by the orientation), gy = Σ (A_i − A_min)·(X_{i+2} − X_{i+1}).
-        let z = values.map(|a| a[0]);
-        let z_min = z[0].min(z[1]).min(z[2]);
-        let (ey, ex) = if neg {
+        // Per vertex, the factors of the gradients: gx = Σ A_i·ey_i, gy = Σ A_i·ex_i, signed by
+        // the orientation, so that the gradients are those of `2M` over the positive `2D`.
+        let (ey, ex) = if cross < 0 {
             (
                 [p[2].1 - p[1].1, p[0].1 - p[2].1, p[1].1 - p[0].1],
                 [p[1].0 - p[2].0, p[2].0 - p[0].0, p[0].0 - p[1].0],
@@ -172,98 +153,24 @@ impl<const S: u32> TinyTriangle<S> {
         if d == 0 {
             return Some(TinyTriangle::EMPTY);
         }
-        let mut gq = 0u32;
-        let mut gr = 0i32;
-        let mut hq = 0u32;
-        let mut hr = 0i32;
-        for i in 0..3 {
-            let a = z[i] - z_min;
-            let (q, r) = (a / d, a % d);
-            gq = gq.wrapping_add(q.wrapping_mul(ey[i] as u32));
-            hq = hq.wrapping_add(q.wrapping_mul(ex[i] as u32));
-            // One of the three R is 0 (the vertex of least depth): |Σ R·e| < 2·D·2^K.
-            gr = gr.wrapping_add((r as i32).wrapping_mul(ey[i]));
-            hr = hr.wrapping_add((r as i32).wrapping_mul(ex[i]));
-        }
-        let (g1, g0) = div_floor(gr, d);
-        let (h1, h0) = div_floor(hr, d);
-        let (g1, h1) = (gq.wrapping_add(g1), hq.wrapping_add(h1));
-        // Corner C = (min x, min y) of the vertices (local); offsets from vertex 0.
-        let (cxl, cyl) = (x_lo - (ox << S), y_lo - (oy << S));
-        let (cx, cy) = (cxl - p[0].0, cyl - p[0].1);
-        let e = (g0 as i32)
-            .wrapping_mul(cx)
-            .wrapping_add((h0 as i32).wrapping_mul(cy));
-        let (c1, c0) = div_floor(e, d);
-        let base = z[0]
-            .wrapping_add(g1.wrapping_mul(cx as u32))
-            .wrapping_add(h1.wrapping_mul(cy as u32))
-            .wrapping_add(c1);
-        let fg0 = g0 << S;
-        let z_step = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
-        // Luminance: T = 2M + D + 2D·(L0 − Lmin) in 0..2^30.
-        let l = values.map(|a| a[1] as i32);
-        let l_min = l[0].min(l[1]).min(l[2]);
-        let (lx, ly) = (
-            l[0] * ey[0] + l[1] * ey[1] + l[2] * ey[2],
-            l[0] * ex[0] + l[1] * ex[1] + l[2] * ex[2],
-        );
-        let t0 = (d + two_d * (l[0] - l_min) as u32)
-            .wrapping_sub((2 * lx).wrapping_mul(p[0].0) as u32)
-            .wrapping_sub((2 * ly).wrapping_mul(p[0].1) as u32);
-        let l_step = div_floor((2 * lx) << S, two_d);
-        let middle_left = neg;
-        let ceil_row = |t: i32| (t + (1 << S) - 1) >> S;
-        // The rows drawn, clipped to the window's (local): from the first visible row to the
-        // middle vertex's row, then to the bottom vertex's.
+        let corner = (x_lo - (ox << S), y_lo - (oy << S));
+        let (z, z_step) = depth_terms::<S>(p[0], values.map(|a| a[0]), d, (ey, ex), corner);
+        let (l, l_step) = luminance_terms::<S>(p[0], values.map(|a| a[1] as i32), d, (ey, ex));
         // Wrapping: only a box about 2^31 rows from the window (possible at S = 0), which draws
         // nothing either way, makes them wrap.
         let (top, bottom) = (window.y0.wrapping_sub(oy), window.y1.wrapping_sub(oy));
-        let first = ceil_row(a.1).max(top);
-        let middle = ceil_row(b.1);
-        let rows = [first, middle.min(bottom), ceil_row(c.1).min(bottom)];
-        let edge = |p: (i32, i32), q: (i32, i32), y: i32| {
-            let (dx, dy) = (q.0 - p.0, q.1 - p.1);
-            let den = (dy << S) as u32;
-            // Wrapping: an edge started past its last row (never divided) may leave `i32`.
-            let n = (p.0 * dy).wrapping_add((y << S).wrapping_sub(p.1).wrapping_mul(dx)) as u32;
-            Edge {
-                n: n.wrapping_add(den).wrapping_sub(1),
-                step: (dx << S) as u32,
-                den: NonZeroU32::new(den).unwrap_or(NonZeroU32::MIN),
-            }
-        };
+        let (rows, long, short) = edges::<S>(t.sorted.map(local), top, bottom);
         Some(TinyTriangle {
             ox,
             oy,
             rows,
-            long: edge(a, c, first),
-            short: [edge(a, b, first), edge(b, c, middle.max(first))],
-            middle_left,
-            two_d: NonZeroU32::new(two_d)?,
-            z: {
-                // Offsets from the corner are `x·F − cx`, `y·F − cy`: fold `cx`, `cy` in.
-                let (cx, cy) = (cxl as u32, cyl as u32);
-                let (g0x2, h0x2, e_corner) = (2 * g0, 2 * h0, 2 * c0 + d);
-                [
-                    base.wrapping_sub(g1.wrapping_mul(cx))
-                        .wrapping_sub(h1.wrapping_mul(cy)),
-                    g1 << S,
-                    h1 << S,
-                    e_corner
-                        .wrapping_sub(g0x2.wrapping_mul(cx))
-                        .wrapping_sub(h0x2.wrapping_mul(cy)),
-                    g0x2 << S,
-                    h0x2 << S,
-                ]
-            },
+            long,
+            short,
+            middle_left: t.middle_left(),
+            two_d: NonZeroU32::new(2 * d)?,
+            z,
             z_step,
-            l: [
-                t0,
-                ((2 * lx) << S) as u32,
-                ((2 * ly) << S) as u32,
-                l_min as u32,
-            ],
+            l,
             l_step,
         })
     }
@@ -360,6 +267,116 @@ impl<const S: u32> TinyTriangle<S> {
             .wrapping_add(gx.wrapping_mul(x0))
             .wrapping_add(gy.wrapping_mul(y as u32));
         let lum = Exact::from_parts(l_min + t / two_d, t % two_d, self.l_step, two_d.get());
-        depth_span_with(cs, zs, z, in_range(lum, quantizer_at(px, py)), count)
+        depth_span(cs, zs, z, in_range(lum, quantizer_at(px, py)), count)
     }
+}
+
+/// The depth terms of [`TinyTriangle`] (its fields `z` and `z_step`) for depths `z` at the
+/// local vertices (in any order), whose first is `p0`; `(ey, ex)` the gradient factors and `corner`
+/// the bounding box's local corner `C` (module doc, numeric contract).
+#[inline(always)]
+fn depth_terms<const S: u32>(
+    p0: (i32, i32),
+    z: [u32; 3],
+    d: u32,
+    (ey, ex): ([i32; 3], [i32; 3]),
+    (cxl, cyl): (i32, i32),
+) -> ([u32; 6], (u32, u32)) {
+    // A_i − A_min = D·Q_i + R_i; gx = Σ (A_i − A_min)·ey_i, gy = Σ (A_i − A_min)·ex_i.
+    let z_min = z[0].min(z[1]).min(z[2]);
+    let (mut gq, mut gr, mut hq, mut hr) = (0u32, 0i32, 0u32, 0i32);
+    for i in 0..3 {
+        let a = z[i] - z_min;
+        let (q, r) = (a / d, a % d);
+        gq = gq.wrapping_add(q.wrapping_mul(ey[i] as u32));
+        hq = hq.wrapping_add(q.wrapping_mul(ex[i] as u32));
+        // One of the three R is 0 (the vertex of least depth): |Σ R·e| < 2·D·2^K.
+        gr = gr.wrapping_add((r as i32).wrapping_mul(ey[i]));
+        hr = hr.wrapping_add((r as i32).wrapping_mul(ex[i]));
+    }
+    let (g1, g0) = div_floor(gr, d);
+    let (h1, h0) = div_floor(hr, d);
+    let (g1, h1) = (gq.wrapping_add(g1), hq.wrapping_add(h1));
+    // Corner C = (min x, min y) of the vertices (local); offsets from vertex 0.
+    let (cx, cy) = (cxl - p0.0, cyl - p0.1);
+    let e = (g0 as i32)
+        .wrapping_mul(cx)
+        .wrapping_add((h0 as i32).wrapping_mul(cy));
+    let (c1, c0) = div_floor(e, d);
+    let base = z[0]
+        .wrapping_add(g1.wrapping_mul(cx as u32))
+        .wrapping_add(h1.wrapping_mul(cy as u32))
+        .wrapping_add(c1);
+    let fg0 = g0 << S;
+    let z_step = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
+    // Offsets from the corner are `x·F − cx`, `y·F − cy`: fold `cx`, `cy` in.
+    let (cx, cy) = (cxl as u32, cyl as u32);
+    let (g0x2, h0x2, e_corner) = (2 * g0, 2 * h0, 2 * c0 + d);
+    let z = [
+        base.wrapping_sub(g1.wrapping_mul(cx))
+            .wrapping_sub(h1.wrapping_mul(cy)),
+        g1 << S,
+        h1 << S,
+        e_corner
+            .wrapping_sub(g0x2.wrapping_mul(cx))
+            .wrapping_sub(h0x2.wrapping_mul(cy)),
+        g0x2 << S,
+        h0x2 << S,
+    ];
+    (z, z_step)
+}
+
+/// The luminance terms of [`TinyTriangle`] (its fields `l` and `l_step`) for luminances `l`
+/// at the local vertices (in any order), whose first is `p0`: `T = 2M + D + 2D·(L0 − L_min)` in
+/// `0..2^30` (module doc).
+#[inline(always)]
+fn luminance_terms<const S: u32>(
+    p0: (i32, i32),
+    l: [i32; 3],
+    d: u32,
+    (ey, ex): ([i32; 3], [i32; 3]),
+) -> ([u32; 4], (u32, u32)) {
+    let two_d = 2 * d;
+    let l_min = l[0].min(l[1]).min(l[2]);
+    let (lx, ly) = (
+        l[0] * ey[0] + l[1] * ey[1] + l[2] * ey[2],
+        l[0] * ex[0] + l[1] * ex[1] + l[2] * ex[2],
+    );
+    let t0 = (d + two_d * (l[0] - l_min) as u32)
+        .wrapping_sub((2 * lx).wrapping_mul(p0.0) as u32)
+        .wrapping_sub((2 * ly).wrapping_mul(p0.1) as u32);
+    let l_step = div_floor((2 * lx) << S, two_d);
+    let l = [
+        t0,
+        ((2 * lx) << S) as u32,
+        ((2 * ly) << S) as u32,
+        l_min as u32,
+    ];
+    (l, l_step)
+}
+
+/// The rows and edges of [`TinyTriangle`] for the sorted local vertices `p`, the window's
+/// rows being `top..bottom` (local): from the first visible row to the middle vertex's row,
+/// then to the bottom vertex's; the long edge and the short ones, each started at its first
+/// drawn row.
+#[inline(always)]
+fn edges<const S: u32>(p: [(i32, i32); 3], top: i32, bottom: i32) -> ([i32; 3], Edge, [Edge; 2]) {
+    let [a, b, c] = p;
+    let ceil_row = |t: i32| (t + (1 << S) - 1) >> S;
+    let first = ceil_row(a.1).max(top);
+    let middle = ceil_row(b.1);
+    let rows = [first, middle.min(bottom), ceil_row(c.1).min(bottom)];
+    let edge = |p: (i32, i32), q: (i32, i32), y: i32| {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let den = (dy << S) as u32;
+        // Wrapping: an edge started past its last row (never divided) may leave `i32`.
+        let n = (p.0 * dy).wrapping_add((y << S).wrapping_sub(p.1).wrapping_mul(dx)) as u32;
+        Edge {
+            n: n.wrapping_add(den).wrapping_sub(1),
+            step: (dx << S) as u32,
+            den: NonZeroU32::new(den).unwrap_or(NonZeroU32::MIN),
+        }
+    };
+    let short = [edge(a, b, first), edge(b, c, middle.max(first))];
+    (rows, edge(a, c, first), short)
 }

@@ -12,7 +12,7 @@
 //!   clipped by Sutherland–Hodgman only against the planes it crosses, projected
 //!   ([`Projection::project`]) and drawn as a fan of triangles with
 //!   [`AttributePlane<1, 4>`](AttributePlane) (exact, correctly rounded 32-bit depth at every
-//!   texel) through [`fill_triangle`]. The parent module's size limits keep every triangle
+//!   texel) through the triangle fill (`raster::triangle`). The parent module's size limits keep every triangle
 //!   within the interpolation's limits; a triangle beyond them is an error, never skipped.
 //! - The test compares `D::from_depth32(d − bias)` with the stored sample (`d − bias`
 //!   saturating at 0): the bias is in 32-bit depth units for both storage widths.
@@ -32,7 +32,8 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::trig::{sin_cos_bits, Angle};
 use crate::geometry::vector::{unit_bits, Vec3};
 use crate::project::Projector;
-use crate::raster::triangle::fill_triangle;
+use crate::raster::setup::TriangleSetup;
+use crate::raster::triangle::fill_setup;
 use crate::raster::{SubpixelPoint, Window};
 use crate::shade::attributes::{AttributePlane, Interpolant, PlaneError, WidePlane};
 use crate::shade::lighting::Light;
@@ -499,28 +500,30 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
         &mut self,
         c: [(SubpixelPoint<SUBPIXEL_BITS>, u32); 3],
     ) -> Result<(), ShadowError> {
-        let v = [c[0].0, c[1].0, c[2].0];
-        let values = [[c[0].1], [c[1].1], [c[2].1]];
-        match AttributePlane::<1, SUBPIXEL_BITS>::new(v, values) {
-            Ok(p) => self.fill(v, |x, y| p.exact(0, x, y)),
-            Err(PlaneError::Degenerate) => Ok(()), // covers no texel
-            Err(PlaneError::TooLarge) => match WidePlane::<1, SUBPIXEL_BITS>::new(v, values) {
-                Ok(p) => self.fill(v, |x, y| p.exact(0, x, y)),
-                Err(_) => Ok(()),
-            },
+        let t = TriangleSetup::new(c.map(|c| c.0)).map_err(|_| ShadowError::Raster)?;
+        let values = c.map(|c| [c.1]);
+        match AttributePlane::<1, SUBPIXEL_BITS>::of(&t, values) {
+            Ok(p) => self.fill(&t, |x, y| p.exact(0, x, y)),
+            Err(PlaneError::Degenerate) => {} // covers no texel
+            Err(PlaneError::TooLarge) => {
+                if let Ok(p) = WidePlane::<1, SUBPIXEL_BITS>::of(&t, values) {
+                    self.fill(&t, |x, y| p.exact(0, x, y))
+                }
+            }
         }
+        Ok(())
     }
 
-    /// The texels of triangle `v`, each span's depths stepped from `start(x0, y)`.
+    /// The texels of set-up triangle `t`, each span's depths stepped from `start(x0, y)`.
     fn fill<I: Interpolant>(
         &mut self,
-        v: [SubpixelPoint<SUBPIXEL_BITS>; 3],
+        t: &TriangleSetup<SUBPIXEL_BITS>,
         start: impl Fn(i32, i32) -> I,
-    ) -> Result<(), ShadowError> {
+    ) {
         let window = Window::new(0, 0, self.width as i32, self.height as i32);
         let w = self.width as usize;
         let samples = &mut *self.samples;
-        fill_triangle(v, &window, |s| {
+        fill_setup(t, &window, |s| {
             let mut z = start(s.x0, s.y);
             let row = s.y as usize * w;
             if let Some(span) = samples.get_mut(row + s.x0 as usize..row + s.x1 as usize) {
@@ -533,7 +536,6 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
                 }
             }
         })
-        .map_err(|_| ShadowError::Raster)
     }
 
     /// Pass 2 for one world point: lit, shadowed, or outside the map (lit). `bias` in 32-bit
