@@ -296,6 +296,21 @@ impl Camera {
         })
     }
 
+    /// The unit tests' camera: at the origin looking along `+z` (`y` up), 60° vertical field
+    /// of view, near 0.5, far 10, 320 × 240 pixels.
+    #[cfg(test)]
+    pub(crate) fn test_standard() -> Camera {
+        let lens = Lens {
+            fov: Angle::from_degrees(60),
+            axis: FovAxis::Vertical,
+            near: Coord::from_num(0.5),
+            far: Coord::from_num(10),
+        };
+        let axis = |x, y, z| Vec3::from_int(x, y, z);
+        let (position, forward, up) = (Vec3::ZERO, axis(0, 0, 1), axis(0, 1, 0));
+        Camera::new(position, forward, up, lens, Viewport::new(320, 240)).unwrap()
+    }
+
     /// The observer at `position` looking at `target`, with approximate up `up`.
     pub fn look_at(
         position: Vec3,

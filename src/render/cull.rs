@@ -107,8 +107,8 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
 /// `i32` (`< 2^29`) and each product `i32 × i32` is exact in `i64` (one `smull` on a
 /// Cortex-M), each triangle's term below `2^59`. The sum wraps modulo `2^64`, so it is exact
 /// whenever the true value fits `i64`: always for simple polygons, whose twice-area is at most
-/// twice their bounding box's, `2·(2^29)² = 2^59`. Front faces (counter-clockwise seen from outside, with `y` up) are clockwise on a
-/// `y`-down screen: negative area.
+/// twice their bounding box's, `2·(2^29)² = 2^59`. Front faces (counter-clockwise seen from
+/// outside, with `y` up) are clockwise on a `y`-down screen: negative area.
 #[inline(always)]
 pub(super) fn screen_area<const S: u32>(n: usize, p: impl Fn(usize) -> SubpixelPoint<S>) -> i64 {
     let o = p(0);
