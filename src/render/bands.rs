@@ -7,10 +7,10 @@
 
 use super::compact::{vertex_lit, CompactObject, Rows};
 use super::polygon_rows::triangle_rows;
-use super::polygon_stage::{Path, PolygonStage};
+use super::polygon_stage::{Path, PolygonStage, Visitor};
 use super::{
     render_scene, BandPart, CompactSizes, CompactVertex, PolygonRows, PolygonTop, PreparedVertex,
-    RenderError, Renderer, SceneRenderer, StatsSink,
+    RenderError, RenderStats, Renderer, SceneRenderer, StatsSink,
 };
 use crate::scene::{Intensities, Object, Scene};
 use crate::shade::span_writer::ShadeMode;
@@ -45,20 +45,41 @@ impl<const S: u32> Renderer<S> {
             banded: false,
             table: None,
         };
-        // The polygon stage's loop, recording each polygon's rows (in mesh order) instead of
-        // drawing it.
-        let mut out = out.iter_mut();
-        stage.each(stats, &mut |_, poly, path, _| {
-            if let Some(o) = out.next() {
-                *o = match path {
-                    Path::Skip => PolygonRows::NEVER,
-                    Path::Projected => stage.projected_rows(poly),
-                    Path::Triangle(v) => triangle_rows(v),
-                    Path::Clip => PolygonRows::CLIP,
-                };
-            }
-            Ok(())
-        })
+        // The polygon stage's loop, recording each polygon's rows instead of drawing it.
+        stage.each(
+            stats,
+            &mut Classify {
+                out: out.iter_mut(),
+            },
+        )
+    }
+}
+
+/// The band pre-pass's visitor: each polygon's rows ([`PolygonRows::NEVER`] when skipped,
+/// [`PolygonRows::CLIP`] when it needs the clipper), written in mesh order.
+struct Classify<'a> {
+    out: core::slice::IterMut<'a, PolygonRows>,
+}
+
+impl<const S: u32> Visitor<S> for Classify<'_> {
+    #[inline(always)]
+    fn polygon(
+        &mut self,
+        stage: &PolygonStage<'_, '_, S>,
+        _: usize,
+        poly: &[u16],
+        path: Path<'_, S>,
+        _: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        if let Some(o) = self.out.next() {
+            *o = match path {
+                Path::Skip => PolygonRows::NEVER,
+                Path::Projected => stage.projected_rows(poly),
+                Path::Triangle(v) => triangle_rows(v),
+                Path::Clip => PolygonRows::CLIP,
+            };
+        }
+        Ok(())
     }
 }
 

@@ -5,7 +5,7 @@
 //! ([`PolygonStage::each`], deciding rejection, band rows and culling for each in `cull.rs`),
 //! or the polygons a band's table sends ([`PolygonStage::in_table`], rejection and culling
 //! decided once per frame by [`Renderer::polygon_rows`](super::Renderer::polygon_rows)). What
-//! happens to each decided polygon is a [`Visit`]: drawing fans it into triangles for a
+//! happens to each decided polygon is a [`Visitor`]: [`Draw`] fans it into triangles for a
 //! consumer; the band pre-pass (`bands.rs`) records its rows instead, through the same loop.
 //! Triangle meshes (the common case) have their own loop, which reads each vertex once and,
 //! for an object drawn in one pass with culling, tests no per-object flag per triangle.
@@ -59,17 +59,58 @@ pub(super) struct PolygonStage<'r, 'o, const S: u32> {
     pub(super) table: Option<&'r [PolygonRows]>,
 }
 
-/// What the stage's loop does with each polygon once its path is decided:
-/// `visit(polygon index, polygon, path, stats)`. [`PolygonStage::each`] calls it exactly once
-/// per polygon, in mesh order.
-pub(super) trait Visit<const S: u32>:
-    FnMut(usize, &[u16], Path<'_, S>, &mut RenderStats) -> Result<(), RenderError>
-{
+/// What the stage's loop does with each polygon once its path is decided. The loop of
+/// [`PolygonStage::each`] calls it exactly once per polygon, in mesh order.
+pub(super) trait Visitor<const S: u32> {
+    /// Polygon `pi` (`poly`, its indices) on the path decided for it.
+    fn polygon(
+        &mut self,
+        stage: &PolygonStage<'_, '_, S>,
+        pi: usize,
+        poly: &[u16],
+        path: Path<'_, S>,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError>;
 }
 
-impl<F, const S: u32> Visit<S> for F where
-    F: FnMut(usize, &[u16], Path<'_, S>, &mut RenderStats) -> Result<(), RenderError>
+/// The drawing visitor: `attrs(polygon index, polygon, corner k, prepared vertex)` gives a
+/// corner's attributes, `draw` takes each triangle of the polygon's fan.
+pub(super) struct Draw<'a, A, C, const N: usize> {
+    pub(super) attrs: &'a A,
+    pub(super) draw: &'a mut C,
+}
+
+impl<A, C, const S: u32, const N: usize> Visitor<S> for Draw<'_, A, C, N>
+where
+    A: Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+    C: TriangleConsumer<S, N>,
 {
+    #[inline(always)]
+    fn polygon(
+        &mut self,
+        stage: &PolygonStage<'_, '_, S>,
+        pi: usize,
+        poly: &[u16],
+        path: Path<'_, S>,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        let attrs = self.attrs;
+        match path {
+            Path::Skip => Ok(()),
+            Path::Projected => {
+                let corner = |k: usize| {
+                    let p = &stage.prepared[poly[k] as usize];
+                    Corner::prepared(p, attrs(pi, poly, k, Some(p)))
+                };
+                fan(pi, poly.len(), corner, self.draw, stats)
+            }
+            Path::Triangle(v) => {
+                let corner = |k: usize| Corner::prepared(v[k], attrs(pi, poly, k, Some(v[k])));
+                draw_counted(pi, [corner(0), corner(1), corner(2)], self.draw, stats)
+            }
+            Path::Clip => stage.clipped(pi, poly, stats, attrs, self.draw),
+        }
+    }
 }
 
 impl<const S: u32> PolygonStage<'_, '_, S> {
@@ -82,42 +123,13 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         attrs: impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
         mut draw: impl TriangleConsumer<S, N>,
     ) -> Result<(), RenderError> {
+        let mut visit = Draw {
+            attrs: &attrs,
+            draw: &mut draw,
+        };
         match self.table {
-            Some(table) => self.in_table(table, stats, &mut |pi, poly, path, stats| {
-                self.draw(pi, poly, path, stats, &attrs, &mut draw)
-            }),
-            None => self.each(stats, &mut |pi, poly, path, stats| {
-                self.draw(pi, poly, path, stats, &attrs, &mut draw)
-            }),
-        }
-    }
-
-    /// Draws polygon `pi` (`poly`) on its path: `attrs(polygon index, polygon, corner k,
-    /// prepared vertex)` gives a corner's attributes, `draw` takes each triangle of its fan.
-    #[inline(always)]
-    fn draw<const N: usize>(
-        &self,
-        pi: usize,
-        poly: &[u16],
-        path: Path<'_, S>,
-        stats: &mut RenderStats,
-        attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
-        draw: &mut impl TriangleConsumer<S, N>,
-    ) -> Result<(), RenderError> {
-        match path {
-            Path::Skip => Ok(()),
-            Path::Projected => {
-                let corner = |k: usize| {
-                    let p = &self.prepared[poly[k] as usize];
-                    Corner::prepared(p, attrs(pi, poly, k, Some(p)))
-                };
-                fan(pi, poly.len(), corner, draw, stats)
-            }
-            Path::Triangle(v) => {
-                let corner = |k: usize| Corner::prepared(v[k], attrs(pi, poly, k, Some(v[k])));
-                draw_counted(pi, [corner(0), corner(1), corner(2)], draw, stats)
-            }
-            Path::Clip => self.clipped(pi, poly, stats, attrs, draw),
+            Some(table) => self.in_table(table, stats, &mut visit),
+            None => self.each(stats, &mut visit),
         }
     }
 
@@ -128,7 +140,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     pub(super) fn each(
         &self,
         stats: &mut RenderStats,
-        visit: &mut impl Visit<S>,
+        visit: &mut impl Visitor<S>,
     ) -> Result<(), RenderError> {
         // Triangle meshes (the common case) have their own loops, which read each vertex
         // once; other meshes go through `polygon`.
@@ -154,7 +166,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     fn triangles<const UNBANDED_CULLED: bool>(
         &self,
         stats: &mut RenderStats,
-        visit: &mut impl Visit<S>,
+        visit: &mut impl Visitor<S>,
     ) -> Result<(), RenderError> {
         // Every triangle is counted in, once (on an error, those up to the failing one). The
         // loop carries no polygon index: `at`, the triangle's first index position, is a
@@ -189,12 +201,12 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         at: usize,
         poly: &[u16],
         stats: &mut RenderStats,
-        visit: &mut impl Visit<S>,
+        visit: &mut impl Visitor<S>,
     ) -> Result<(), RenderError> {
         match self.prepared_triangle(poly) {
             Some(v) if v[0].outcode | v[1].outcode | v[2].outcode == 0 => {
                 let path = self.decide_triangle::<UNBANDED_CULLED>(v, stats);
-                visit(at / 3, poly, path, stats)
+                visit.polygon(self, at / 3, poly, path, stats)
             }
             _ => self.polygon_at(at, poly, stats, visit),
         }
@@ -208,7 +220,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         at: usize,
         poly: &[u16],
         stats: &mut RenderStats,
-        visit: &mut impl Visit<S>,
+        visit: &mut impl Visitor<S>,
     ) -> Result<(), RenderError> {
         self.polygon(at / 3, poly, stats, visit)
     }
@@ -221,10 +233,10 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         pi: usize,
         poly: &[u16],
         stats: &mut RenderStats,
-        visit: &mut impl Visit<S>,
+        visit: &mut impl Visitor<S>,
     ) -> Result<(), RenderError> {
         let path = self.decide(poly, stats)?;
-        visit(pi, poly, path, stats)
+        visit.polygon(self, pi, poly, path, stats)
     }
 
     /// The polygons the band table sends to this band (rejection and culling were decided
@@ -234,7 +246,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         &self,
         table: &[PolygonRows],
         stats: &mut RenderStats,
-        visit: &mut impl Visit<S>,
+        visit: &mut impl Visitor<S>,
     ) -> Result<(), RenderError> {
         let path = |r: PolygonRows| -> Path<'_, S> {
             match r {
@@ -245,7 +257,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         };
         let PolygonSizes::Uniform(3) = self.object.mesh.sizes() else {
             for ((pi, poly), r) in self.object.mesh.polygons().enumerate().zip(table) {
-                visit(pi, poly, path(*r), stats)?;
+                visit.polygon(self, pi, poly, path(*r), stats)?;
             }
             return Ok(());
         };
@@ -268,15 +280,13 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             let Some(poly) = indices.get(3 * pi..3 * pi + 3) else {
                 return Ok(());
             };
-            match path(r) {
-                Path::Projected => {
-                    let path = self
-                        .prepared_triangle(poly)
-                        .map_or(Path::Projected, Path::Triangle);
-                    visit(pi, poly, path, stats)
-                }
-                p => visit(pi, poly, p, stats),
-            }
+            let path = match path(r) {
+                Path::Projected => self
+                    .prepared_triangle(poly)
+                    .map_or(Path::Projected, Path::Triangle),
+                p => p,
+            };
+            visit.polygon(self, pi, poly, path, stats)
         };
         // Two entries per step: most pairs are passed over with two tests.
         let pairs = table.chunks_exact(2);
