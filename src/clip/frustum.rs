@@ -54,8 +54,8 @@
 //! **non-convex** polygon can cross a plane on every edge: with `c ≤ min(n, 2k, 2(n − k))`,
 //! `k + c ≤ ⌊3n/2⌋`, so one plane can add up to `⌊n/2⌋` vertices (a 24-vertex comb whose teeth
 //! reach through the near plane becomes 36), and six planes up to `n·(3/2)^6 ≈ 11.4·n`, which
-//! no fixed stack buffer of a microcontroller should hold. [`Frustum::clip`] therefore
-//! reports [`ClipError::CapacityExceeded`] for such polygons, and [`Frustum::clip_fan`] draws
+//! no fixed stack buffer of a microcontroller should hold. [`ClipVolume::clip`] therefore
+//! reports [`ClipError::CapacityExceeded`] for such polygons, and [`ClipVolume::clip_fan`] draws
 //! them anyway: when the polygon's clip does not fit it clips each fan triangle
 //! `(P_0, P_k, P_{k+1})` instead (a triangle is convex: at most 9 vertices), which covers
 //! exactly what the renderer's fan from `P_0` covers for a polygon that needs no clipping.

@@ -9,8 +9,9 @@
 //! ## Numeric contract
 //! - Occluder vertices: model → light frame by one composed [`Affine3`] (I16F16, saturating);
 //!   every polygon is tested against the six clip planes ([`Plane::distance`], exact `i64`),
-//!   clipped by Sutherland–Hodgman only against the planes it crosses, projected
-//!   ([`Projection::project`]) and drawn as a fan of triangles with
+//!   then takes the renderer's polygon-to-triangles path (`clip::fan`): clipped by
+//!   Sutherland–Hodgman only against the planes it crosses, projected
+//!   ([`Projection::project`]) and drawn as a fan of depth-only triangles with
 //!   [`AttributePlane<1, 4>`](AttributePlane) (exact, correctly rounded 32-bit depth at every
 //!   texel) through [`fill_triangle`]. The parent module's size limits keep every triangle
 //!   within the interpolation's limits; a triangle beyond them is an error, never skipped.
