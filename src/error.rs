@@ -210,30 +210,62 @@ impl core::error::Error for PlaneError {}
 impl core::error::Error for DrawError {}
 impl core::error::Error for RenderError {}
 
-/// Any error of the crate: one variant per stage error, each with a `From` conversion, so
-/// `?` turns a stage's error into this one (and this one, like every stage error, into
-/// `Box<dyn std::error::Error>` on a host).
-///
-/// Its message is the stage error's own. A display's error type is the driver's, not the
-/// crate's: displays that cannot fail (`Infallible`, as the simulator and embedded-graphics'
-/// mock display) convert with `?` too; for others, [`Error::Display`] stands for the
-/// driver's error (`flush(..).map_err(|_| zscan::Error::Display)?`).
-///
-/// ```
-/// use zscan::target::Framebuffer;
-///
-/// fn too_small() -> Result<(), zscan::Error> {
-///     let mut pixels = [0u8; 10];
-///     let _frame = Framebuffer::new(&mut pixels, 4, 4)?; // 16 bytes needed
-///     Ok(())
-/// }
-/// let e = too_small().unwrap_err();
-/// assert!(matches!(e, zscan::Error::Target(_)));
-/// assert_eq!(e.to_string(), "buffer holds 10 elements but 16 are needed");
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Error {
+/// Defines [`Error`] with one variant per stage error (and [`Error::Display`]), each stage
+/// error's `From` conversion and the `Display` that prints the stage error's own message: the
+/// list of stages is written once.
+macro_rules! stage_errors {
+    ($($(#[$doc:meta])* $variant:ident($ty:ty),)*) => {
+        /// Any error of the crate: one variant per stage error, each with a `From`
+        /// conversion, so `?` turns a stage's error into this one (and this one, like every
+        /// stage error, into `Box<dyn std::error::Error>` on a host).
+        ///
+        /// Its message is the stage error's own. A display's error type is the driver's, not
+        /// the crate's: displays that cannot fail (`Infallible`, as the simulator and
+        /// embedded-graphics' mock display) convert with `?` too; for others,
+        /// [`Error::Display`] stands for the driver's error
+        /// (`flush(..).map_err(|_| zscan::Error::Display)?`).
+        ///
+        /// ```
+        /// use zscan::target::Framebuffer;
+        ///
+        /// fn too_small() -> Result<(), zscan::Error> {
+        ///     let mut pixels = [0u8; 10];
+        ///     let _frame = Framebuffer::new(&mut pixels, 4, 4)?; // 16 bytes needed
+        ///     Ok(())
+        /// }
+        /// let e = too_small().unwrap_err();
+        /// assert!(matches!(e, zscan::Error::Target(_)));
+        /// assert_eq!(e.to_string(), "buffer holds 10 elements but 16 are needed");
+        /// ```
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        #[non_exhaustive]
+        pub enum Error {
+            $($(#[$doc])* $variant($ty),)*
+            /// The display's driver rejected the pixels sent to it (its error type is the
+            /// driver's: map it with `.map_err(|_| zscan::Error::Display)`).
+            Display,
+        }
+
+        $(
+            impl From<$ty> for Error {
+                fn from(e: $ty) -> Error {
+                    Error::$variant(e)
+                }
+            }
+        )*
+
+        impl fmt::Display for Error {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                match self {
+                    $(Error::$variant(e) => fmt::Display::fmt(e, f),)*
+                    Error::Display => write!(f, "the display rejected the pixels sent to it"),
+                }
+            }
+        }
+    };
+}
+
+stage_errors!(
     /// A colour look-up table could not be built.
     Lut(LutError),
     /// A buffer could not be wrapped as a render target.
@@ -263,48 +295,6 @@ pub enum Error {
     /// A shadow map could not be set up, drawn or applied.
     Shadow(ShadowError),
     /// A frame or object could not be rendered.
-    Render(RenderError),
-    /// The display's driver rejected the pixels sent to it (its error type is the driver's:
-    /// map it with `.map_err(|_| zscan::Error::Display)`).
-    Display,
-}
-
-macro_rules! from_stage_errors {
-    ($($variant:ident($ty:ty)),* $(,)?) => {
-        $(
-            impl From<$ty> for Error {
-                fn from(e: $ty) -> Error {
-                    Error::$variant(e)
-                }
-            }
-        )*
-
-        impl fmt::Display for Error {
-            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                match self {
-                    $(Error::$variant(e) => fmt::Display::fmt(e, f),)*
-                    Error::Display => write!(f, "the display rejected the pixels sent to it"),
-                }
-            }
-        }
-    };
-}
-
-from_stage_errors!(
-    Lut(LutError),
-    Target(TargetError),
-    Project(ProjectError),
-    Mesh(MeshError),
-    Matrix(MatrixError),
-    Camera(CameraError),
-    Clip(ClipError),
-    Fill(FillError),
-    Circle(CircleError),
-    Line(LineError),
-    Lighting(LightingError),
-    Plane(PlaneError),
-    Draw(DrawError),
-    Shadow(ShadowError),
     Render(RenderError),
 );
 

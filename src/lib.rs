@@ -115,7 +115,7 @@ pub use error::Error;
 /// `pub(crate)`.
 #[doc(hidden)]
 pub mod internals {
-    pub use crate::clip::frustum::{ClipVertex, Frustum, NEAR};
+    pub use crate::clip::frustum::{ClipVertex, ClipVolume, Frustum, NEAR};
     pub use crate::project::Projector;
     pub use crate::raster::edge_walker::{DivisionWalker, Edge, EdgeWalker, IncrementalWalker};
     pub use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};

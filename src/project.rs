@@ -367,20 +367,7 @@ mod tests {
     }
 
     fn camera() -> Camera {
-        let lens = Lens {
-            fov: Angle::from_degrees(60),
-            axis: FovAxis::Vertical,
-            near: Coord::from_num(0.5),
-            far: Coord::from_num(10),
-        };
-        Camera::new(
-            Vec3::ZERO,
-            v(0.0, 0.0, 1.0),
-            v(0.0, 1.0, 0.0),
-            lens,
-            Viewport::new(320, 240),
-        )
-        .unwrap()
+        Camera::test_standard()
     }
 
     /// The depth constants equal the former u128 formulas `A = ⌊(n + span/2)/span⌋` and

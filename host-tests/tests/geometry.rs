@@ -8,7 +8,7 @@ use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::{sin_cos_bits, Angle};
 use zscan::geometry::vector::Vec3;
 use zscan::internals::Projector;
-use zscan::internals::{ClipVertex, Frustum};
+use zscan::internals::{ClipVertex, ClipVolume, Frustum};
 use zscan::render::ProjectError;
 use zscan_host::obj::load_obj;
 

@@ -273,7 +273,7 @@ fn non_convex_obj() -> String {
 const NON_CONVEX_SCENE: &str =
     "[camera]\neye = [0, 1, 0]\ntarget = [0, 0, -1]\nnear = 0.5\n[render]\ncull = false\n";
 
-/// #2 beside another object: the renderer clips through `Frustum::clip_fan`, so the frame
+/// #2 beside another object: the renderer clips through `ClipVolume::clip_fan`, so the frame
 /// with the non-convex comb crossing the near plane renders (it failed with
 /// `clipping: CapacityExceeded`).
 #[test]

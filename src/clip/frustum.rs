@@ -54,8 +54,8 @@
 //! **non-convex** polygon can cross a plane on every edge: with `c ≤ min(n, 2k, 2(n − k))`,
 //! `k + c ≤ ⌊3n/2⌋`, so one plane can add up to `⌊n/2⌋` vertices (a 24-vertex comb whose teeth
 //! reach through the near plane becomes 36), and six planes up to `n·(3/2)^6 ≈ 11.4·n`, which
-//! no fixed stack buffer of a microcontroller should hold. [`Frustum::clip`] therefore
-//! reports [`ClipError::CapacityExceeded`] for such polygons, and [`Frustum::clip_fan`] draws
+//! no fixed stack buffer of a microcontroller should hold. [`ClipVolume::clip`] therefore
+//! reports [`ClipError::CapacityExceeded`] for such polygons, and [`ClipVolume::clip_fan`] draws
 //! them anyway: when the polygon's clip does not fit it clips each fan triangle
 //! `(P_0, P_k, P_{k+1})` instead (a triangle is convex: at most 9 vertices), which covers
 //! exactly what the renderer's fan from `P_0` covers for a polygon that needs no clipping.
@@ -351,8 +351,21 @@ impl Frustum {
     /// [`Frustum::outcode`] from the six generic plane distances (the reference it is tested
     /// against).
     pub fn outcode_generic(&self, p: Vec3) -> u8 {
+        self.planes.outcode(p)
+    }
+}
+
+/// A convex volume bounded by six planes, bit `i` of an outcode set outside plane `i`: the
+/// view [`Frustum`] (with its two-multiply outcode), or any six planes (the shadow map's
+/// volume, with the generic plane distances). Clipping needs nothing else.
+pub trait ClipVolume {
+    /// The six planes.
+    fn planes(&self) -> &[Plane; 6];
+
+    /// Bit `i` set when `p` is outside plane `i` (the generic plane distances).
+    fn outcode(&self, p: Vec3) -> u8 {
         let mut code = 0;
-        for (i, pl) in self.planes.iter().enumerate() {
+        for (i, pl) in self.planes().iter().enumerate() {
             if pl.distance(p) < 0 {
                 code |= 1 << i;
             }
@@ -360,12 +373,16 @@ impl Frustum {
         code
     }
 
-    /// Clips a polygon to the frustum. Polygons wholly inside are copied, wholly outside one
-    /// plane give an empty result; others are clipped against the planes they cross only.
-    pub fn clip<const A: usize, const N: usize>(
+    /// Clips a polygon to the volume. Polygons wholly inside are copied, wholly outside one
+    /// plane give an empty result; others are clipped against the planes they cross only, in
+    /// the planes' order.
+    fn clip<const A: usize, const N: usize>(
         &self,
         input: &[ClipVertex<A>],
-    ) -> Result<Vec<ClipVertex<A>, N>, ClipError> {
+    ) -> Result<Vec<ClipVertex<A>, N>, ClipError>
+    where
+        Self: Sized,
+    {
         let mut any = 0u8;
         let mut all = 0xFFu8;
         for v in input {
@@ -383,7 +400,7 @@ impl Frustum {
             return Ok(a);
         }
         let mut b: Vec<ClipVertex<A>, N> = Vec::new();
-        for (i, pl) in self.planes.iter().enumerate() {
+        for (i, pl) in self.planes().iter().enumerate() {
             if any & (1 << i) != 0 {
                 clip_to_plane(pl, &a, &mut b)?;
                 core::mem::swap(&mut a, &mut b);
@@ -396,7 +413,7 @@ impl Frustum {
         Ok(a)
     }
 
-    /// Clips a polygon to the frustum and hands the result to `emit`, never failing for lack
+    /// Clips a polygon to the volume and hands the result to `emit`, never failing for lack
     /// of capacity when `N ≥ 9` (module doc, "How many vertices clipping can add").
     ///
     /// Normally `emit` is called once with what [`Frustum::clip`] returns (nothing when that is
@@ -408,11 +425,14 @@ impl Frustum {
     ///
     /// Errors: [`ClipError::CapacityExceeded`] only when `input` itself exceeds `N` or `N < 9`
     /// for a fan triangle; `emit`'s own error stops the walk and is returned.
-    pub fn clip_fan<const A: usize, const N: usize, E: From<ClipError>>(
+    fn clip_fan<const A: usize, const N: usize, E: From<ClipError>>(
         &self,
         input: &[ClipVertex<A>],
         mut emit: impl FnMut(&[ClipVertex<A>]) -> Result<(), E>,
-    ) -> Result<(), E> {
+    ) -> Result<(), E>
+    where
+        Self: Sized,
+    {
         match self.clip::<A, N>(input) {
             Ok(poly) if poly.is_empty() => Ok(()),
             Ok(poly) => emit(&poly),
@@ -428,6 +448,23 @@ impl Frustum {
             }
             Err(e) => Err(e.into()),
         }
+    }
+}
+
+impl ClipVolume for [Plane; 6] {
+    fn planes(&self) -> &[Plane; 6] {
+        self
+    }
+}
+
+impl ClipVolume for Frustum {
+    fn planes(&self) -> &[Plane; 6] {
+        &self.planes
+    }
+
+    #[inline]
+    fn outcode(&self, p: Vec3) -> u8 {
+        Frustum::outcode(self, p)
     }
 }
 
@@ -447,20 +484,7 @@ mod tests {
     }
 
     fn camera() -> Camera {
-        let lens = Lens {
-            fov: Angle::from_degrees(60),
-            axis: FovAxis::Vertical,
-            near: Coord::from_num(0.5),
-            far: Coord::from_num(10),
-        };
-        Camera::new(
-            Vec3::ZERO,
-            v(0.0, 0.0, 1.0),
-            v(0.0, 1.0, 0.0),
-            lens,
-            Viewport::new(320, 240),
-        )
-        .unwrap()
+        Camera::test_standard()
     }
 
     #[test]

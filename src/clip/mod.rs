@@ -3,5 +3,6 @@
 //! Role in the pipeline: between geometry and projection (3D, near plane) and inside the raster
 //! stage (2D lines against the window).
 
+pub(crate) mod fan;
 pub mod frustum;
 pub mod outcode;

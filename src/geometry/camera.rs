@@ -185,6 +185,95 @@ fn half_extent_q16(axis: FovAxis, vp: &Viewport) -> Result<u64, CameraError> {
     })
 }
 
+/// The world → observer transform of an observer at `position` looking along `view_dir` with
+/// approximate up `up` (course §3.5): the orthonormal basis `(W, V, U)` (right, up, forward)
+/// to rounding, then the translation `−R·Ω`.
+fn view_transform(position: Vec3, view_dir: Vec3, up: Vec3) -> Result<Affine3, CameraError> {
+    let wide = |v: Vec3| {
+        let b = v.bits();
+        [b[0] as i64, b[1] as i64, b[2] as i64]
+    };
+    let u = unit_bits(wide(view_dir), LINEAR_FRAC).ok_or(CameraError::ZeroViewDirection)?;
+    let vp = unit_bits(wide(up), LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
+    let (u64v, vp64) = (u.map(|c| c as i64), vp.map(|c| c as i64));
+    // U·V' in Q48, then V' − (U·V')U in Q48.
+    let d: i64 = (0..3).map(|i| u64v[i] * vp64[i]).sum();
+    let d24 = d >> LINEAR_FRAC;
+    let vw: [i64; 3] = core::array::from_fn(|i| (vp64[i] << LINEAR_FRAC) - d24 * u64v[i]);
+    // Reject |V' − (U·V')U| < 2^-10 (V' within ~0.06° of ±U).
+    let len2: u64 = vw.iter().map(|c| ((c.unsigned_abs()) >> 24).pow(2)).sum();
+    if len2 < 1 << 28 {
+        return Err(CameraError::UpParallelToView);
+    }
+    let v0 = unit_bits(vw, LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
+    // W = U × V (Q48), then V = W × U again: W is orthogonal to U and to the first V, and
+    // the second V is orthogonal to both, so the basis is orthonormal to rounding (2^-24)
+    // even when V' is nearly parallel to U.
+    let cross = |a: [i64; 3], b: [i64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let w = unit_bits(cross(u64v, v0.map(|c| c as i64)), LINEAR_FRAC)
+        .ok_or(CameraError::UpParallelToView)?;
+    let v = unit_bits(cross(w.map(|c| c as i64), u64v), LINEAR_FRAC)
+        .ok_or(CameraError::UpParallelToView)?;
+    let rot = Affine3::from_bits([w, v, u], Vec3::ZERO).map_err(|_| CameraError::OutOfRange)?;
+    let t = rot.transform_vector(position);
+    // The translation is −R·Ω; refuse positions whose observer-frame image saturated.
+    if t.bits().iter().any(|&c| c == i32::MAX || c == i32::MIN) {
+        return Err(CameraError::OutOfRange);
+    }
+    Affine3::translation(t.neg())
+        .mul(&rot)
+        .map_err(|_| CameraError::OutOfRange)
+}
+
+/// The focal lengths `(f_x, f_y)` in Q16 pixels of `lens` on `viewport`, once its depth range,
+/// field of view and pixel sizes are checked.
+fn focal_lengths(lens: &Lens, viewport: &Viewport) -> Result<(i32, i32), CameraError> {
+    if lens.near.to_bits() <= 0 || lens.far <= lens.near {
+        return Err(CameraError::BadDepthRange);
+    }
+    if lens.fov.0 == 0 || lens.fov.0 >= 1 << 31 {
+        return Err(CameraError::FovOutOfRange);
+    }
+    if viewport.pixel_width == 0 || viewport.pixel_height == 0 {
+        return Err(CameraError::BadViewport);
+    }
+    let r = half_extent_q16(lens.axis, viewport)?;
+    let (s, c) = sin_cos_bits(lens.fov.half());
+    if s <= 0 {
+        return Err(CameraError::FocalTooLong);
+    }
+    // d = ⌊(r·cos + sin/2) / sin⌋ in Q16 physical units (r < 2^37, 0 ≤ cos ≤ 2^30,
+    // 0 < sin ≤ 2^30), in u64 divisions: with r = sin·q + t, d = q·cos + ⌊(t·cos + sin/2) /
+    // sin⌋, where t·cos < 2^60. Only d ≥ 2^64 overflows, and then f ≥ 2^48 pixels.
+    let (s, c) = (s as u64, c.max(0) as u64);
+    let d = (r / s)
+        .checked_mul(c)
+        .and_then(|whole| whole.checked_add(((r % s) * c + s / 2) / s))
+        .ok_or(CameraError::FocalTooLong)?;
+    // ⌊(d + p/2) / p⌋ without the sum: one more when d mod p ≥ p − ⌊p/2⌋.
+    let round_div = |p: u16| {
+        let p = p as u64;
+        d / p + (d % p >= p - p / 2) as u64
+    };
+    let (fx, fy) = (
+        round_div(viewport.pixel_width),
+        round_div(viewport.pixel_height),
+    );
+    if fx > i32::MAX as u64 || fy > i32::MAX as u64 {
+        return Err(CameraError::FocalTooLong);
+    }
+    if fx == 0 || fy == 0 {
+        return Err(CameraError::FovOutOfRange);
+    }
+    Ok((fx as i32, fy as i32))
+}
+
 impl Camera {
     /// The observer at `position` looking along `view_dir` with approximate up `up`
     /// (course §3.5), with the given lens and screen.
@@ -195,92 +284,31 @@ impl Camera {
         lens: Lens,
         viewport: Viewport,
     ) -> Result<Camera, CameraError> {
-        let wide = |v: Vec3| {
-            let b = v.bits();
-            [b[0] as i64, b[1] as i64, b[2] as i64]
-        };
-        let u = unit_bits(wide(view_dir), LINEAR_FRAC).ok_or(CameraError::ZeroViewDirection)?;
-        let vp = unit_bits(wide(up), LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
-        let (u64v, vp64) = (u.map(|c| c as i64), vp.map(|c| c as i64));
-        // U·V' in Q48, then V' − (U·V')U in Q48.
-        let d: i64 = (0..3).map(|i| u64v[i] * vp64[i]).sum();
-        let d24 = d >> LINEAR_FRAC;
-        let vw: [i64; 3] = core::array::from_fn(|i| (vp64[i] << LINEAR_FRAC) - d24 * u64v[i]);
-        // Reject |V' − (U·V')U| < 2^-10 (V' within ~0.06° of ±U).
-        let len2: u64 = vw.iter().map(|c| ((c.unsigned_abs()) >> 24).pow(2)).sum();
-        if len2 < 1 << 28 {
-            return Err(CameraError::UpParallelToView);
-        }
-        let v0 = unit_bits(vw, LINEAR_FRAC).ok_or(CameraError::UpParallelToView)?;
-        // W = U × V (Q48), then V = W × U again: W is orthogonal to U and to the first V, and
-        // the second V is orthogonal to both, so the basis is orthonormal to rounding (2^-24)
-        // even when V' is nearly parallel to U.
-        let cross = |a: [i64; 3], b: [i64; 3]| {
-            [
-                a[1] * b[2] - a[2] * b[1],
-                a[2] * b[0] - a[0] * b[2],
-                a[0] * b[1] - a[1] * b[0],
-            ]
-        };
-        let w = unit_bits(cross(u64v, v0.map(|c| c as i64)), LINEAR_FRAC)
-            .ok_or(CameraError::UpParallelToView)?;
-        let v = unit_bits(cross(w.map(|c| c as i64), u64v), LINEAR_FRAC)
-            .ok_or(CameraError::UpParallelToView)?;
-        let rot = Affine3::from_bits([w, v, u], Vec3::ZERO).map_err(|_| CameraError::OutOfRange)?;
-        let t = rot.transform_vector(position);
-        // The translation is −R·Ω; refuse positions whose observer-frame image saturated.
-        if t.bits().iter().any(|&c| c == i32::MAX || c == i32::MIN) {
-            return Err(CameraError::OutOfRange);
-        }
-        let view = Affine3::translation(t.neg())
-            .mul(&rot)
-            .map_err(|_| CameraError::OutOfRange)?;
-
-        if lens.near.to_bits() <= 0 || lens.far <= lens.near {
-            return Err(CameraError::BadDepthRange);
-        }
-        if lens.fov.0 == 0 || lens.fov.0 >= 1 << 31 {
-            return Err(CameraError::FovOutOfRange);
-        }
-        if viewport.pixel_width == 0 || viewport.pixel_height == 0 {
-            return Err(CameraError::BadViewport);
-        }
-        let r = half_extent_q16(lens.axis, &viewport)?;
-        let (s, c) = sin_cos_bits(lens.fov.half());
-        if s <= 0 {
-            return Err(CameraError::FocalTooLong);
-        }
-        // d = ⌊(r·cos + sin/2) / sin⌋ in Q16 physical units (r < 2^37, 0 ≤ cos ≤ 2^30,
-        // 0 < sin ≤ 2^30), in u64 divisions: with r = sin·q + t, d = q·cos + ⌊(t·cos + sin/2) /
-        // sin⌋, where t·cos < 2^60. Only d ≥ 2^64 overflows, and then f ≥ 2^48 pixels.
-        let (s, c) = (s as u64, c.max(0) as u64);
-        let d = (r / s)
-            .checked_mul(c)
-            .and_then(|whole| whole.checked_add(((r % s) * c + s / 2) / s))
-            .ok_or(CameraError::FocalTooLong)?;
-        // ⌊(d + p/2) / p⌋ without the sum: one more when d mod p ≥ p − ⌊p/2⌋.
-        let round_div = |p: u16| {
-            let p = p as u64;
-            d / p + (d % p >= p - p / 2) as u64
-        };
-        let (fx, fy) = (
-            round_div(viewport.pixel_width),
-            round_div(viewport.pixel_height),
-        );
-        if fx > i32::MAX as u64 || fy > i32::MAX as u64 {
-            return Err(CameraError::FocalTooLong);
-        }
-        if fx == 0 || fy == 0 {
-            return Err(CameraError::FovOutOfRange);
-        }
+        let view = view_transform(position, view_dir, up)?;
+        let (focal_x, focal_y) = focal_lengths(&lens, &viewport)?;
         Ok(Camera {
             position,
             view,
-            focal_x: fx as i32,
-            focal_y: fy as i32,
+            focal_x,
+            focal_y,
             viewport,
             lens,
         })
+    }
+
+    /// The unit tests' camera: at the origin looking along `+z` (`y` up), 60° vertical field
+    /// of view, near 0.5, far 10, 320 × 240 pixels.
+    #[cfg(test)]
+    pub(crate) fn test_standard() -> Camera {
+        let lens = Lens {
+            fov: Angle::from_degrees(60),
+            axis: FovAxis::Vertical,
+            near: Coord::from_num(0.5),
+            far: Coord::from_num(10),
+        };
+        let axis = |x, y, z| Vec3::from_int(x, y, z);
+        let (position, forward, up) = (Vec3::ZERO, axis(0, 0, 1), axis(0, 1, 0));
+        Camera::new(position, forward, up, lens, Viewport::new(320, 240)).unwrap()
     }
 
     /// The observer at `position` looking at `target`, with approximate up `up`.

@@ -322,29 +322,21 @@ impl Bresenham {
         if t_first > t_last {
             return None;
         }
-        // Midpoint state at t_first: 2ta + c ≤ 2^63 + 2^31 < 2^64.
-        let num = 2 * t_first as u64 * a + c;
+        // The pixel at step t and its midpoint remainder: 2ta + c ≤ 2^63 + 2^31 < 2^64, and
+        // o(t) ≤ a ≤ 2^31. The pixel is on the segment, so both coordinates fit i32.
         let two_n = 2 * n; // n ≥ 1 here: p0 ≠ p1, or the outcodes would have decided
-        let o = num / two_n;
-        let r = num % two_n;
-        // The pixel is on the segment, so both coordinates fit i32.
-        let major = major0 as i64 + major_sign as i64 * t_first;
-        let minor = minor0 as i64 + minor_sign as i64 * o as i64;
-        // The last pixel, at t_last: o(t_last) ≤ a ≤ 2^31 (same bound on the numerator).
-        let o_last = (2 * t_last as u64 * a + c) / two_n;
-        let major_last = major0 as i64 + major_sign as i64 * t_last;
-        let minor_last = minor0 as i64 + minor_sign as i64 * o_last as i64;
-        let (point, last) = if s.major_step.x != 0 {
-            (
-                Point::new(major as i32, minor as i32),
-                Point::new(major_last as i32, minor_last as i32),
-            )
-        } else {
-            (
-                Point::new(minor as i32, major as i32),
-                Point::new(minor_last as i32, major_last as i32),
-            )
+        let at = |t: i64| {
+            let num = 2 * t as u64 * a + c;
+            let major = (major0 as i64 + major_sign as i64 * t) as i32;
+            let minor = (minor0 as i64 + minor_sign as i64 * (num / two_n) as i64) as i32;
+            let p = if s.major_step.x != 0 {
+                Point::new(major, minor)
+            } else {
+                Point::new(minor, major)
+            };
+            (p, num % two_n)
         };
+        let ((point, r), (last, _)) = (at(t_first), at(t_last));
         Some(Bresenham {
             point,
             major_step: s.major_step,

@@ -6,14 +6,12 @@
 //! `polygon_rows.rs` for the table entries.
 
 use super::compact::{vertex_lit, CompactObject, Rows};
-use super::cull::front_triangle;
 use super::polygon_rows::triangle_rows;
-use super::polygon_stage::{Path, PolygonStage};
+use super::polygon_stage::{Path, PolygonStage, Visitor};
 use super::{
     render_scene, BandPart, CompactSizes, CompactVertex, PolygonRows, PolygonTop, PreparedVertex,
     RenderError, RenderStats, Renderer, SceneRenderer, StatsSink,
 };
-use crate::geometry::mesh::PolygonSizes;
 use crate::scene::{Object, Scene};
 use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
@@ -47,90 +45,44 @@ impl<const S: u32> Renderer<S> {
             banded: false,
             table: None,
         };
-        if let PolygonSizes::Uniform(3) = mesh.sizes() {
-            stage.classify_triangles(out, stats)?;
-        } else {
-            for (o, poly) in out.iter_mut().zip(mesh.polygons()) {
-                stats.polygons_in += 1;
-                *o = stage.classify(poly, stats)?;
-            }
-        }
-        Ok(())
+        // The polygon stage's loop, recording each polygon's rows instead of drawing it.
+        stage.each(
+            stats,
+            &mut Classify {
+                out: out.iter_mut(),
+            },
+        )
     }
 }
 
-impl<const S: u32> PolygonStage<'_, '_, S> {
-    /// The band pre-pass of one polygon (see [`Renderer::polygon_rows`]); the same decisions
-    /// as [`decide`](Self::decide). The caller counts the polygon in `polygons_in`.
-    #[inline(always)]
-    fn classify(&self, poly: &[u16], stats: &mut RenderStats) -> Result<PolygonRows, RenderError> {
-        Ok(match self.verdict(poly, stats, false)? {
-            Path::Skip => PolygonRows::NEVER,
-            Path::Projected => self.projected_rows(poly),
-            Path::Clip => match self.clipped_rows(poly)? {
-                Some((top, bottom)) => PolygonRows::clipped(top, bottom),
-                None => PolygonRows::NEVER,
-            },
-        })
-    }
+/// The band pre-pass's visitor: each polygon's rows ([`PolygonRows::NEVER`] when skipped; a
+/// polygon that needs the clipper is clipped once here for its rows), written in mesh order.
+struct Classify<'a> {
+    out: core::slice::IterMut<'a, PolygonRows>,
+}
 
-    /// The band pre-pass of a triangle mesh (see [`Renderer::polygon_rows`]), into `out` (out
-    /// of line, so that its loop does not depend on the caller's code).
-    #[inline(never)]
-    fn classify_triangles(
-        &self,
-        out: &mut [PolygonRows],
-        stats: &mut RenderStats,
-    ) -> Result<(), RenderError> {
-        if self.object.cull_back_faces {
-            self.classify_each::<true>(out, stats)
-        } else {
-            self.classify_each::<false>(out, stats)
-        }
-    }
-
-    /// [`classify_triangles`](Self::classify_triangles) with the object's culling flag
-    /// `CULL`; every triangle is counted in once (on an error, those up to the failing one).
+impl<const S: u32> Visitor<S> for Classify<'_> {
     #[inline(always)]
-    fn classify_each<const CULL: bool>(
-        &self,
-        out: &mut [PolygonRows],
-        stats: &mut RenderStats,
-    ) -> Result<(), RenderError> {
-        let triangles = self.object.mesh.indices().chunks_exact(3);
-        let n = out.len().min(triangles.len());
-        for (pi, (o, poly)) in out.iter_mut().zip(triangles).enumerate() {
-            match self.classify_triangle::<CULL>(poly, stats) {
-                Ok(r) => *o = r,
-                Err(e) => {
-                    stats.polygons_in += pi as u32 + 1;
-                    return Err(e);
-                }
-            }
-        }
-        stats.polygons_in += n as u32;
-        Ok(())
-    }
-
-    /// [`classify`](Self::classify) for a triangle (`poly`, 3 indices) of an object whose
-    /// culling flag is `CULL`, not counted in `polygons_in`: three vertices in range and
-    /// projected (the common case) are classified from one read of each.
-    #[inline(always)]
-    fn classify_triangle<const CULL: bool>(
-        &self,
+    fn polygon(
+        &mut self,
+        stage: &PolygonStage<'_, '_, S>,
+        _: usize,
         poly: &[u16],
-        stats: &mut RenderStats,
-    ) -> Result<PolygonRows, RenderError> {
-        match self.prepared_triangle(poly) {
-            Some(v) if v[0].outcode | v[1].outcode | v[2].outcode == 0 => {
-                if CULL && !front_triangle(v[0].screen, v[1].screen, v[2].screen) {
-                    stats.culled += 1;
-                    return Ok(PolygonRows::NEVER);
-                }
-                Ok(triangle_rows(v))
-            }
-            _ => self.classify(poly, stats),
+        path: Path<'_, S>,
+        _: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        if let Some(o) = self.out.next() {
+            *o = match path {
+                Path::Skip => PolygonRows::NEVER,
+                Path::Projected => stage.projected_rows(poly),
+                Path::Triangle(v) => triangle_rows(v),
+                Path::Clip => match stage.clipped_rows(poly)? {
+                    Some((top, bottom)) => PolygonRows::clipped(top, bottom),
+                    None => PolygonRows::NEVER,
+                },
+            };
         }
+        Ok(())
     }
 }
 

@@ -21,10 +21,11 @@ impl<const S: u32> Renderer<S> {
 }
 
 /// Clears `frame` to the scene's background and `depth` to far, then draws every object of
-/// the renderer's scene with that scene's camera and lights,
-/// adding the frame's counts to `stats`: a [`RenderStats`](super::RenderStats) counts everything, a
-/// [`StatsWithoutWritten`](super::StatsWithoutWritten) everything but the written pixels, whose per-pixel add the span
-/// loops then leave out (the faster choice when the count is not read; see its doc).
+/// the renderer's scene with that scene's camera and lights, adding the frame's counts to
+/// `stats`: a [`RenderStats`](super::RenderStats) counts everything, a
+/// [`StatsWithoutWritten`](super::StatsWithoutWritten) everything but the written pixels, whose
+/// per-pixel add the span loops then leave out (the faster choice when the count is not read;
+/// see its doc).
 /// `scratch` must hold at least as many vertices as the largest mesh.
 pub fn render_scene<D: DepthValue, const S: u32>(
     renderer: &SceneRenderer<'_, S>,

@@ -9,9 +9,10 @@
 //! 1. **Vertex stage** (`vertex_stage.rs`, [`Renderer::prepare`]), once per vertex: model →
 //!    observer frame, outcode, projection, and the vertex's level, into caller scratch (one
 //!    [`PreparedVertex`] per mesh vertex).
-//! 2. **Polygon stage** (`polygon_stage.rs`, [`Renderer::rasterize`]), once per polygon:
-//!    rejection, culling (`cull.rs`), Sutherland–Hodgman clipping and projection of the
-//!    clipped vertices, fans of triangles. `object.rs` picks what each corner carries (a
+//! 2. **Polygon stage** (`polygon_stage.rs`, [`Renderer::rasterize`]), once per polygon, one
+//!    loop over the mesh or the band table: rejection, the band's rows and culling decided in
+//!    `cull.rs`, Sutherland–Hodgman clipping, projection and fans of triangles (`clip::fan`,
+//!    shared with the shadow map's pass 1). `object.rs` picks what each corner carries (a
 //!    level, or a normal for Phong) and which consumer takes the triangles.
 //! 3. **The seam** (`consumer.rs`): each culled, clipped, projected triangle goes to a
 //!    `TriangleConsumer`. Today's consumers draw through the depth buffer at once

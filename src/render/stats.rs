@@ -79,7 +79,8 @@ impl StatsSink for RenderStats {
 /// [`RenderStats`] whose `pixels_written` stays 0: the span loops drawn for it have no
 /// written-pixel counter (the Cortex-M4 frames of the standard cube, sphere and bunny take
 /// 6.4 %, 9.8 % and 6.5 % fewer instructions). Every other count is kept. Pass one to
-/// [`render_scene`](super::render_scene) or [`render_in_bands`](super::render_in_bands) when nothing reads the written count.
+/// [`render_scene`](super::render_scene) or [`render_in_bands`](super::render_in_bands) when
+/// nothing reads the written count.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct StatsWithoutWritten(pub RenderStats);
 

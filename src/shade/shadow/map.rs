@@ -9,8 +9,9 @@
 //! ## Numeric contract
 //! - Occluder vertices: model → light frame by one composed [`Affine3`] (I16F16, saturating);
 //!   every polygon is tested against the six clip planes ([`Plane::distance`], exact `i64`),
-//!   clipped by Sutherland–Hodgman only against the planes it crosses, projected
-//!   ([`Projection::project`]) and drawn as a fan of triangles with
+//!   then takes the renderer's polygon-to-triangles path (`clip::fan`): clipped by
+//!   Sutherland–Hodgman only against the planes it crosses, projected
+//!   ([`Projection::project`]) and drawn as a fan of depth-only triangles with
 //!   [`AttributePlane<1, 4>`](AttributePlane) (exact, correctly rounded 32-bit depth at every
 //!   texel) through the triangle fill (`raster::triangle`). The parent module's size limits keep every triangle
 //!   within the interpolation's limits; a triangle beyond them is an error, never skipped.
@@ -22,8 +23,9 @@ use heapless::Vec;
 use super::projection::{Orthographic, Projection, SUBPIXEL_BITS};
 use super::{ShadowError, Visibility};
 use crate::arith::isqrt::isqrt_u64;
+use crate::clip::fan::clip_project_fan;
 use crate::clip::frustum::{
-    clip_to_plane, ClipVertex, Frustum, Plane, CLIP_CAPACITY, MAX_POLYGON_VERTICES,
+    ClipError, ClipVertex, ClipVolume, Frustum, Plane, CLIP_CAPACITY, MAX_POLYGON_VERTICES,
 };
 use crate::geometry::camera::{Camera, CameraError, FovAxis, Lens, Viewport};
 use crate::geometry::fixed::Coord;
@@ -53,6 +55,22 @@ const SLOP_32THS: u128 = 18;
 /// Depth rounding allowance of the bias rule (projection ≤ 6 per vertex and per point, plus
 /// the interpolation's half unit).
 const ROUNDING_UNITS: u128 = 16;
+
+/// A pass-1 error on the clipper's path: a clipped fan triangle beyond the clipper's capacity
+/// is [`ShadowError::PolygonTooLarge`].
+struct PassError(ShadowError);
+
+impl From<ShadowError> for PassError {
+    fn from(e: ShadowError) -> Self {
+        PassError(e)
+    }
+}
+
+impl From<ClipError> for PassError {
+    fn from(_: ClipError) -> Self {
+        PassError(ShadowError::PolygonTooLarge)
+    }
+}
 
 /// A depth map seen from a light, in caller memory (`u16` or `u32` samples).
 #[derive(Debug)]
@@ -402,96 +420,50 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
         let m = transform
             .then(&self.frame)
             .map_err(|_| ShadowError::Transform)?;
-        let vertices = mesh.vertices();
         for poly in mesh.polygons() {
-            if poly.len() < 3 {
-                continue;
-            }
-            if poly.len() > MAX_POLYGON_VERTICES {
-                return Err(ShadowError::PolygonTooLarge);
-            }
-            let mut pts: Vec<ClipVertex<0>, CLIP_CAPACITY> = Vec::new();
-            let (mut any, mut all) = (0u8, 0xFFu8);
-            for &i in poly {
-                let v = *vertices.get(i as usize).ok_or(ShadowError::Raster)?;
-                let p = m.transform_point(v);
-                let code = self.outcode(p);
-                any |= code;
-                all &= code;
-                pts.push(ClipVertex::new(p, []))
-                    .map_err(|_| ShadowError::PolygonTooLarge)?;
-            }
-            if all != 0 {
-                continue; // wholly outside one plane
-            }
-            // Kept for the fan fallback only when clipping can happen (`any ≠ 0`).
-            let whole = if any != 0 { pts.clone() } else { Vec::new() };
-            if !self.clip_and_draw(pts, any)? {
-                // A non-convex polygon whose clip exceeds the capacity (clip::frustum, "How
-                // many vertices clipping can add"): its fan triangles, clipped one by one,
-                // cover the same region (at most 9 vertices each).
-                for k in 1..whole.len() - 1 {
-                    let tri = [whole[0], whole[k], whole[k + 1]];
-                    let codes = tri.map(|v| self.outcode(v.pos));
-                    if codes[0] & codes[1] & codes[2] != 0 {
-                        continue;
-                    }
-                    let tri: Vec<ClipVertex<0>, CLIP_CAPACITY> = tri.into_iter().collect();
-                    if !self.clip_and_draw(tri, codes[0] | codes[1] | codes[2])? {
-                        return Err(ShadowError::PolygonTooLarge);
-                    }
-                }
-            }
+            self.polygon(mesh.vertices(), poly, &m)?;
         }
         Ok(())
     }
 
-    /// Clips the polygon `pts` against the planes in `any`, projects it and draws its fan.
-    /// `Ok(false)` (nothing drawn) when a clipped polygon would exceed `CLIP_CAPACITY`.
-    fn clip_and_draw(
-        &mut self,
-        mut pts: Vec<ClipVertex<0>, CLIP_CAPACITY>,
-        any: u8,
-    ) -> Result<bool, ShadowError> {
-        if any != 0 {
-            let planes = self.planes;
-            let mut other: Vec<ClipVertex<0>, CLIP_CAPACITY> = Vec::new();
-            for (k, plane) in planes.iter().enumerate() {
-                if any & (1 << k) != 0 {
-                    if clip_to_plane(plane, &pts, &mut other).is_err() {
-                        return Ok(false);
-                    }
-                    core::mem::swap(&mut pts, &mut other);
-                    if pts.len() < 3 {
-                        return Ok(true);
-                    }
-                }
-            }
+    /// One polygon of pass 1 (`poly`, indices into `vertices`, placed in the light frame by
+    /// `m`), through the polygon stage's path ([`clip_project_fan`]): rejected when wholly
+    /// outside one plane of the map's volume, clipped against the planes it crosses,
+    /// projected, and drawn as a fan of depth-only triangles ([`Self::draw_triangle`]).
+    fn polygon(&mut self, vertices: &[Vec3], poly: &[u16], m: &Affine3) -> Result<(), ShadowError> {
+        if poly.len() < 3 {
+            return Ok(());
         }
-        let mut screen: Vec<(SubpixelPoint<SUBPIXEL_BITS>, u32), CLIP_CAPACITY> = Vec::new();
+        if poly.len() > MAX_POLYGON_VERTICES {
+            return Err(ShadowError::PolygonTooLarge);
+        }
+        let mut pts: Vec<ClipVertex<0>, CLIP_CAPACITY> = Vec::new();
+        let (mut any, mut all) = (0u8, 0xFFu8);
+        for &i in poly {
+            let v = *vertices.get(i as usize).ok_or(ShadowError::Raster)?;
+            let p = m.transform_point(v);
+            let code = self.planes.outcode(p);
+            any |= code;
+            all &= code;
+            // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
+            let _ = pts.push(ClipVertex::new(p, []));
+        }
+        if all != 0 {
+            return Ok(()); // wholly outside one plane
+        }
+        let (planes, projection) = (self.planes, self.projection);
         let lim = crate::raster::edge_walker::MAX_COORD as i64;
-        for v in &pts {
-            let (sx, sy, d) = self.projection.project(v.pos).ok_or(ShadowError::Raster)?;
+        let project = |v: &ClipVertex<0>| {
+            let (sx, sy, d) = projection.project(v.pos).ok_or(ShadowError::Raster)?;
             if sx.abs() > lim || sy.abs() > lim {
-                return Err(ShadowError::Raster);
+                return Err(ShadowError::Raster.into());
             }
-            screen
-                .push((SubpixelPoint::new(sx as i32, sy as i32), d))
-                .map_err(|_| ShadowError::PolygonTooLarge)?;
-        }
-        for k in 1..screen.len() - 1 {
-            self.draw_triangle([screen[0], screen[k], screen[k + 1]])?;
-        }
-        Ok(true)
-    }
-
-    /// Bit `k` set when light-frame point `p` is outside clip plane `k`.
-    fn outcode(&self, p: Vec3) -> u8 {
-        let mut code = 0;
-        for (k, plane) in self.planes.iter().enumerate() {
-            code |= ((plane.distance(p) < 0) as u8) << k;
-        }
-        code
+            Ok((SubpixelPoint::new(sx as i32, sy as i32), d))
+        };
+        clip_project_fan(&planes, &pts, any != 0, project, |tri| {
+            self.draw_triangle(tri).map_err(PassError)
+        })
+        .map_err(|e: PassError| e.0)
     }
 
     /// One triangle of depths, nearest kept; one too large for the [`AttributePlane`] takes

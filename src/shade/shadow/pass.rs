@@ -327,6 +327,20 @@ mod tests {
     use crate::geometry::camera::{FovAxis, Lens, Viewport};
     use crate::geometry::trig::Angle;
 
+    /// A 4 × 4 orthographic map of a light straight overhead, over radius 4 at the origin
+    /// (the tests below use only its frame).
+    fn overhead_map(store: &mut [u16; 16]) -> ShadowMap<'_> {
+        ShadowMap::new(
+            store,
+            4,
+            4,
+            Vec3::from_int(0, 1, 0),
+            Vec3::ZERO,
+            Coord::from_num(4),
+        )
+        .unwrap()
+    }
+
     fn camera(near: f64, far: f64) -> Camera {
         let lens = Lens {
             fov: Angle::from_degrees(60),
@@ -357,15 +371,7 @@ mod tests {
             let (_, km, ke) = projector.depth_constants();
             let k = ((km as u128) << ke) as f64;
             let mut store = [0u16; 16];
-            let map = ShadowMap::new(
-                &mut store,
-                4,
-                4,
-                Vec3::from_int(0, 1, 0),
-                Vec3::ZERO,
-                Coord::from_num(4),
-            )
-            .unwrap();
+            let map = overhead_map(&mut store);
             let pass = ShadowPass::new(&map, &cam, 0).unwrap();
             let mut s: u32 = 5;
             for _ in 0..20_000 {
@@ -405,15 +411,7 @@ mod tests {
         )
         .unwrap();
         let mut store = [0u16; 16];
-        let map = ShadowMap::new(
-            &mut store,
-            4,
-            4,
-            Vec3::from_int(0, 1, 0),
-            Vec3::ZERO,
-            Coord::from_num(4),
-        )
-        .unwrap();
+        let map = overhead_map(&mut store);
         let pass = ShadowPass::new(&map, &cam, 0).unwrap();
         for (x, y) in [
             (i32::MAX, 0),
