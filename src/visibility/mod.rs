@@ -58,6 +58,7 @@ mod facts;
 mod outline;
 mod painter;
 mod plan;
+mod plane;
 mod scanline;
 mod store;
 mod warnock;

@@ -30,7 +30,7 @@
 //! (`< 2^28`) times three weights stay below `2^89·2^32·3 < 2^123`; plane sides are shifted so
 //! that `|f'|·max μ·3 < 2^126`. All `i128`.
 
-use super::painter::{Plane, Store};
+use super::plane::{Plane, Store};
 use super::store::{StoredTriangle, CUT_FRONT, NO_CUT};
 
 /// Bits of a relaxed cut's coefficients on a piece of one or two cuts.

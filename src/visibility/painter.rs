@@ -46,6 +46,8 @@ use core::cmp::Reverse;
 
 use super::backface::without_depth;
 use super::outline::Outline;
+pub use super::plane::Normal;
+use super::plane::{Plane, Store};
 use super::store::{collect, sort_order, StoredTriangle, CUT_FRONT, NO_CUT};
 use crate::raster::Window;
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
@@ -80,22 +82,6 @@ pub struct PainterMemory<'a, const S: u32 = 4> {
     /// Each front triangle's plane normal, computed once (24 bytes per front triangle; the
     /// pieces share their triangle's).
     pub normals: &'a mut [Normal],
-}
-
-/// A front triangle's plane normal in `(X, Y, D)` (module doc), kept once per triangle by the
-/// painter ([`PainterMemory::normals`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Normal([i64; 3]);
-
-impl Normal {
-    /// An unused slot, for declaring a table (`[Normal::DEFAULT; N]`, also in a `static`).
-    pub const DEFAULT: Normal = Normal([0; 3]);
-}
-
-impl Default for Normal {
-    fn default() -> Self {
-        Normal::DEFAULT
-    }
 }
 
 /// Clears `frame`, stores the front triangles of every object of the renderer's scene, orders them by Newell's tests
@@ -479,96 +465,6 @@ fn separated<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> bool
             e * orient <= 0
         })
     })
-}
-
-/// A stored triangle's plane in `(X, Y, D)` (module doc), oriented so that
-/// [`behind`](Self::behind) is positive behind it.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Plane {
-    n: [i64; 3],
-    origin: [i64; 3],
-    /// `sign(n_d)`: +1 or −1 (stored triangles have area).
-    facing: i128,
-}
-
-/// The stored triangles and their bases' normals.
-pub(super) type Store<'a, const S: u32> = (&'a [StoredTriangle<S>], &'a [Normal]);
-
-impl Plane {
-    /// The plane of base triangle `base`, from its stored normal.
-    pub(super) fn stored<const S: u32>((t, normals): Store<'_, S>, base: u32) -> Plane {
-        let (t, n) = (&t[base as usize], normals[base as usize].0);
-        Plane {
-            n,
-            origin: [t.v[0].x as i64, t.v[0].y as i64, t.depth[0] as i64],
-            facing: if n[2] < 0 { -1 } else { 1 },
-        }
-    }
-
-    pub(super) fn normal(&self) -> Normal {
-        Normal(self.n)
-    }
-
-    pub(super) fn of<const S: u32>(t: &StoredTriangle<S>) -> Plane {
-        let p = |k: usize| [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
-        let (o, b, c) = (p(0), p(1), p(2));
-        let e1 = [b[0] - o[0], b[1] - o[1], b[2] - o[2]];
-        let e2 = [c[0] - o[0], c[1] - o[1], c[2] - o[2]];
-        let n = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
-        Plane {
-            n,
-            origin: o,
-            facing: if n[2] < 0 { -1 } else { 1 },
-        }
-    }
-
-    /// Positive when corner `k` of `t` is behind the plane, zero on it, negative in front.
-    fn behind<const S: u32>(&self, t: &StoredTriangle<S>, k: usize) -> i128 {
-        self.side(t, k).signum() * self.facing
-    }
-
-    /// `n·(p − p0)` at corner `k` of `t` (`|·| < 2^93`, module doc).
-    fn side<const S: u32>(&self, t: &StoredTriangle<S>, k: usize) -> i128 {
-        let p = [t.v[k].x as i64, t.v[k].y as i64, t.depth[k] as i64];
-        (0..3)
-            .map(|i| self.n[i] as i128 * (p[i] - self.origin[i]) as i128)
-            .sum()
-    }
-
-    /// The side at each corner of `t`, positive behind the plane (`|·| < 2^93`).
-    pub(super) fn oriented<const S: u32>(&self, t: &StoredTriangle<S>) -> [i128; 3] {
-        [0, 1, 2].map(|k| self.side(t, k) * self.facing)
-    }
-
-    /// Whether the sample at pixel `(x, y)` of plane `on` lies behind this plane (`> 0`),
-    /// exactly: `D_on(X, Y) = q + r/|n_d|` by Euclidean division, the side is
-    /// `B + n_d'·r/|n_d|` with `B` an integer, decided by `B` alone when `|B| ≥ |n_d'|` and
-    /// otherwise by `B·|n_d| + n_d'·r` (both `< 2^118`). The sample lies within `on`'s
-    /// bounding box, where `|q| < 2^35`, so `B < 2^95`.
-    pub(super) fn sample_behind(&self, on: &Plane, x: i64, y: i64) -> bool {
-        let [ox, oy, od] = on.origin;
-        let (dx, dy) = (x - ox, y - oy);
-        // D_on = od − (n_x dx + n_y dy)/n_d.
-        let num = -(on.n[0] as i128 * dx as i128 + on.n[1] as i128 * dy as i128);
-        let den = on.n[2] as i128;
-        let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
-        let (q, r) = (num.div_euclid(den) + od as i128, num.rem_euclid(den));
-        let [cx, cy, cd] = self.origin;
-        let b = self.n[0] as i128 * (x - cx) as i128
-            + self.n[1] as i128 * (y - cy) as i128
-            + self.n[2] as i128 * (q - cd as i128);
-        let nd = self.n[2] as i128;
-        let side = if b.abs() >= nd.abs() {
-            b.signum()
-        } else {
-            (b * den + nd * r).signum()
-        };
-        side * self.facing > 0
-    }
 }
 
 /// Paints `t` (a whole triangle at once; a piece row by row, each row's columns restricted to
