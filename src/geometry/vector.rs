@@ -187,27 +187,7 @@ impl Vec3 {
 /// final rounding to 2^-frac. Components are in `[-2^frac, 2^frac]`.
 pub(crate) fn unit_bits(v: [i64; 3], frac: u32) -> Option<[i32; 3]> {
     let frac = frac.min(30);
-    let max = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
-    if max == 0 {
-        return None;
-    }
-    let bits = 64 - max.leading_zeros(); // max < 2^bits
-                                         // Bring the largest component to [2^29, 2^30): shift small vectors up (exactly) and large
-                                         // ones down (magnitudes, so that both signs round the same way).
-    let w: [i64; 3] = if bits <= 30 {
-        let up = 30 - bits;
-        v.map(|c| c << up) // |c| < 2^bits, so |c·2^up| < 2^30
-    } else {
-        let down = bits - 30;
-        v.map(|c| {
-            let m = (c.unsigned_abs() >> down) as i64;
-            if c < 0 {
-                -m
-            } else {
-                m
-            }
-        })
-    };
+    let w = to_30_bits(v)?;
     let len2: u64 = w.iter().map(|c| c.unsigned_abs().pow(2)).sum();
     let len = isqrt_u64(len2) as i64;
     if len == 0 {
@@ -224,6 +204,34 @@ pub(crate) fn unit_bits(v: [i64; 3], frac: u32) -> Option<[i32; 3]> {
         }
     };
     Some([f(w[0]), f(w[1]), f(w[2])])
+}
+
+/// `v` scaled by a power of two so that its largest component lies in `[2^29, 2^30)`, or
+/// `None` if `v` is zero: small vectors shifted up (exactly), large ones shifted down by
+/// magnitude (so both signs round the same way, toward zero). The squared length of the
+/// result is below `3·2^60`, within `u64`. Shared by [`unit_bits`] and the lighting's
+/// `unit_q15`.
+#[inline]
+pub(crate) fn to_30_bits(v: [i64; 3]) -> Option<[i64; 3]> {
+    let max = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+    if max == 0 {
+        return None;
+    }
+    let bits = 64 - max.leading_zeros(); // max < 2^bits
+    Some(if bits <= 30 {
+        let up = 30 - bits;
+        v.map(|c| c << up) // |c| < 2^bits, so |c·2^up| < 2^30
+    } else {
+        let down = bits - 30;
+        v.map(|c| {
+            let m = (c.unsigned_abs() >> down) as i64;
+            if c < 0 {
+                -m
+            } else {
+                m
+            }
+        })
+    })
 }
 
 #[cfg(test)]

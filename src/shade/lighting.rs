@@ -39,7 +39,7 @@
 use crate::geometry::camera::Camera;
 use crate::geometry::matrix::{Affine3, MatrixError};
 use crate::geometry::mesh::Mesh;
-use crate::geometry::vector::Vec3;
+use crate::geometry::vector::{to_30_bits, Vec3};
 
 /// Fractional bits of coefficients and unit vectors (Q15).
 pub const FRAC: u32 = 15;
@@ -190,24 +190,7 @@ pub(crate) fn inv_len_q61(len2: u64) -> u64 {
 /// (tested); components are in `[-32768, 32768]`.
 #[inline]
 pub(crate) fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
-    let max = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
-    if max == 0 {
-        return None;
-    }
-    let bits = 64 - max.leading_zeros();
-    let w: [i64; 3] = if bits <= 30 {
-        v.map(|c| c << (30 - bits))
-    } else {
-        let down = bits - 30;
-        v.map(|c| {
-            let m = (c.unsigned_abs() >> down) as i64;
-            if c < 0 {
-                -m
-            } else {
-                m
-            }
-        })
-    };
+    let w = to_30_bits(v)?;
     let len2: u64 = w.iter().map(|c| c.unsigned_abs().pow(2)).sum();
     let q = inv_len_q61(len2);
     Some(w.map(|c| {
