@@ -58,6 +58,7 @@ mod facts;
 mod outline;
 mod painter;
 mod plan;
+mod planned;
 mod scanline;
 mod store;
 mod warnock;
@@ -69,6 +70,7 @@ pub use plan::{
     plan, Buffers, DepthReason, DepthWidth, LayoutReason, MethodReason, Plan, PlanError,
     DEPTH_MARGIN, SCREEN_MARGIN,
 };
+pub use planned::{plan_frame, BackFaceFrame, PlannedFrame};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 pub use warnock::{render_warnock, Area, WarnockMemory, WindowCounts};
