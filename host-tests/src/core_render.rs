@@ -495,6 +495,18 @@ impl CoreMesh {
 /// about 2,500; longer certificates make the mesh "not convex", which is conservative).
 pub const FACT_PAIRS: usize = 8192;
 
+/// `objects` under `camera`, unlit (no ambient, no lights), on background 0: the scene the
+/// tests and the failure cases draw.
+pub fn scene_of<'a>(objects: &'a [Object<'a>], camera: Camera) -> CoreScene<'a> {
+    CoreScene {
+        camera,
+        ambient: 0,
+        lights: &[],
+        objects,
+        background: 0,
+    }
+}
+
 /// Each object's [`MeshFacts`](zscan::visibility::MeshFacts), computed once, with the
 /// buffers its certificate borrows (`pairs[i]` for object `i`).
 pub fn mesh_facts<'p>(

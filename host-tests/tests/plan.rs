@@ -19,6 +19,7 @@ use zscan::visibility::{
     Convexity, DepthWidth, LayoutReason, MeshFacts, MethodReason, Plan, PlanError, Visibility,
 };
 use zscan_host::cli::render::load_scene;
+use zscan_host::core_render::scene_of as unlit;
 use zscan_host::core_render::{mesh_facts, render_picture, render_planned, to_core};
 use zscan_host::scenes::standard_scene;
 use zscan_host::test_rng::XorShift;
@@ -88,13 +89,7 @@ fn the_standard_scenes_take_the_cheapest_method_and_keep_the_picture() {
     ] {
         let core = standard(name);
         let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-        let scene = Scene {
-            camera: core.camera,
-            ambient: 0,
-            lights: &[],
-            objects: &objects,
-            background: 0,
-        };
+        let scene = unlit(&objects, core.camera);
         let (plan, wrong) = check(&scene, usize::MAX).unwrap();
         assert_eq!(plan.visibility, method, "{name}: {plan}");
         assert_eq!(wrong, 0, "{name}: {plan}");
@@ -144,13 +139,7 @@ fn the_standard_cube_and_sphere_are_creased_not_convex_and_need_no_depth_buffer(
 fn the_plan_sizes_every_buffer_and_names_the_bytes_it_lacks() {
     let core = standard("bunny");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene {
-        camera: core.camera,
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = unlit(&objects, core.camera);
     let mut pairs = Vec::new();
     let facts = mesh_facts(&scene, &mut pairs);
     let mut order = [0u16];
@@ -388,13 +377,7 @@ fn object(t: &Tables) -> Object<'_> {
 }
 
 fn scene_of<'a>(objects: &'a [Object<'a>]) -> Scene<'a> {
-    Scene {
-        camera: camera(64, 48),
-        ambient: 0,
-        lights: &[],
-        objects,
-        background: 0,
-    }
+    unlit(objects, camera(64, 48))
 }
 
 /// 1,000 random scenes of 1 to 5 objects (turned boxes and spheres, convex as designed; tori,
@@ -688,13 +671,7 @@ fn a_short_scratch_plans_the_same_and_the_frame_names_what_it_lacks() {
     use zscan::visibility::{plan_frame, PlannedFrame};
     let core = standard("sphere");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene {
-        camera: core.camera,
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = unlit(&objects, core.camera);
     let mut pairs = Vec::new();
     let facts = mesh_facts(&scene, &mut pairs);
     let renderer = Renderer::for_scene(&scene).unwrap();
