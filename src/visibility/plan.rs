@@ -5,7 +5,9 @@
 //!
 //! ## What is cheap to know, per frame
 //! - Each mesh's convexity certificate ([`Convexity`], stored with the mesh), and for a creased
-//!   mesh whether its creases hold in this view ([`Creases`]: a few face pairs projected).
+//!   mesh whether its creases hold in this view ([`Creases`]: a few face pairs on screen, their
+//!   vertices placed as the vertex stage places them; by [`plan_frame`](super::plan_frame), the
+//!   vertex stage itself, run into the caller's scratch and reused by the frame).
 //! - Each object's bounding box (stored with the mesh), its 8 corners taken to the observer
 //!   frame by the object's own model-view transform: the vertex stage rounds every vertex to
 //!   nearest, which is monotone, so every vertex the renderer places lies within the box of the
@@ -44,6 +46,12 @@
 //!    surfaces closer than the 16-bit step `Δz ≈ z²·(far − near)/(far·near·2^16)` may swap);
 //!    the plan reports that step at the scene's farthest depth.
 //! 4. No layout fits: [`PlanError::OverBudget`] with the bytes of the smallest plan.
+//!
+//! Rule 1's checks run cheapest first, and the reason names the first that fails: each
+//! object's culling, convexity kind and rounding guard (in scene order), then the objects'
+//! separation, then each creased mesh's view check (the costliest: in reverse drawing order, so
+//! that the vertices [`plan_frame`](super::plan_frame) keeps are those of the object drawn
+//! first).
 //!
 //! The painter and the scan-line are never picked: their tables cost more memory than bands of
 //! the z-buffer and their frames more instructions (`docs/BENCHMARKS.md`, "Visibility
