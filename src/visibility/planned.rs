@@ -19,7 +19,8 @@
 //! Numeric contract: the prepared vertices are the vertex stage's (`render/vertex_stage.rs`);
 //! the check reads their screen positions (`±(2^28 − 1)` sub-pixel units, outcode 0) exactly
 //! as it would place them itself, so [`plan_frame`]'s plan equals [`plan`](super::plan)'s for
-//! the same scene and budget (tested on every scene of `host-tests/tests/plan.rs`).
+//! the same scene and budget (tested on the standard, random and trap scenes of
+//! `host-tests/tests/plan.rs`, order included).
 
 use super::backface::draw_objects;
 use super::facts::MeshFacts;
