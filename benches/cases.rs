@@ -233,23 +233,23 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "plan_sphere",
-        run: |fb, st| scene::plan_only(fb, st, &scene::SPHERE, 2),
+        run: scene::plan_only::<{ scene::SPHERE_ID }>,
     },
     Case {
         name: "plan_bunny",
-        run: |fb, st| scene::plan_only(fb, st, &scene::BUNNY, 3),
+        run: scene::plan_only::<{ scene::BUNNY_ID }>,
     },
     Case {
         name: "frame_quad_planned",
-        run: |fb, st| scene::planned(fb, st, &scene::QUAD, 0),
+        run: scene::planned::<{ scene::QUAD_ID }>,
     },
     Case {
         name: "frame_cube_planned",
-        run: |fb, st| scene::planned(fb, st, &scene::CUBE, 1),
+        run: scene::planned::<{ scene::CUBE_ID }>,
     },
     Case {
         name: "frame_sphere_planned",
-        run: |fb, st| scene::planned(fb, st, &scene::SPHERE, 2),
+        run: scene::planned::<{ scene::SPHERE_ID }>,
     },
     Case {
         name: "frame_quad_painter",
@@ -541,7 +541,7 @@ pub mod scene {
         }
     }
 
-    /// The planner's facts of the standard meshes (quad, cube, sphere, bunny: `which` 0 to 3),
+    /// The planner's facts of the standard meshes (indexed as [`STANDARD`]),
     /// computed once by [`MeshFacts::of`](zscan::visibility::MeshFacts::of) into pair buffers
     /// of their own (the bunny's too short on purpose: not convex, found after a few faces).
     pub struct KeptFacts {
@@ -579,10 +579,10 @@ pub mod scene {
                 kept: [none; 4],
             };
             let mut short = [[0u32; 2]; 16];
-            k.kept[0] = Kept::of(MeshFacts::of(&QUAD.mesh, &mut short));
-            k.kept[1] = Kept::of(MeshFacts::of(&CUBE.mesh, &mut k.cube));
-            k.kept[2] = Kept::of(MeshFacts::of(&SPHERE.mesh, &mut k.sphere));
-            k.kept[3] = Kept::of(MeshFacts::of(&BUNNY.mesh, &mut short));
+            k.kept[QUAD_ID] = Kept::of(MeshFacts::of(&QUAD.mesh, &mut short));
+            k.kept[CUBE_ID] = Kept::of(MeshFacts::of(&CUBE.mesh, &mut k.cube));
+            k.kept[SPHERE_ID] = Kept::of(MeshFacts::of(&SPHERE.mesh, &mut k.sphere));
+            k.kept[BUNNY_ID] = Kept::of(MeshFacts::of(&BUNNY.mesh, &mut short));
             k
         }
 
@@ -591,8 +591,8 @@ pub mod scene {
             use zscan::visibility::{Convexity, Creases, MeshFacts};
             let Kept(kind, m, o, bounds, tolerance) = self.kept[which % 4];
             let pairs: &[[u32; 2]] = match which {
-                1 => &self.cube,
-                2 => &self.sphere,
+                CUBE_ID => &self.cube,
+                SPHERE_ID => &self.sphere,
                 _ => &[],
             };
             let convexity = match kind {
@@ -617,55 +617,41 @@ pub mod scene {
         }
     }
 
-    /// The planner alone on the standard frame, no memory limit (`which` names the mesh's
-    /// facts): for the sphere, the per-view check of its creases (296 mutual face pairs).
-    /// Draws nothing; returns 0 pixels.
-    pub fn plan_only(
-        _fb: &mut Framebuffer<'_>,
-        st: &mut Storage,
-        s: &StandardScene,
-        which: usize,
-    ) -> u32 {
+    /// The planner alone on the standard frame of scene `WHICH` ([`STANDARD`]), no memory limit,
+    /// no scratch ([`plan`](zscan::visibility::plan)): for the sphere, the per-view check of its
+    /// creases (296 mutual face pairs), placing the vertices it looks at itself. Draws nothing;
+    /// returns 0 pixels.
+    pub fn plan_only<const WHICH: usize>(_fb: &mut Framebuffer<'_>, st: &mut Storage) -> u32 {
         let Some(camera) = camera() else { return 0 };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let facts = [st.facts.facts(which)];
+        let objects = [object(STANDARD[WHICH], ShadeMode::GouraudExact)];
+        let facts = [st.facts.facts(WHICH)];
         let mut order = [0u16];
-        let plan = zscan::visibility::plan::<4>(
-            &core_scene(camera, &objects),
-            &facts,
-            usize::MAX,
-            &mut order,
-        );
+        let scene = core_scene(camera, &objects);
+        let plan = zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut order);
         core::hint::black_box(&plan);
         0
     }
 
-    /// The standard frame as the planner draws it with no memory limit: the plan, then back
-    /// faces alone in its order (the quad, cube and sphere; the picture and checksum are the
+    /// The standard frame of scene `WHICH` ([`STANDARD`]) as the planner draws it with no
+    /// memory limit ([`plan_frame`](zscan::visibility::plan_frame)): the plan, whose view check
+    /// runs the vertex stage into the harness's scratch, then back faces alone in its order,
+    /// reusing those vertices (the quad, cube and sphere; the picture and checksum are the
     /// z-buffer's `frame_*`). A plan that is not back faces alone draws nothing (0 pixels).
-    pub fn planned(
-        fb: &mut Framebuffer<'_>,
-        st: &mut Storage,
-        s: &StandardScene,
-        which: usize,
-    ) -> u32 {
-        use zscan::visibility::{render_back_faces_in_order, Visibility};
+    pub fn planned<const WHICH: usize>(fb: &mut Framebuffer<'_>, st: &mut Storage) -> u32 {
+        use zscan::visibility::{plan_frame, PlannedFrame};
         let Some(camera) = camera() else { return 0 };
-        let objects = [object(s, ShadeMode::GouraudExact)];
-        let scene = core_scene(camera, &objects);
-        let mut order = [0u16];
-        let facts = [st.facts.facts(which)];
-        match zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut order) {
-            Ok(p) if p.visibility == Visibility::BackFace => {}
-            _ => return 0,
-        }
-        let Ok(r) = Renderer::for_scene(&scene) else {
+        let objects = [object(STANDARD[WHICH], ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
             return 0;
         };
+        let (facts, mut order) = ([st.facts.facts(WHICH)], [0u16]);
         let mut stats = StatsWithoutWritten::default();
-        match render_back_faces_in_order(&r, &order, fb, &mut st.vertices, &mut stats) {
-            Ok(()) => stats.0.pixels_covered,
-            Err(_) => 0,
+        match plan_frame(&r, &facts, usize::MAX, &mut order, &mut st.vertices) {
+            Ok(PlannedFrame::BackFace(frame)) => match frame.render(fb, &mut stats) {
+                Ok(()) => stats.0.pixels_covered,
+                Err(_) => 0,
+            },
+            _ => 0,
         }
     }
 
@@ -879,6 +865,18 @@ pub mod scene {
         mesh: mesh(&bunny_t::V, &bunny_t::I),
         intensities: Intensities::PerVertex(&bunny_t::L),
     };
+
+    /// The standard scenes by index (the planner's cases name a scene by it: its facts are
+    /// kept at the same index, [`KeptFacts`]).
+    pub static STANDARD: [&StandardScene; 4] = [&QUAD, &CUBE, &SPHERE, &BUNNY];
+    /// Indices into [`STANDARD`].
+    pub const QUAD_ID: usize = 0;
+    /// See [`QUAD_ID`].
+    pub const CUBE_ID: usize = 1;
+    /// See [`QUAD_ID`].
+    pub const SPHERE_ID: usize = 2;
+    /// See [`QUAD_ID`].
+    pub const BUNNY_ID: usize = 3;
 
     /// SCENES.md's camera with lattice-point pixels (principal point (159.5, 119.5)). Each case
     /// builds its renderer from it with `Renderer::new` itself: a helper returning the renderer

@@ -495,6 +495,18 @@ impl CoreMesh {
 /// about 2,500; longer certificates make the mesh "not convex", which is conservative).
 pub const FACT_PAIRS: usize = 8192;
 
+/// `objects` under `camera`, unlit (no ambient, no lights), on background 0: the scene the
+/// tests and the failure cases draw.
+pub fn scene_of<'a>(objects: &'a [Object<'a>], camera: Camera) -> CoreScene<'a> {
+    CoreScene {
+        camera,
+        ambient: 0,
+        lights: &[],
+        objects,
+        background: 0,
+    }
+}
+
 /// Each object's [`MeshFacts`](zscan::visibility::MeshFacts), computed once, with the
 /// buffers its certificate borrows (`pairs[i]` for object `i`).
 pub fn mesh_facts<'p>(
@@ -524,24 +536,45 @@ pub struct PlannedFrame {
     pub stats: RenderStats,
 }
 
-/// Plans `scene` within `budget` bytes ([`zscan::visibility::plan`]) and draws it so
-/// ([`draw_plan`]).
+/// Plans the renderer's scene within `budget` bytes and draws it so
+/// ([`zscan::visibility::plan_frame`]: a plan of back faces alone draws with the vertices its
+/// view check prepared; a z-buffer plan is drawn by [`draw_plan`]).
 pub fn render_planned<const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     facts: &[zscan::visibility::MeshFacts<'_>],
     budget: usize,
 ) -> Result<PlannedFrame, String> {
+    use zscan::visibility::{plan_frame, PlannedFrame as Planned};
     let scene = renderer.scene();
     let mut order = vec![0u16; scene.objects.len()];
-    let plan = zscan::visibility::plan::<SB>(scene, facts, budget, &mut order)
-        .map_err(|e| e.to_string())?;
-    let (pixels, stats) = draw_plan(renderer, &plan, &order).map_err(|e| e.to_string())?;
+    let largest = scene.objects.iter().map(|o| o.mesh.vertices().len()).max();
+    let mut scratch = vec![PreparedVertex::<SB>::default(); largest.unwrap_or(0).max(1)];
+    let planned = plan_frame(renderer, facts, budget, &mut order, &mut scratch)
+        .map_err(|e| format!("plan: {e}"))?;
+    let plan = *planned.plan();
+    let (pixels, stats) = match planned {
+        Planned::BackFace(frame) => {
+            let vp = *scene.camera.viewport();
+            let mut pixels = vec![0u8; vp.width as usize * vp.height as usize];
+            let mut stats = RenderStats::default();
+            let mut fb =
+                Framebuffer::new(&mut pixels, vp.width, vp.height).map_err(|e| e.to_string())?;
+            frame.render(&mut fb, &mut stats).map_err(render_words)?;
+            (pixels, stats)
+        }
+        Planned::ZBuffer(plan) => draw_plan(renderer, &plan, &order).map_err(render_words)?,
+    };
     Ok(PlannedFrame {
         plan,
         order,
         pixels,
         stats,
     })
+}
+
+/// A render error in words, for [`render_planned`].
+fn render_words(e: RenderError) -> String {
+    format!("render: {e}")
 }
 
 /// Draws `scene` as `plan` says (objects in `order`), with buffers of the plan's sizes;

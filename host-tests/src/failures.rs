@@ -177,21 +177,10 @@ fn against_z32(
     Ok((m, z))
 }
 
-/// `soup` in the small frame with `camera`.
-fn soup_scene<'a>(objects: &'a [Object<'a>], camera: Camera) -> Scene<'a> {
-    Scene {
-        camera,
-        ambient: 0,
-        lights: &[],
-        objects,
-        background: 0,
-    }
-}
-
 /// The painter on `soup` at far/near 100, without test 6 (`splits = None`) or with it.
 pub fn painter_on(soup: &Soup, splits: Option<usize>) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
     let objects = [soup_object(&soup.0, &soup.1, &soup.2)];
-    let scene = soup_scene(&objects, camera(SMALL.0, SMALL.1));
+    let scene = crate::core_render::scene_of(&objects, camera(SMALL.0, SMALL.1));
     against_z32(&scene, Visibility::Painter, splits)
 }
 
@@ -206,7 +195,7 @@ pub fn on_bunny(
     let objects = [core
         .object(ShadeMode::GouraudExact)
         .expect("the bunny object")];
-    let scene = soup_scene(&objects, core.camera);
+    let scene = crate::core_render::scene_of(&objects, core.camera);
     against_z32(&scene, method, splits)
 }
 
@@ -216,7 +205,8 @@ pub fn z16_on_far_pair(gap: f64, ratio: u32) -> Result<(Vec<u8>, Vec<u8>), Rende
     let (w, h) = SMALL;
     let (vs, is, ls) = far_pair(gap);
     let objects = [soup_object(&vs, &is, &ls)];
-    let scene = soup_scene(&objects, camera_with_near(w, h, near_for_ratio(ratio)));
+    let scene =
+        crate::core_render::scene_of(&objects, camera_with_near(w, h, near_for_ratio(ratio)));
     let renderer = Renderer::for_scene(&scene)?;
     let mut scratch = vec![PreparedVertex::default(); vs.len()];
     let mut table = vec![PolygonRows::default(); is.len() / 3];

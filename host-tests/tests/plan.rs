@@ -19,6 +19,7 @@ use zscan::visibility::{
     Convexity, DepthWidth, LayoutReason, MeshFacts, MethodReason, Plan, PlanError, Visibility,
 };
 use zscan_host::cli::render::load_scene;
+use zscan_host::core_render::scene_of as unlit;
 use zscan_host::core_render::{mesh_facts, render_picture, render_planned, to_core};
 use zscan_host::scenes::standard_scene;
 use zscan_host::test_rng::XorShift;
@@ -59,6 +60,12 @@ fn check(scene: &Scene<'_>, budget: usize) -> Result<(Plan, usize), String> {
     let facts = mesh_facts(scene, &mut pairs);
     let renderer = Renderer::for_scene(scene).unwrap();
     let frame = render_planned(&renderer, &facts, budget)?;
+    // The plan made with the vertex stage's positions (`plan_frame`, drawn above) is the one
+    // made with positions the planner places itself (`plan`), order included.
+    let mut order = vec![0u16; scene.objects.len()];
+    let alone = zscan::visibility::plan::<4>(scene, &facts, budget, &mut order);
+    assert_eq!(alone, Ok(frame.plan));
+    assert_eq!(order, frame.order);
     let z = zbuffer(scene, frame.plan.depth == DepthWidth::U16);
     assert!(
         frame.plan.ram_bytes() <= budget,
@@ -82,13 +89,7 @@ fn the_standard_scenes_take_the_cheapest_method_and_keep_the_picture() {
     ] {
         let core = standard(name);
         let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-        let scene = Scene {
-            camera: core.camera,
-            ambient: 0,
-            lights: &[],
-            objects: &objects,
-            background: 0,
-        };
+        let scene = unlit(&objects, core.camera);
         let (plan, wrong) = check(&scene, usize::MAX).unwrap();
         assert_eq!(plan.visibility, method, "{name}: {plan}");
         assert_eq!(wrong, 0, "{name}: {plan}");
@@ -138,13 +139,7 @@ fn the_standard_cube_and_sphere_are_creased_not_convex_and_need_no_depth_buffer(
 fn the_plan_sizes_every_buffer_and_names_the_bytes_it_lacks() {
     let core = standard("bunny");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene {
-        camera: core.camera,
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = unlit(&objects, core.camera);
     let mut pairs = Vec::new();
     let facts = mesh_facts(&scene, &mut pairs);
     let mut order = [0u16];
@@ -241,14 +236,13 @@ fn the_plan_of_every_repository_scene_keeps_the_picture() {
     for path in names {
         let loaded = load_scene(&path).unwrap();
         for budget in [usize::MAX, 150_000, 60_000] {
-            let (plan, order) = match loaded.plan(budget) {
-                Ok(p) => p,
+            let (plan, pixels) = match loaded.render_planned(budget) {
+                Ok(p) => (p.plan, p.pixels),
                 Err(e) => {
                     assert!(e.contains("bytes"), "{}: {e}", path.display());
                     continue;
                 }
             };
-            let (pixels, _) = loaded.render_plan(&plan, &order).unwrap();
             let z = if plan.depth == DepthWidth::U16 {
                 loaded.render::<u16>(None).unwrap().pixels
             } else {
@@ -383,13 +377,7 @@ fn object(t: &Tables) -> Object<'_> {
 }
 
 fn scene_of<'a>(objects: &'a [Object<'a>]) -> Scene<'a> {
-    Scene {
-        camera: camera(64, 48),
-        ambient: 0,
-        lights: &[],
-        objects,
-        background: 0,
-    }
+    unlit(objects, camera(64, 48))
 }
 
 /// 1,000 random scenes of 1 to 5 objects (turned boxes and spheres, convex as designed; tori,
@@ -671,4 +659,34 @@ fn a_bad_drawing_order_names_the_object() {
     );
     assert!(err.to_string().contains("object index 1"), "{err}");
     assert!(pixels.iter().all(|&p| p == 3), "nothing drawn");
+}
+
+/// `plan_frame` with a vertex scratch shorter than the creased sphere's vertex table makes the
+/// same plan as `plan` (its view check then places the vertices itself), and the frame it
+/// hands back names the scratch it lacks instead of drawing.
+#[test]
+fn a_short_scratch_plans_the_same_and_the_frame_names_what_it_lacks() {
+    use zscan::render::{RenderError, RenderStats};
+    use zscan::target::Framebuffer;
+    use zscan::visibility::{plan_frame, PlannedFrame};
+    let core = standard("sphere");
+    let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
+    let scene = unlit(&objects, core.camera);
+    let mut pairs = Vec::new();
+    let facts = mesh_facts(&scene, &mut pairs);
+    let renderer = Renderer::for_scene(&scene).unwrap();
+    let alone = zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut [0u16]);
+    let (mut order, mut scratch) = ([0u16], vec![PreparedVertex::default(); 100]);
+    let planned = plan_frame(&renderer, &facts, usize::MAX, &mut order, &mut scratch).unwrap();
+    assert_eq!(Ok(*planned.plan()), alone);
+    let PlannedFrame::BackFace(frame) = planned else {
+        panic!(
+            "the standard sphere is back faces alone: {}",
+            planned.plan()
+        );
+    };
+    let mut pixels = vec![0u8; 320 * 240];
+    let mut fb = Framebuffer::new(&mut pixels, 320, 240).unwrap();
+    let err = frame.render(&mut fb, &mut RenderStats::default());
+    assert_eq!(err, Err(RenderError::ScratchTooSmall { needed: 482 }));
 }

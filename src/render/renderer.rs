@@ -67,6 +67,17 @@ impl<const S: u32> Renderer<S> {
         &self.camera
     }
 
+    /// The projector the vertex stage places vertices with (for the planner, which must place
+    /// them as the renderer does).
+    pub(crate) fn projector(&self) -> &Projector<S> {
+        &self.projector
+    }
+
+    /// The frustum the vertex stage takes outcodes against.
+    pub(crate) fn frustum(&self) -> &Frustum {
+        &self.frustum
+    }
+
     /// The object's model → observer transform.
     pub(super) fn model_view(&self, object: &Object<'_>) -> Result<Affine3, RenderError> {
         object

@@ -29,7 +29,7 @@ pub fn render_back_faces<const S: u32>(
     draw_objects(
         renderer.renderer(),
         renderer.scene(),
-        0..n,
+        (0..n, false),
         frame,
         scratch,
         stats,
@@ -53,22 +53,31 @@ pub fn render_back_faces_in_order<const S: u32>(
         return Err(RenderError::NoSuchObject { index, objects });
     }
     let order = order.iter().map(|&i| i as usize);
-    draw_objects(renderer, scene, order, frame, scratch, stats)
+    draw_objects(renderer, scene, (order, false), frame, scratch, stats)
 }
 
-/// Clears `frame` and draws the objects `order` names, with no depth buffer.
-fn draw_objects<const S: u32>(
+/// Clears `frame` and draws the objects `order.0` names, with no depth buffer. When `order.1`,
+/// `scratch` already holds the first object's vertices, prepared by `renderer` for it
+/// ([`BackFaceFrame`](super::BackFaceFrame)): its vertex stage does not run again.
+pub(super) fn draw_objects<const S: u32>(
     renderer: &Renderer<S>,
     scene: &Scene<'_>,
-    order: impl Iterator<Item = usize>,
+    (order, first_prepared): (impl Iterator<Item = usize>, bool),
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
     frame.clear(scene.background);
     without_depth(frame, |frame, depth| {
-        for object in order.filter_map(|i| scene.objects.get(i)) {
-            renderer.draw_object(object, scratch, frame, depth, stats)?;
+        let objects = order
+            .enumerate()
+            .filter_map(|(k, i)| Some((k, scene.objects.get(i)?)));
+        for (k, object) in objects {
+            if k == 0 && first_prepared {
+                renderer.rasterize(object, scratch, frame, depth, stats)?;
+            } else {
+                renderer.draw_object(object, scratch, frame, depth, stats)?;
+            }
         }
         Ok(())
     })

@@ -62,6 +62,7 @@ use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::{Mesh, PolygonSizes};
 use crate::project::Projector;
 use crate::raster::SubpixelPoint;
+use crate::render::PreparedVertex;
 
 /// A mesh's convexity certificate (the module doc of `visibility/facts.rs` gives the
 /// argument).
@@ -226,8 +227,8 @@ fn creases<'a>(mesh: &Mesh<'_>, pairs: &'a mut [[u32; 2]]) -> Option<Creases<'a>
     })
 }
 
-/// How [`Creases::hold`] places a mesh's vertices on screen: the renderer's own transform,
-/// frustum and projector.
+/// How [`Creases::hold`] places a mesh's vertices on screen when no vertex stage ran for it:
+/// the renderer's own transform, frustum and projector.
 pub(crate) struct View<'v, const S: u32> {
     pub(crate) model_view: &'v Affine3,
     pub(crate) frustum: &'v Frustum,
@@ -235,15 +236,23 @@ pub(crate) struct View<'v, const S: u32> {
 }
 
 impl Creases<'_> {
-    /// True when no two front faces of `mesh` overlap on screen in `view` (module doc):
-    /// every mutual pair straddling the silhouette has its front face separated on screen from
-    /// each of that face's front occluders. A face with a vertex outside the frustum (clipped)
-    /// makes the answer `false`.
-    pub(crate) fn hold<const S: u32>(&self, mesh: &Mesh<'_>, view: &View<'_, S>) -> bool {
-        let mut cache = Placed::<S>::new();
+    /// True when no two front faces of `mesh` overlap on screen (module doc): every mutual
+    /// pair straddling the silhouette has its front face separated on screen from each of that
+    /// face's front occluders. `at(i)` is vertex `i` on screen as the vertex stage places it,
+    /// `None` outside the frustum (or unprojected); a face with such a vertex (clipped) makes
+    /// the answer `false`.
+    pub(crate) fn hold<const S: u32>(
+        &self,
+        mesh: &Mesh<'_>,
+        at: &mut impl FnMut(u16) -> Option<SubpixelPoint<S>>,
+    ) -> bool {
+        let mut face = |f: u32| -> Option<[SubpixelPoint<S>; 3]> {
+            let k = f as usize * 3;
+            let idx = mesh.indices().get(k..k + 3)?;
+            Some([at(idx[0])?, at(idx[1])?, at(idx[2])?])
+        };
         for &[b, c] in self.mutual {
-            let (Some(tb), Some(tc)) = (cache.face(mesh, b, view), cache.face(mesh, c, view))
-            else {
+            let (Some(tb), Some(tc)) = (face(b), face(c)) else {
                 return false;
             };
             let (fb, fc) = (twice_area(&tb) < 0, twice_area(&tc) < 0);
@@ -253,7 +262,7 @@ impl Creases<'_> {
             let (front, t) = if fb { (b, tb) } else { (c, tc) };
             let from = self.occluders.partition_point(|p| p[0] < front);
             for &[_, a] in self.occluders[from..].iter().take_while(|p| p[0] == front) {
-                let Some(ta) = cache.face(mesh, a, view) else {
+                let Some(ta) = face(a) else {
                     return false;
                 };
                 if twice_area(&ta) < 0 && !separated(&t, &ta) {
@@ -263,14 +272,35 @@ impl Creases<'_> {
         }
         true
     }
+
+    /// [`hold`](Self::hold) with `mesh`'s vertices placed in `view` as the check needs them
+    /// (each at most once per slot of a 2 KB cache).
+    pub(crate) fn hold_in<const S: u32>(&self, mesh: &Mesh<'_>, view: &View<'_, S>) -> bool {
+        let mut cache = Placed::<S>::new();
+        self.hold(mesh, &mut |i| cache.vertex(mesh, i, view))
+    }
+
+    /// [`hold`](Self::hold) with `mesh`'s vertices as the vertex stage left them in
+    /// `prepared` (as long as its vertex table).
+    pub(crate) fn hold_prepared<const S: u32>(
+        &self,
+        mesh: &Mesh<'_>,
+        prepared: &[PreparedVertex<S>],
+    ) -> bool {
+        let mut at = |i: u16| {
+            let p = prepared.get(i as usize)?;
+            (p.outcode == 0).then_some(p.screen)
+        };
+        self.hold(mesh, &mut at)
+    }
 }
 
 /// Entries of [`Placed`]: a power of two.
 const PLACED: usize = 128;
 
-/// The screen positions [`Creases::hold`] has placed, direct-mapped by vertex index (2 KB on
-/// the stack): neighbouring face pairs share vertices, so most are placed once, not once per
-/// face (measured on the standard sphere: `plan_sphere` in `docs/BENCHMARKS.md`).
+/// The screen positions [`Creases::hold_in`] has placed, direct-mapped by vertex index (2 KB
+/// on the stack): neighbouring face pairs share vertices, so most are placed once, not once
+/// per face (measured on the standard sphere: `plan_sphere` in `docs/BENCHMARKS.md`).
 struct Placed<const S: u32> {
     /// Vertex index + 1 (0: empty), and its position (`None`: outside the frustum).
     slots: [(u32, Option<SubpixelPoint<S>>); PLACED],
@@ -283,25 +313,14 @@ impl<const S: u32> Placed<S> {
         }
     }
 
-    /// Face `f`'s corners on screen, as the vertex stage places them, or `None` when one is
-    /// outside the frustum (the polygon stage would clip it).
-    fn face(
-        &mut self,
-        mesh: &Mesh<'_>,
-        f: u32,
-        view: &View<'_, S>,
-    ) -> Option<[SubpixelPoint<S>; 3]> {
-        let at = f as usize * 3;
-        let idx = mesh.indices().get(at..at + 3)?;
-        let mut out = [SubpixelPoint::new(0, 0); 3];
-        for (o, &i) in out.iter_mut().zip(idx) {
-            let slot = &mut self.slots[i as usize % PLACED];
-            if slot.0 != i as u32 + 1 {
-                *slot = (i as u32 + 1, place_vertex(mesh, i, view));
-            }
-            *o = slot.1?;
+    /// Vertex `i` on screen, as the vertex stage places it, or `None` when it is outside the
+    /// frustum (the polygon stage would clip its faces).
+    fn vertex(&mut self, mesh: &Mesh<'_>, i: u16, view: &View<'_, S>) -> Option<SubpixelPoint<S>> {
+        let slot = &mut self.slots[i as usize % PLACED];
+        if slot.0 != i as u32 + 1 {
+            *slot = (i as u32 + 1, place_vertex(mesh, i, view));
         }
-        Some(out)
+        slot.1
     }
 }
 

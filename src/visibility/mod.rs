@@ -36,7 +36,10 @@
 //! once, `facts.rs`), the objects' depth ranges and screen boxes. Convex (or creased, in views
 //! where the creases hold), culled, separable objects need no depth buffer
 //! ([`render_back_faces_in_order`], far to near); other scenes take the z-buffer, whole or in
-//! bands, 32-bit unless only 16-bit fits.
+//! bands, 32-bit unless only 16-bit fits. [`plan_frame`] plans and draws as one entry
+//! (`planned.rs`): the view check of a creased mesh runs the renderer's vertex stage into the
+//! caller's scratch, and a plan of back faces alone comes back as a [`BackFaceFrame`] that draws
+//! from those prepared vertices instead of running the vertex stage again.
 //!
 //! Every method's own counts (Newell's tests by number, splits; the active table's peak;
 //! Warnock's windows by verdict and stack peaks) go to [`RenderStats::method`](crate::render::RenderStats),
@@ -59,6 +62,7 @@ mod outline;
 mod painter;
 mod plan;
 mod plane;
+mod planned;
 mod scanline;
 mod store;
 mod warnock;
@@ -70,6 +74,7 @@ pub use plan::{
     plan, Buffers, DepthReason, DepthWidth, LayoutReason, MethodReason, Plan, PlanError,
     DEPTH_MARGIN, SCREEN_MARGIN,
 };
+pub use planned::{plan_frame, BackFaceFrame, PlannedFrame};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 pub use warnock::{render_warnock, Area, WarnockMemory, WindowCounts};

@@ -5,7 +5,9 @@
 //!
 //! ## What is cheap to know, per frame
 //! - Each mesh's convexity certificate ([`Convexity`], stored with the mesh), and for a creased
-//!   mesh whether its creases hold in this view ([`Creases`]: a few face pairs projected).
+//!   mesh whether its creases hold in this view ([`Creases`]: a few face pairs on screen, their
+//!   vertices placed as the vertex stage places them; by [`plan_frame`](super::plan_frame), the
+//!   vertex stage itself, run into the caller's scratch and reused by the frame).
 //! - Each object's bounding box (stored with the mesh), its 8 corners taken to the observer
 //!   frame by the object's own model-view transform: the vertex stage rounds every vertex to
 //!   nearest, which is monotone, so every vertex the renderer places lies within the box of the
@@ -45,6 +47,12 @@
 //!    the plan reports that step at the scene's farthest depth.
 //! 4. No layout fits: [`PlanError::OverBudget`] with the bytes of the smallest plan.
 //!
+//! Rule 1's checks run cheapest first, and the reason names the first that fails: each
+//! object's culling, convexity kind and rounding guard (in scene order), then the objects'
+//! separation, then each creased mesh's view check (the costliest: in reverse drawing order, so
+//! that the vertices [`plan_frame`](super::plan_frame) keeps are those of the object drawn
+//! first).
+//!
 //! The painter and the scan-line are never picked: their tables cost more memory than bands of
 //! the z-buffer and their frames more instructions (`docs/BENCHMARKS.md`, "Visibility
 //! methods").
@@ -60,7 +68,7 @@ use crate::geometry::fixed::{Coord, LINEAR_FRAC};
 use crate::geometry::vector::Vec3;
 use crate::project::Projector;
 use crate::render::compact::compact_draws;
-use crate::render::{CompactSizes, PolygonRows, PreparedVertex, RenderError};
+use crate::render::{CompactSizes, PolygonRows, PreparedVertex, RenderError, Renderer};
 use crate::scene::{Object, Scene};
 
 /// Units of the 2^32 depth range each object's depth range is widened by on each side.
@@ -371,22 +379,71 @@ struct Placed {
 
 /// The plan of `scene` at `S` sub-pixel bits within `budget` bytes, given `facts[i]` for
 /// object `i`'s mesh; `order[..objects]` receives the drawing order (far to near for back
-/// faces alone, the scene's order otherwise).
+/// faces alone, the scene's order otherwise). It draws nothing and needs no scratch: the view
+/// check of a creased mesh places the vertices it looks at itself. To draw the plan,
+/// [`plan_frame`](super::plan_frame) makes the same plan and keeps the vertex stage it ran for
+/// that check for the frame.
 pub fn plan<const S: u32>(
     scene: &Scene<'_>,
     facts: &[MeshFacts<'_>],
     budget: usize,
     order: &mut [u16],
 ) -> Result<Plan, PlanError> {
-    let n = scene.objects.len();
-    if order.len() < n || facts.len() < n || n > u16::MAX as usize + 1 {
-        return Err(PlanError::TooFewSlots { objects: n });
-    }
     let camera = &scene.camera;
     let projector =
         Projector::<S>::new(camera).map_err(|e| PlanError::Camera(RenderError::Projection(e)))?;
     let frustum = Frustum::new::<S>(camera, Frustum::DEFAULT_GUARD)
         .map_err(|e| PlanError::Camera(RenderError::Clip(e)))?;
+    let view = Placing {
+        projector: &projector,
+        frustum: &frustum,
+    };
+    plan_with(scene, facts, budget, order, &view, None)
+}
+
+/// How the planner places the scene: the renderer's projector and frustum.
+pub(super) struct Placing<'p, const S: u32> {
+    pub(super) projector: &'p Projector<S>,
+    pub(super) frustum: &'p Frustum,
+}
+
+/// The vertex scratch [`plan_frame`](super::plan_frame) lends the planner: the view check of
+/// a creased mesh runs the renderer's vertex stage there and reads the screen positions it
+/// left; `holds` names the object whose vertices the scratch holds (the last one prepared).
+pub(super) struct Lent<'s, const S: u32> {
+    pub(super) renderer: &'s Renderer<S>,
+    pub(super) vertices: &'s mut [PreparedVertex<S>],
+    pub(super) holds: Option<usize>,
+}
+
+impl<const S: u32> Lent<'_, S> {
+    /// Object `i`'s vertices after the vertex stage, or `None` when the scratch is shorter
+    /// than its vertex table or the stage refused it (the planner then places the vertices
+    /// itself, and the frame's own vertex stage reports the error).
+    fn prepare(&mut self, i: usize, object: &Object<'_>) -> Option<&[PreparedVertex<S>]> {
+        self.holds = None;
+        self.renderer.prepare(object, self.vertices).ok()?;
+        self.holds = Some(i);
+        self.vertices.get(..object.mesh.vertices().len())
+    }
+}
+
+/// [`plan`] with the scene placed by `view`, and the vertex scratch `lent` for the view
+/// check of creased meshes (module doc, rule 1), when [`plan_frame`](super::plan_frame) lends
+/// one. The plan is the same with or without it.
+pub(super) fn plan_with<const S: u32>(
+    scene: &Scene<'_>,
+    facts: &[MeshFacts<'_>],
+    budget: usize,
+    order: &mut [u16],
+    view: &Placing<'_, S>,
+    lent: Option<&mut Lent<'_, S>>,
+) -> Result<Plan, PlanError> {
+    let n = scene.objects.len();
+    if order.len() < n || facts.len() < n || n > u16::MAX as usize + 1 {
+        return Err(PlanError::TooFewSlots { objects: n });
+    }
+    let camera = &scene.camera;
     for (i, o) in order[..n].iter_mut().enumerate() {
         *o = i as u16;
     }
@@ -401,32 +458,15 @@ pub fn plan<const S: u32>(
         .unwrap_or(0);
     let all = meshes.clone().map(|m| m.vertices().len()).sum::<usize>();
     let polygons = meshes.map(|m| m.polygon_count()).sum::<usize>();
-    let compact = compact_fits(scene, facts, &projector, &frustum).then(|| {
-        let sizes = CompactSizes::of(scene);
-        let vertices = sizes.bytes(0, 0, 0).saturating_sub(sizes.polygons);
-        (vertices, sizes.polygons)
-    });
-    let counts = Counts {
-        w,
-        h,
-        largest: largest.saturating_mul(vertex_bytes),
-        all: all.saturating_mul(vertex_bytes),
-        table: polygons.saturating_mul(core::mem::size_of::<PolygonRows>()),
-        compact,
-    };
     let reason = match n {
         0 => Ok(MethodReason::Empty),
-        _ => back_faces_allowed(scene, facts, &projector, &frustum, &mut order[..n]),
-    };
-    let far_z = match reason {
-        Ok(_) => 0,
-        Err(far_z) => far_z.1,
+        _ => back_faces_allowed(scene, facts, view, &mut order[..n], lent),
     };
     let method_reason = match reason {
         Ok(r) => {
             let buffers = Buffers {
                 frame: w * h,
-                vertices: counts.largest,
+                vertices: largest.saturating_mul(vertex_bytes),
                 ..Buffers::default()
             };
             if buffers.total() <= budget {
@@ -445,11 +485,30 @@ pub fn plan<const S: u32>(
                 needed: buffers.total(),
             }
         }
-        Err((r, _)) => r,
+        Err(r) => r,
     };
     for (o, i) in order[..n].iter_mut().zip(0..) {
         *o = i; // the z-buffer draws in scene order
     }
+    // Compact bands' sizes, when the scene can be drawn so (known only for the z-buffer).
+    let compact = compact_fits(scene, facts, view).then(|| {
+        let sizes = CompactSizes::of(scene);
+        let vertices = sizes.bytes(0, 0, 0).saturating_sub(sizes.polygons);
+        (vertices, sizes.polygons)
+    });
+    let counts = Counts {
+        w,
+        h,
+        largest: largest.saturating_mul(vertex_bytes),
+        all: all.saturating_mul(vertex_bytes),
+        table: polygons.saturating_mul(core::mem::size_of::<PolygonRows>()),
+        compact,
+    };
+    let far_z = || {
+        let placed = scene.objects.iter().zip(facts);
+        let far = placed.filter_map(|(o, f)| place(o, f, scene, view.projector).map(|p| p.far_z));
+        far.max().unwrap_or(0)
+    };
     zbuffer_plan(&counts, camera, far_z, method_reason, budget)
 }
 
@@ -458,7 +517,7 @@ pub fn plan<const S: u32>(
 fn zbuffer_plan(
     counts: &Counts,
     camera: &crate::geometry::camera::Camera,
-    far_z: i32,
+    far_z: impl Fn() -> i32,
     method_reason: MethodReason,
     budget: usize,
 ) -> Result<Plan, PlanError> {
@@ -473,7 +532,7 @@ fn zbuffer_plan(
             }
             let depth_reason = match depth {
                 DepthWidth::U16 => DepthReason::OnlyU16Fits {
-                    resolution: resolution_16(camera, far_z),
+                    resolution: resolution_16(camera, far_z()),
                 },
                 _ => DepthReason::U32Fits,
             };
@@ -559,9 +618,9 @@ fn zbuffer_layouts(
 fn compact_fits<const S: u32>(
     scene: &Scene<'_>,
     facts: &[MeshFacts<'_>],
-    projector: &Projector<S>,
-    frustum: &Frustum,
+    view: &Placing<'_, S>,
 ) -> bool {
+    let (projector, frustum) = (view.projector, view.frustum);
     scene.objects.iter().zip(facts).all(|(object, fact)| {
         let inside = observer_box(object, fact, scene).is_some_and(|b| {
             (0..8).all(|k| {
@@ -581,57 +640,72 @@ fn compact_fits<const S: u32>(
     })
 }
 
-/// Back faces alone for `scene` (rule 1), with `order` sorted far to near; else the reason
-/// and the scene's largest observer-frame `z` (raw, for the 16-bit resolution).
+/// Back faces alone for `scene` (rule 1), with `order` sorted far to near; else the reason.
+/// The checks run cheapest first: each object's culling, convexity kind and rounding guard
+/// (in scene order), then the objects' separation, then the view check of each creased mesh,
+/// in reverse drawing order (with `lent`, its vertex stage: the object drawn first is the one
+/// whose vertices the scratch keeps).
 fn back_faces_allowed<const S: u32>(
     scene: &Scene<'_>,
     facts: &[MeshFacts<'_>],
-    projector: &Projector<S>,
-    frustum: &Frustum,
+    view: &Placing<'_, S>,
     order: &mut [u16],
-) -> Result<MethodReason, (MethodReason, i32)> {
-    let far_z = scene
-        .objects
-        .iter()
-        .zip(facts)
-        .filter_map(|(o, f)| place(o, f, scene, projector).map(|p| p.far_z))
-        .max()
-        .unwrap_or(0);
+    mut lent: Option<&mut Lent<'_, S>>,
+) -> Result<MethodReason, MethodReason> {
+    let projector = view.projector;
     for (i, (object, fact)) in scene.objects.iter().zip(facts).enumerate() {
         if !object.cull_back_faces {
-            return Err((MethodReason::BackFacesDrawn { object: i }, far_z));
+            return Err(MethodReason::BackFacesDrawn { object: i });
         }
-        if !matches!(fact.convexity, Convexity::NotConvex)
-            && !rounding_within(object, fact, scene, projector)
-        {
-            return Err((MethodReason::RoundingMayFold { object: i }, far_z));
+        if matches!(fact.convexity, Convexity::NotConvex) {
+            return Err(MethodReason::NotConvex { object: i });
         }
-        let reason = match fact.convexity {
-            Convexity::Convex => continue,
-            Convexity::NotConvex => MethodReason::NotConvex { object: i },
-            Convexity::Creased(creases) => {
-                let model_view = model_view(object, scene);
-                let view = model_view.as_ref().map(|mv| View {
-                    model_view: mv,
-                    frustum,
-                    projector,
-                });
-                // The certificate's argument takes the solid outside the eye: a mirroring
-                // transform turns the mesh inside out, so it is not used there.
-                let mirrored = determinant(object.transform.linear_bits()) < 0;
-                if !mirrored && view.is_some_and(|v| creases.hold(&object.mesh, &v)) {
-                    continue;
-                }
-                MethodReason::CreasesOverlap { object: i }
-            }
-        };
-        return Err((reason, far_z));
+        if !rounding_within(object, fact, scene, projector) {
+            return Err(MethodReason::RoundingMayFold { object: i });
+        }
     }
-    let key = |i: u16| {
-        let k = i as usize;
-        place(&scene.objects[k], &facts[k], scene, projector).map_or(u32::MAX, |p| p.depth.1)
-    };
-    // Far to near by the far end of the depth range (insertion sort: no heap, n small).
+    separate(scene, facts, projector, order)?;
+    for &k in order.iter().rev() {
+        let (i, object) = (k as usize, &scene.objects[k as usize]);
+        let Convexity::Creased(creases) = facts[i].convexity else {
+            continue;
+        };
+        // The certificate's argument takes the solid outside the eye: a mirroring transform
+        // turns the mesh inside out, so it is not used there.
+        let mirrored = determinant(object.transform.linear_bits()) < 0;
+        let model_view = model_view(object, scene);
+        let holds = !mirrored
+            && model_view.is_some_and(|mv| {
+                match lent.as_deref_mut().and_then(|l| l.prepare(i, object)) {
+                    Some(prepared) => creases.hold_prepared(&object.mesh, prepared),
+                    None => creases.hold_in(
+                        &object.mesh,
+                        &View {
+                            model_view: &mv,
+                            frustum: view.frustum,
+                            projector,
+                        },
+                    ),
+                }
+            });
+        if !holds {
+            return Err(MethodReason::CreasesOverlap { object: i });
+        }
+    }
+    Ok(MethodReason::ConvexAndSeparable)
+}
+
+/// Sorts `order` far to near by the far end of each object's depth range, and checks that
+/// any two objects overlapping on screen are apart in depth (rule 1's separability).
+fn separate<const S: u32>(
+    scene: &Scene<'_>,
+    facts: &[MeshFacts<'_>],
+    projector: &Projector<S>,
+    order: &mut [u16],
+) -> Result<(), MethodReason> {
+    let placed = |i: usize| place(&scene.objects[i], &facts[i], scene, projector);
+    let key = |i: u16| placed(i as usize).map_or(u32::MAX, |p| p.depth.1);
+    // Insertion sort: no heap, n small.
     for k in 1..order.len() {
         let mut j = k;
         while j > 0 && key(order[j - 1]) < key(order[j]) {
@@ -642,19 +716,17 @@ fn back_faces_allowed<const S: u32>(
     for a in 0..order.len() {
         for b in a + 1..order.len() {
             let (i, j) = (order[a] as usize, order[b] as usize);
-            let pi = place(&scene.objects[i], &facts[i], scene, projector);
-            let pj = place(&scene.objects[j], &facts[j], scene, projector);
-            let apart = match (pi, pj) {
+            let apart = match (placed(i), placed(j)) {
                 (Some(p), Some(q)) => p.depth.0 > q.depth.1 || screens_apart(&p, &q),
                 _ => false,
             };
             if !apart {
                 let (a, b) = (i.min(j), i.max(j));
-                return Err((MethodReason::ObjectsOverlap { a, b }, far_z));
+                return Err(MethodReason::ObjectsOverlap { a, b });
             }
         }
     }
-    Ok(MethodReason::ConvexAndSeparable)
+    Ok(())
 }
 
 /// The sign-exact determinant of a linear part (raw entries `|e| < 2^31`: each product of

@@ -1343,32 +1343,22 @@ impl LoadedScene {
         self.render_by::<D>(band_rows, Visibility::ZBuffer)
     }
 
-    /// The plan of [`zscan::visibility::plan`] for this scene within `budget` bytes, each
-    /// mesh's facts computed here ([`MeshFacts::of`](zscan::visibility::MeshFacts::of)),
-    /// with the drawing order it wrote.
-    pub fn plan(&self, budget: usize) -> Result<(zscan::visibility::Plan, Vec<u16>), String> {
+    /// The frame planned within `budget` bytes and drawn as planned
+    /// ([`render_planned`](crate::core_render::render_planned), which runs
+    /// [`zscan::visibility::plan_frame`]), each mesh's facts computed here
+    /// ([`MeshFacts::of`](zscan::visibility::MeshFacts::of)): the plan, the drawing order it
+    /// wrote, the picture (depth samples all far) and its counts.
+    pub fn render_planned(
+        &self,
+        budget: usize,
+    ) -> Result<crate::core_render::PlannedFrame, String> {
         let objects = self.core_objects(None)?;
         let scene = self.core_scene(&objects);
         let mut pairs = Vec::new();
         let facts = crate::core_render::mesh_facts(&scene, &mut pairs);
-        let mut order = vec![0u16; objects.len()];
-        let plan = zscan::visibility::plan::<SUBPIXEL_BITS>(&scene, &facts, budget, &mut order)
-            .map_err(|e| format!("plan: {e}"))?;
-        Ok((plan, order))
-    }
-
-    /// The frame drawn as `plan` says, objects in `order` (depth samples all far).
-    pub fn render_plan(
-        &self,
-        plan: &zscan::visibility::Plan,
-        order: &[u16],
-    ) -> Result<(Vec<u8>, RenderStats), String> {
-        let objects = self.core_objects(None)?;
-        let scene = self.core_scene(&objects);
         let renderer = SceneRenderer::<SUBPIXEL_BITS>::new(&scene)
             .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
-        crate::core_render::draw_plan(&renderer, plan, order)
-            .map_err(|e| format!("render: {}", render_error_words(&e)))
+        crate::core_render::render_planned(&renderer, &facts, budget)
     }
 
     /// The core objects of the scene, or object `only` alone.
@@ -1694,14 +1684,18 @@ fn finish_auto(args: &RenderArgs, scene: &LoadedScene) -> Result<(), CliError> {
         return Err("--bands: --visibility auto picks the band height".into());
     }
     let budget = args.ram_budget.unwrap_or(usize::MAX);
-    let (plan, order) = scene.plan(budget)?;
-    for line in plan.to_string().lines() {
-        println!("plan: {line}");
-    }
     if args.depth_out.is_some() {
         return Err("--depth-out: --visibility auto keeps no whole depth picture".into());
     }
-    let (pixels, stats) = scene.render_plan(&plan, &order)?;
+    let crate::core_render::PlannedFrame {
+        plan,
+        order,
+        pixels,
+        stats,
+    } = scene.render_planned(budget)?;
+    for line in plan.to_string().lines() {
+        println!("plan: {line}");
+    }
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
     let mut pixels = pixels;
