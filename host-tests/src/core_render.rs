@@ -137,6 +137,37 @@ pub fn to_core(scene: &Scene) -> Result<CoreMesh, String> {
     })
 }
 
+/// The core scene of `objects` seen by `camera`, on background 0, unlit (ambient 0, no
+/// light): how the host's tests, `zscan failures` and the charts draw one mesh or a soup.
+pub fn scene_of<'a>(objects: &'a [Object<'a>], camera: Camera) -> CoreScene<'a> {
+    CoreScene {
+        camera,
+        objects,
+        background: 0,
+        ambient: 0,
+        lights: &[],
+    }
+}
+
+/// The measured region of the host's instruction counts: `zscan chart` runs one frame under
+/// valgrind callgrind collecting only inside this call (`--toggle-collect=zscan_chart_region`).
+/// Never nested (callgrind would toggle collection off inside).
+#[no_mangle]
+#[inline(never)]
+pub fn zscan_chart_region(f: &mut dyn FnMut()) {
+    f()
+}
+
+/// `f()` inside [`zscan_chart_region`]: the frame functions below wrap exactly the core's
+/// frame call in it, so that a count leaves out the buffers this harness allocates (a device
+/// has them statically) but keeps the core's clears and the copy of each finished band into
+/// the picture (a device's flush).
+pub fn measured<R>(f: impl FnOnce() -> R) -> R {
+    let (mut f, mut out) = (Some(f), None);
+    zscan_chart_region(&mut || out = f.take().map(|f| f()));
+    out.expect("zscan_chart_region calls its closure once")
+}
+
 /// A frame rendered by the core.
 #[derive(Debug, Clone)]
 pub struct CoreFrame<D> {
@@ -189,13 +220,7 @@ impl CoreMesh {
         let (w, h) = (vp.width, vp.height);
         let object = self.object(shade)?;
         let objects = [object];
-        let scene = CoreScene {
-            camera: self.camera,
-            objects: &objects,
-            background: 0,
-            ambient: 0,
-            lights: &[],
-        };
+        let scene = scene_of(&objects, self.camera);
         let renderer = SceneRenderer::<S>::new(&scene).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
         let polygons = if polygon_table {
@@ -237,23 +262,25 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     let total = w as usize * h as usize;
     let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
     let mut stats = RenderStats::default();
-    render_in_bands(
-        renderer,
-        (&mut band_pixels, &mut band_depths),
-        (w, h, band),
-        scratch,
-        &mut stats,
-        |frame, zb| {
-            for y in frame.top()..frame.top() + frame.height() as i32 {
-                let at = y as usize * w as usize;
-                if let (Some(row), Some(zrow)) = (frame.row(y), zb.row(y)) {
-                    pixels[at..at + w as usize].copy_from_slice(row);
-                    depth[at..at + w as usize].copy_from_slice(zrow);
+    measured(|| {
+        render_in_bands(
+            renderer,
+            (&mut band_pixels, &mut band_depths),
+            (w, h, band),
+            scratch,
+            &mut stats,
+            |frame, zb| {
+                for y in frame.top()..frame.top() + frame.height() as i32 {
+                    let at = y as usize * w as usize;
+                    if let (Some(row), Some(zrow)) = (frame.row(y), zb.row(y)) {
+                        pixels[at..at + w as usize].copy_from_slice(row);
+                        depth[at..at + w as usize].copy_from_slice(zrow);
+                    }
                 }
-            }
-            Ok::<(), RenderError>(())
-        },
-    )?;
+                Ok::<(), RenderError>(())
+            },
+        )
+    })?;
     Ok((pixels, depth, stats))
 }
 
@@ -329,7 +356,7 @@ pub fn render_visible<const SB: u32>(
             let mut pixels = vec![0u8; total];
             let mut frame =
                 Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
-            render_back_faces(renderer, &mut frame, &mut scratch, &mut stats)?;
+            measured(|| render_back_faces(renderer, &mut frame, &mut scratch, &mut stats))?;
             Ok((pixels, stats))
         }
         Visibility::Painter => {
@@ -345,14 +372,16 @@ pub fn render_visible<const SB: u32>(
                 normals: &mut normals,
             };
             let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
-            render_painter(
-                renderer,
-                &mut frame,
-                &mut scratch,
-                memory,
-                policy,
-                &mut stats,
-            )?;
+            measured(|| {
+                render_painter(
+                    renderer,
+                    &mut frame,
+                    &mut scratch,
+                    memory,
+                    policy,
+                    &mut stats,
+                )
+            })?;
             Ok((pixels, stats))
         }
         Visibility::ScanLine => {
@@ -370,20 +399,22 @@ pub fn render_visible<const SB: u32>(
                 depths: &mut band_depths,
             };
             let mut pixels = vec![scene.background; total];
-            render_scan_lines(
-                renderer,
-                (w, h, band),
-                &mut scratch,
-                memory,
-                &mut stats,
-                |frame, _| {
-                    for (y, row) in frame.rows() {
-                        let at = y as usize * w as usize;
-                        pixels[at..at + w as usize].copy_from_slice(row);
-                    }
-                    Ok::<(), RenderError>(())
-                },
-            )?;
+            measured(|| {
+                render_scan_lines(
+                    renderer,
+                    (w, h, band),
+                    &mut scratch,
+                    memory,
+                    &mut stats,
+                    |frame, _| {
+                        for (y, row) in frame.rows() {
+                            let at = y as usize * w as usize;
+                            pixels[at..at + w as usize].copy_from_slice(row);
+                        }
+                        Ok::<(), RenderError>(())
+                    },
+                )
+            })?;
             Ok((pixels, stats))
         }
         Visibility::Warnock => {
@@ -398,7 +429,7 @@ pub fn render_visible<const SB: u32>(
                 candidates: &mut candidates,
                 windows: &mut windows,
             };
-            render_warnock(renderer, &mut frame, &mut scratch, memory, &mut stats)?;
+            measured(|| render_warnock(renderer, &mut frame, &mut scratch, memory, &mut stats))?;
             Ok((pixels, stats))
         }
         Visibility::ZBuffer => {
@@ -437,27 +468,29 @@ pub fn render_compact_picture<D: DepthValue, const SB: u32>(
     let total = w as usize * h as usize;
     let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
     let mut stats = RenderStats::default();
-    render_in_compact_bands(
-        renderer,
-        (&mut band_pixels, &mut band_depths),
-        (w, h, band_rows),
-        CompactBandScratch {
-            vertices: &mut vertices,
-            levels: &mut levels,
-            polygons: &mut polygons,
-        },
-        &mut stats,
-        |frame, zb| {
-            for (y, row) in frame.rows() {
-                let at = y as usize * w as usize;
-                pixels[at..at + w as usize].copy_from_slice(row);
-                if let Some(zrow) = zb.row(y) {
-                    depth[at..at + w as usize].copy_from_slice(zrow);
+    measured(|| {
+        render_in_compact_bands(
+            renderer,
+            (&mut band_pixels, &mut band_depths),
+            (w, h, band_rows),
+            CompactBandScratch {
+                vertices: &mut vertices,
+                levels: &mut levels,
+                polygons: &mut polygons,
+            },
+            &mut stats,
+            |frame, zb| {
+                for (y, row) in frame.rows() {
+                    let at = y as usize * w as usize;
+                    pixels[at..at + w as usize].copy_from_slice(row);
+                    if let Some(zrow) = zb.row(y) {
+                        depth[at..at + w as usize].copy_from_slice(zrow);
+                    }
                 }
-            }
-            Ok::<(), RenderError>(())
-        },
-    )?;
+                Ok::<(), RenderError>(())
+            },
+        )
+    })?;
     Ok((pixels, depth, stats))
 }
 
@@ -472,13 +505,7 @@ impl CoreMesh {
         let vp = *self.camera.viewport();
         let object = self.object(shade)?;
         let objects = [object];
-        let scene = CoreScene {
-            camera: self.camera,
-            objects: &objects,
-            background: 0,
-            ambient: 0,
-            lights: &[],
-        };
+        let scene = scene_of(&objects, self.camera);
         let renderer = SceneRenderer::<S>::new(&scene).map_err(|e| e.to_string())?;
         let (pixels, depth, stats) =
             render_compact_picture(&renderer, (vp.width, vp.height), band_rows)
