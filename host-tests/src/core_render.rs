@@ -385,36 +385,14 @@ pub fn render_visible<const SB: u32>(
             Ok((pixels, stats))
         }
         Visibility::ScanLine => {
-            // A 0 is passed on for the core to refuse (`BadBandRows`).
-            let band = band_rows;
-            let n = w as usize * band.min(h.max(1)) as usize;
-            let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![0u32; n]);
-            let mut triangles = vec![StoredTriangle::default(); capacity];
-            let (mut order, mut active) = (vec![0u32; capacity], vec![0u32; capacity]);
-            let memory = ScanLineMemory {
-                triangles: &mut triangles,
-                order: &mut order,
-                active: &mut active,
-                pixels: &mut band_pixels,
-                depths: &mut band_depths,
-            };
-            let mut pixels = vec![scene.background; total];
-            measured(|| {
-                render_scan_lines(
-                    renderer,
-                    (w, h, band),
-                    &mut scratch,
-                    memory,
-                    &mut stats,
-                    |frame, _| {
-                        for (y, row) in frame.rows() {
-                            let at = y as usize * w as usize;
-                            pixels[at..at + w as usize].copy_from_slice(row);
-                        }
-                        Ok::<(), RenderError>(())
-                    },
-                )
-            })?;
+            let pixels = scan_line_picture(
+                renderer,
+                (w, h),
+                band_rows,
+                &mut scratch,
+                capacity,
+                &mut stats,
+            )?;
             Ok((pixels, stats))
         }
         Visibility::Warnock => {
@@ -443,6 +421,48 @@ pub fn render_visible<const SB: u32>(
             Ok((pixels, stats))
         }
     }
+}
+
+/// [`render_visible`]'s scan-line: bands of `band_rows` rows (32-bit depth), `capacity` stored
+/// triangles, each finished band copied into the whole picture.
+fn scan_line_picture<const SB: u32>(
+    renderer: &SceneRenderer<'_, SB>,
+    (w, h): (u16, u16),
+    band_rows: u16,
+    scratch: &mut [PreparedVertex<SB>],
+    capacity: usize,
+    stats: &mut RenderStats,
+) -> Result<Vec<u8>, RenderError> {
+    // A 0 is passed on for the core to refuse (`BadBandRows`).
+    let n = w as usize * band_rows.min(h.max(1)) as usize;
+    let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![0u32; n]);
+    let mut triangles = vec![StoredTriangle::default(); capacity];
+    let (mut order, mut active) = (vec![0u32; capacity], vec![0u32; capacity]);
+    let memory = ScanLineMemory {
+        triangles: &mut triangles,
+        order: &mut order,
+        active: &mut active,
+        pixels: &mut band_pixels,
+        depths: &mut band_depths,
+    };
+    let mut pixels = vec![renderer.scene().background; w as usize * h as usize];
+    measured(|| {
+        render_scan_lines(
+            renderer,
+            (w, h, band_rows),
+            scratch,
+            memory,
+            stats,
+            |frame, _| {
+                for (y, row) in frame.rows() {
+                    let at = y as usize * w as usize;
+                    pixels[at..at + w as usize].copy_from_slice(row);
+                }
+                Ok::<(), RenderError>(())
+            },
+        )
+    })?;
+    Ok(pixels)
 }
 
 /// Renders `scene` into a whole `w × h` picture with the core's

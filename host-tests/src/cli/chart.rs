@@ -507,19 +507,7 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
         ));
         x += sx;
     }
-    let mut y = 0.0;
-    while y <= ymax {
-        chart
-            .draw_series(LineSeries::new([(0.0, y), (xmax, y)], grey))
-            .map_err(|q| e(&q))?;
-        let (px, py) = chart.backend_coord(&(0.0, y));
-        texts.push(format!(
-            r#"<text x="{}" y="{}" text-anchor="end" font-size="12">{y:.0}</text>"#,
-            px - 6,
-            py + 4
-        ));
-        y += sy;
-    }
+    y_grid(&mut chart, (0.0, xmax), (ymax, sy), (grey, 12), texts)?;
     chart
         .draw_series(LineSeries::new(
             [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
@@ -586,6 +574,40 @@ pub(super) fn nice_step(max: f64) -> f64 {
         .map(|m| m * mag)
         .find(|s| *s >= raw)
         .unwrap_or(raw)
+}
+
+/// Horizontal grid lines in `grey` every `step` from 0 to `ymax` across `x0..x1` of `chart`,
+/// each labelled on the left at font size `size` (the texts collected in `texts`).
+pub(super) fn y_grid<DB, X>(
+    chart: &mut plotters::prelude::ChartContext<
+        '_,
+        DB,
+        plotters::prelude::Cartesian2d<X, plotters::coord::types::RangedCoordf64>,
+    >,
+    (x0, x1): (f64, f64),
+    (ymax, step): (f64, f64),
+    (grey, size): (plotters::prelude::RGBColor, u32),
+    texts: &mut Vec<String>,
+) -> Result<(), CliError>
+where
+    DB: plotters::prelude::DrawingBackend,
+    X: plotters::prelude::Ranged<ValueType = f64>,
+{
+    use plotters::prelude::*;
+    let mut y = 0.0;
+    while y <= ymax {
+        chart
+            .draw_series(LineSeries::new([(x0, y), (x1, y)], grey))
+            .map_err(|q| q.to_string())?;
+        let (px, py) = chart.backend_coord(&(x0, y));
+        texts.push(format!(
+            r#"<text x="{}" y="{}" text-anchor="end" font-size="{size}">{y:.0}</text>"#,
+            px - 6,
+            py + 4
+        ));
+        y += step;
+    }
+    Ok(())
 }
 
 /// Panel margins: left, top, right, bottom.

@@ -244,19 +244,7 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
         ));
     }
     let step = super::chart::nice_step(most);
-    let mut y = 0.0;
-    while y <= y1 {
-        chart
-            .draw_series(LineSeries::new([(x0, y), (x1, y)], grey))
-            .map_err(|q| e(&q))?;
-        let (px, py) = chart.backend_coord(&(x0, y));
-        texts.push(format!(
-            r#"<text x="{}" y="{}" text-anchor="end" font-size="11">{y:.0}</text>"#,
-            px - 6,
-            py + 4
-        ));
-        y += step;
-    }
+    super::chart::y_grid(&mut chart, (x0, x1), (y1, step), (grey, 11), texts)?;
     chart
         .draw_series(LineSeries::new([(x0, y1), (x0, 0.0), (x1, 0.0)], BLACK))
         .map_err(|q| e(&q))?;
