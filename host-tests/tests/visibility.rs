@@ -91,10 +91,8 @@ fn warnock_draws_the_z_buffer_pictures_of_the_standard_scenes() {
     }
 }
 
-/// Every scene file of `host-tests/scenes/` that Warnock's method can store (the demo's Phong
-/// object carries normals: refused by name) draws the 32-bit z-buffer's picture.
-#[test]
-fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
+/// The scene files of `host-tests/scenes/`, sorted.
+fn scene_files() -> Vec<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let mut paths: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -102,6 +100,14 @@ fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     paths.sort();
+    paths
+}
+
+/// Every scene file of `host-tests/scenes/` that Warnock's method can store (the demo's Phong
+/// object carries normals: refused by name) draws the 32-bit z-buffer's picture.
+#[test]
+fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
+    let paths = scene_files();
     let (mut drawn, mut refused) = (0, 0);
     for path in &paths {
         let scene = load_scene(path).unwrap();
@@ -127,13 +133,7 @@ fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
 /// by name) draws the 32-bit z-buffer's picture.
 #[test]
 fn painter_draws_the_z_buffer_pictures_of_the_scene_files() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
+    let paths = scene_files();
     let mut drawn = 0;
     for path in &paths {
         let scene = load_scene(path).unwrap();
