@@ -137,6 +137,37 @@ pub fn to_core(scene: &Scene) -> Result<CoreMesh, String> {
     })
 }
 
+/// The core scene of `objects` seen by `camera`, on background 0, unlit (ambient 0, no
+/// light): how the host's tests, `zscan failures` and the charts draw one mesh or a soup.
+pub fn scene_of<'a>(objects: &'a [Object<'a>], camera: Camera) -> CoreScene<'a> {
+    CoreScene {
+        camera,
+        objects,
+        background: 0,
+        ambient: 0,
+        lights: &[],
+    }
+}
+
+/// The measured region of the host's instruction counts: `zscan chart` runs one frame under
+/// valgrind callgrind collecting only inside this call (`--toggle-collect=zscan_chart_region`).
+/// Never nested (callgrind would toggle collection off inside).
+#[no_mangle]
+#[inline(never)]
+pub fn zscan_chart_region(f: &mut dyn FnMut()) {
+    f()
+}
+
+/// `f()` inside [`zscan_chart_region`]: the frame functions below wrap exactly the core's
+/// frame call in it, so that a count leaves out the buffers this harness allocates (a device
+/// has them statically) but keeps the core's clears and the copy of each finished band into
+/// the picture (a device's flush).
+pub fn measured<R>(f: impl FnOnce() -> R) -> R {
+    let (mut f, mut out) = (Some(f), None);
+    zscan_chart_region(&mut || out = f.take().map(|f| f()));
+    out.expect("zscan_chart_region calls its closure once")
+}
+
 /// A frame rendered by the core.
 #[derive(Debug, Clone)]
 pub struct CoreFrame<D> {
@@ -189,13 +220,7 @@ impl CoreMesh {
         let (w, h) = (vp.width, vp.height);
         let object = self.object(shade)?;
         let objects = [object];
-        let scene = CoreScene {
-            camera: self.camera,
-            objects: &objects,
-            background: 0,
-            ambient: 0,
-            lights: &[],
-        };
+        let scene = scene_of(&objects, self.camera);
         let renderer = SceneRenderer::<S>::new(&scene).map_err(|e| e.to_string())?;
         let mut scratch = vec![PreparedVertex::default(); self.vertices.len()];
         let polygons = if polygon_table {
@@ -237,23 +262,25 @@ pub fn render_picture<D: DepthValue, const SB: u32>(
     let total = w as usize * h as usize;
     let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
     let mut stats = RenderStats::default();
-    render_in_bands(
-        renderer,
-        (&mut band_pixels, &mut band_depths),
-        (w, h, band),
-        scratch,
-        &mut stats,
-        |frame, zb| {
-            for y in frame.top()..frame.top() + frame.height() as i32 {
-                let at = y as usize * w as usize;
-                if let (Some(row), Some(zrow)) = (frame.row(y), zb.row(y)) {
-                    pixels[at..at + w as usize].copy_from_slice(row);
-                    depth[at..at + w as usize].copy_from_slice(zrow);
+    measured(|| {
+        render_in_bands(
+            renderer,
+            (&mut band_pixels, &mut band_depths),
+            (w, h, band),
+            scratch,
+            &mut stats,
+            |frame, zb| {
+                for y in frame.top()..frame.top() + frame.height() as i32 {
+                    let at = y as usize * w as usize;
+                    if let (Some(row), Some(zrow)) = (frame.row(y), zb.row(y)) {
+                        pixels[at..at + w as usize].copy_from_slice(row);
+                        depth[at..at + w as usize].copy_from_slice(zrow);
+                    }
                 }
-            }
-            Ok::<(), RenderError>(())
-        },
-    )?;
+                Ok::<(), RenderError>(())
+            },
+        )
+    })?;
     Ok((pixels, depth, stats))
 }
 
@@ -329,7 +356,7 @@ pub fn render_visible<const SB: u32>(
             let mut pixels = vec![0u8; total];
             let mut frame =
                 Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
-            render_back_faces(renderer, &mut frame, &mut scratch, &mut stats)?;
+            measured(|| render_back_faces(renderer, &mut frame, &mut scratch, &mut stats))?;
             Ok((pixels, stats))
         }
         Visibility::Painter => {
@@ -345,44 +372,26 @@ pub fn render_visible<const SB: u32>(
                 normals: &mut normals,
             };
             let policy = splits.map_or(SplitPolicy::Never, SplitPolicy::Budget);
-            render_painter(
-                renderer,
-                &mut frame,
-                &mut scratch,
-                memory,
-                policy,
-                &mut stats,
-            )?;
+            measured(|| {
+                render_painter(
+                    renderer,
+                    &mut frame,
+                    &mut scratch,
+                    memory,
+                    policy,
+                    &mut stats,
+                )
+            })?;
             Ok((pixels, stats))
         }
         Visibility::ScanLine => {
-            // A 0 is passed on for the core to refuse (`BadBandRows`).
-            let band = band_rows;
-            let n = w as usize * band.min(h.max(1)) as usize;
-            let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![0u32; n]);
-            let mut triangles = vec![StoredTriangle::default(); capacity];
-            let (mut order, mut active) = (vec![0u32; capacity], vec![0u32; capacity]);
-            let memory = ScanLineMemory {
-                triangles: &mut triangles,
-                order: &mut order,
-                active: &mut active,
-                pixels: &mut band_pixels,
-                depths: &mut band_depths,
-            };
-            let mut pixels = vec![scene.background; total];
-            render_scan_lines(
+            let pixels = scan_line_picture(
                 renderer,
-                (w, h, band),
+                (w, h),
+                band_rows,
                 &mut scratch,
-                memory,
+                capacity,
                 &mut stats,
-                |frame, _| {
-                    for (y, row) in frame.rows() {
-                        let at = y as usize * w as usize;
-                        pixels[at..at + w as usize].copy_from_slice(row);
-                    }
-                    Ok::<(), RenderError>(())
-                },
             )?;
             Ok((pixels, stats))
         }
@@ -398,7 +407,7 @@ pub fn render_visible<const SB: u32>(
                 candidates: &mut candidates,
                 windows: &mut windows,
             };
-            render_warnock(renderer, &mut frame, &mut scratch, memory, &mut stats)?;
+            measured(|| render_warnock(renderer, &mut frame, &mut scratch, memory, &mut stats))?;
             Ok((pixels, stats))
         }
         Visibility::ZBuffer => {
@@ -412,6 +421,48 @@ pub fn render_visible<const SB: u32>(
             Ok((pixels, stats))
         }
     }
+}
+
+/// [`render_visible`]'s scan-line: bands of `band_rows` rows (32-bit depth), `capacity` stored
+/// triangles, each finished band copied into the whole picture.
+fn scan_line_picture<const SB: u32>(
+    renderer: &SceneRenderer<'_, SB>,
+    (w, h): (u16, u16),
+    band_rows: u16,
+    scratch: &mut [PreparedVertex<SB>],
+    capacity: usize,
+    stats: &mut RenderStats,
+) -> Result<Vec<u8>, RenderError> {
+    // A 0 is passed on for the core to refuse (`BadBandRows`).
+    let n = w as usize * band_rows.min(h.max(1)) as usize;
+    let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![0u32; n]);
+    let mut triangles = vec![StoredTriangle::default(); capacity];
+    let (mut order, mut active) = (vec![0u32; capacity], vec![0u32; capacity]);
+    let memory = ScanLineMemory {
+        triangles: &mut triangles,
+        order: &mut order,
+        active: &mut active,
+        pixels: &mut band_pixels,
+        depths: &mut band_depths,
+    };
+    let mut pixels = vec![renderer.scene().background; w as usize * h as usize];
+    measured(|| {
+        render_scan_lines(
+            renderer,
+            (w, h, band_rows),
+            scratch,
+            memory,
+            stats,
+            |frame, _| {
+                for (y, row) in frame.rows() {
+                    let at = y as usize * w as usize;
+                    pixels[at..at + w as usize].copy_from_slice(row);
+                }
+                Ok::<(), RenderError>(())
+            },
+        )
+    })?;
+    Ok(pixels)
 }
 
 /// Renders `scene` into a whole `w × h` picture with the core's
@@ -437,27 +488,29 @@ pub fn render_compact_picture<D: DepthValue, const SB: u32>(
     let total = w as usize * h as usize;
     let (mut pixels, mut depth) = (vec![scene.background; total], vec![D::FAR; total]);
     let mut stats = RenderStats::default();
-    render_in_compact_bands(
-        renderer,
-        (&mut band_pixels, &mut band_depths),
-        (w, h, band_rows),
-        CompactBandScratch {
-            vertices: &mut vertices,
-            levels: &mut levels,
-            polygons: &mut polygons,
-        },
-        &mut stats,
-        |frame, zb| {
-            for (y, row) in frame.rows() {
-                let at = y as usize * w as usize;
-                pixels[at..at + w as usize].copy_from_slice(row);
-                if let Some(zrow) = zb.row(y) {
-                    depth[at..at + w as usize].copy_from_slice(zrow);
+    measured(|| {
+        render_in_compact_bands(
+            renderer,
+            (&mut band_pixels, &mut band_depths),
+            (w, h, band_rows),
+            CompactBandScratch {
+                vertices: &mut vertices,
+                levels: &mut levels,
+                polygons: &mut polygons,
+            },
+            &mut stats,
+            |frame, zb| {
+                for (y, row) in frame.rows() {
+                    let at = y as usize * w as usize;
+                    pixels[at..at + w as usize].copy_from_slice(row);
+                    if let Some(zrow) = zb.row(y) {
+                        depth[at..at + w as usize].copy_from_slice(zrow);
+                    }
                 }
-            }
-            Ok::<(), RenderError>(())
-        },
-    )?;
+                Ok::<(), RenderError>(())
+            },
+        )
+    })?;
     Ok((pixels, depth, stats))
 }
 
@@ -472,13 +525,7 @@ impl CoreMesh {
         let vp = *self.camera.viewport();
         let object = self.object(shade)?;
         let objects = [object];
-        let scene = CoreScene {
-            camera: self.camera,
-            objects: &objects,
-            background: 0,
-            ambient: 0,
-            lights: &[],
-        };
+        let scene = scene_of(&objects, self.camera);
         let renderer = SceneRenderer::<S>::new(&scene).map_err(|e| e.to_string())?;
         let (pixels, depth, stats) =
             render_compact_picture(&renderer, (vp.width, vp.height), band_rows)
@@ -494,18 +541,6 @@ impl CoreMesh {
 /// Face pairs a mesh's convexity certificate may hold on the host (the standard sphere needs
 /// about 2,500; longer certificates make the mesh "not convex", which is conservative).
 pub const FACT_PAIRS: usize = 8192;
-
-/// `objects` under `camera`, unlit (no ambient, no lights), on background 0: the scene the
-/// tests and the failure cases draw.
-pub fn scene_of<'a>(objects: &'a [Object<'a>], camera: Camera) -> CoreScene<'a> {
-    CoreScene {
-        camera,
-        ambient: 0,
-        lights: &[],
-        objects,
-        background: 0,
-    }
-}
 
 /// Each object's [`MeshFacts`](zscan::visibility::MeshFacts), computed once, with the
 /// buffers its certificate borrows (`pairs[i]` for object `i`).

@@ -18,12 +18,18 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::Angle;
 use zscan::geometry::vector::Vec3;
-use zscan::render::{BandScratch, PolygonRows, PreparedVertex, RenderError, Renderer};
-use zscan::scene::{Intensities, Object, Scene};
+use zscan::render::{
+    BandScratch, PolygonRows, PreparedVertex, RenderError, Renderer, SceneRenderer,
+};
+use zscan::scene::{Intensities, Object};
 use zscan::shade::span_writer::ShadeMode;
 use zscan::visibility::Visibility;
 
-use crate::core_render::{render_picture, render_visible, to_core};
+use zscan::target::DepthValue;
+
+use crate::core_render::{
+    render_compact_picture, render_picture, render_visible, scene_of, to_core,
+};
 
 /// The colour of a wrong pixel in [`Failure::marked`].
 pub const WRONG_COLOUR: [u8; 3] = [255, 40, 40];
@@ -162,100 +168,270 @@ impl Failure {
     }
 }
 
-/// The frames of `method` (the painter: split budget `splits`, `None` without test 6) and of
-/// the 32-bit z-buffer on `scene`.
-fn against_z32(
-    scene: &Scene<'_>,
-    method: Visibility,
-    splits: Option<usize>,
-) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+/// The scenes of the failures and of the chart of the hidden-surface methods' speed against
+/// accuracy (`zscan chart`): each traps at least one method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Trap {
+    /// [`cycle_of_three`] in the small frame at far/near 100.
+    Cycle,
+    /// [`interpenetrating`] in the small frame at far/near 100.
+    Interpenetration,
+    /// The standard bunny (Gouraud, as SCENES.md draws it), 320 × 240: not convex.
+    Bunny,
+    /// [`far_pair`]`(0.5)` in the small frame at far/near 1000.
+    FarPair1000,
+    /// [`far_pair`]`(0.5)` in the small frame at far/near 10,000.
+    FarPair10000,
+}
+
+impl Trap {
+    /// Every trap, in the docs' order.
+    pub const ALL: [Trap; 5] = [
+        Trap::Cycle,
+        Trap::Interpenetration,
+        Trap::Bunny,
+        Trap::FarPair1000,
+        Trap::FarPair10000,
+    ];
+
+    /// A short name (the chart's `--run-visibility` argument).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Trap::Cycle => "cycle",
+            Trap::Interpenetration => "interpenetration",
+            Trap::Bunny => "bunny",
+            Trap::FarPair1000 => "far1000",
+            Trap::FarPair10000 => "far10000",
+        }
+    }
+
+    /// What the scene is, in words.
+    pub const fn caption(self) -> &'static str {
+        match self {
+            Trap::Cycle => "cycle of three triangles, 160x120",
+            Trap::Interpenetration => "two interpenetrating triangles, 160x120",
+            Trap::Bunny => "standard bunny (not convex), 320x240",
+            Trap::FarPair1000 => {
+                "two surfaces 0.5 apart about 40 units away, far/near = 1000, 160x120"
+            }
+            Trap::FarPair10000 => {
+                "two surfaces 0.5 apart about 40 units away, far/near = 10,000, 160x120"
+            }
+        }
+    }
+
+    /// `f` of the scene's renderer.
+    pub fn with<R>(
+        self,
+        f: impl FnOnce(&SceneRenderer<'_, 4>) -> Result<R, RenderError>,
+    ) -> Result<R, RenderError> {
+        let (w, h) = SMALL;
+        let (soup, camera) = match self {
+            Trap::Bunny => {
+                let scene = crate::scenes::standard_scene("bunny").expect("the standard bunny");
+                let core = to_core(&scene).expect("the bunny in the core's tables");
+                let objects = [core
+                    .object(ShadeMode::GouraudExact)
+                    .expect("the bunny object")];
+                let scene = scene_of(&objects, core.camera);
+                return f(&Renderer::for_scene(&scene)?);
+            }
+            Trap::Cycle => (cycle_of_three(), camera(w, h)),
+            Trap::Interpenetration => (interpenetrating(), camera(w, h)),
+            Trap::FarPair1000 => (far_pair(0.5), camera_with_near(w, h, near_for_ratio(1000))),
+            Trap::FarPair10000 => (
+                far_pair(0.5),
+                camera_with_near(w, h, near_for_ratio(10_000)),
+            ),
+        };
+        let objects = [soup_object(&soup.0, &soup.1, &soup.2)];
+        let scene = scene_of(&objects, camera);
+        f(&Renderer::for_scene(&scene)?)
+    }
+}
+
+/// The painter's split budget where it runs test 6 (enough for every trap; the bunny's folds
+/// need the most).
+pub const PAINTER_SPLITS: usize = 64;
+
+/// A hidden-surface method with its depth width and memory layout, as the chart of speed
+/// against accuracy compares them; each draws the whole picture through `core_render`, whose
+/// measured region holds exactly the core's frame call.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Back faces culled, front faces in scene order, no depth.
+    BackFace,
+    /// The painter with tests 1 to 5 only (no split: a cycle or an interpenetration stays).
+    PainterWithoutTest6,
+    /// The painter with its six tests ([`PAINTER_SPLITS`] splits at most).
+    Painter,
+    /// The scan-line in bands of 16 rows (32-bit depth).
+    ScanLine,
+    /// Warnock's area subdivision.
+    Warnock,
+    /// The whole-frame z-buffer with 16-bit depth.
+    ZBuffer16,
+    /// The whole-frame z-buffer with 32-bit depth: the reference.
+    ZBuffer32,
+    /// The z-buffer in bands of 16 rows, 16-bit depth, with the polygon table.
+    Bands16,
+    /// The compact bands of 11 rows, 16-bit depth (the 32 KB footprint's layout).
+    Compact11,
+}
+
+impl Method {
+    /// Every method, the reference last.
+    pub const ALL: [Method; 9] = [
+        Method::BackFace,
+        Method::PainterWithoutTest6,
+        Method::Painter,
+        Method::ScanLine,
+        Method::Warnock,
+        Method::ZBuffer16,
+        Method::Bands16,
+        Method::Compact11,
+        Method::ZBuffer32,
+    ];
+
+    /// A short name (the chart's `--run-visibility` argument).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Method::BackFace => "backface",
+            Method::PainterWithoutTest6 => "painter_no_test6",
+            Method::Painter => "painter",
+            Method::ScanLine => "scanline16",
+            Method::Warnock => "warnock",
+            Method::ZBuffer16 => "zbuffer16",
+            Method::ZBuffer32 => "zbuffer32",
+            Method::Bands16 => "bands16",
+            Method::Compact11 => "compact11",
+        }
+    }
+
+    /// What the method is, in words (the chart's labels).
+    pub const fn label(self) -> &'static str {
+        match self {
+            Method::BackFace => "back faces alone",
+            Method::PainterWithoutTest6 => "painter without test 6",
+            Method::Painter => "painter",
+            Method::ScanLine => "scan-line (16 rows, 32-bit)",
+            Method::Warnock => "Warnock",
+            Method::ZBuffer16 => "z-buffer 16-bit",
+            Method::ZBuffer32 => "z-buffer 32-bit (reference)",
+            Method::Bands16 => "z-buffer bands (16 rows, 16-bit)",
+            Method::Compact11 => "compact bands (11 rows, 16-bit)",
+        }
+    }
+
+    /// The whole picture of `renderer`'s scene drawn by this method (palette indices,
+    /// row-major).
+    pub fn draw(self, renderer: &SceneRenderer<'_, 4>) -> Result<Vec<u8>, RenderError> {
+        let vp = *renderer.scene().camera.viewport();
+        let size = (vp.width, vp.height);
+        let visible = |method, splits, bands| {
+            render_visible(renderer, size, method, splits, bands).map(|(pixels, _)| pixels)
+        };
+        match self {
+            Method::BackFace => visible(Visibility::BackFace, None, 1),
+            Method::PainterWithoutTest6 => visible(Visibility::Painter, None, 1),
+            Method::Painter => visible(Visibility::Painter, Some(PAINTER_SPLITS), 1),
+            Method::ScanLine => visible(Visibility::ScanLine, None, 16),
+            Method::Warnock => visible(Visibility::Warnock, None, 1),
+            Method::ZBuffer16 => z_buffer::<u16>(renderer, None),
+            Method::ZBuffer32 => z_buffer::<u32>(renderer, None),
+            Method::Bands16 => z_buffer::<u16>(renderer, Some(16)),
+            Method::Compact11 => {
+                render_compact_picture::<u16, 4>(renderer, size, 11).map(|(pixels, _, _)| pixels)
+            }
+        }
+    }
+}
+
+/// The z-buffer's picture with `D` depth samples in bands of `band_rows` rows (`None`: one
+/// band), the vertex stage once and the polygon table.
+fn z_buffer<D: DepthValue>(
+    renderer: &SceneRenderer<'_, 4>,
+    band_rows: Option<u16>,
+) -> Result<Vec<u8>, RenderError> {
+    let scene = renderer.scene();
     let vp = *scene.camera.viewport();
-    let size = (vp.width, vp.height);
-    let renderer = Renderer::for_scene(scene)?;
-    let (m, _) = render_visible(&renderer, size, method, splits, 1)?;
-    let (z, _) = render_visible(&renderer, size, Visibility::ZBuffer, None, vp.height)?;
-    Ok((m, z))
-}
-
-/// The painter on `soup` at far/near 100, without test 6 (`splits = None`) or with it.
-pub fn painter_on(soup: &Soup, splits: Option<usize>) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
-    let objects = [soup_object(&soup.0, &soup.1, &soup.2)];
-    let scene = crate::core_render::scene_of(&objects, camera(SMALL.0, SMALL.1));
-    against_z32(&scene, Visibility::Painter, splits)
-}
-
-/// `method` on the standard bunny (Gouraud, as SCENES.md draws it) against the 32-bit
-/// z-buffer.
-pub fn on_bunny(
-    method: Visibility,
-    splits: Option<usize>,
-) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
-    let scene = crate::scenes::standard_scene("bunny").expect("the standard bunny");
-    let core = to_core(&scene).expect("the bunny in the core's tables");
-    let objects = [core
-        .object(ShadeMode::GouraudExact)
-        .expect("the bunny object")];
-    let scene = crate::core_render::scene_of(&objects, core.camera);
-    against_z32(&scene, method, splits)
-}
-
-/// The 16-bit z-buffer's frame of [`far_pair`]`(gap)` at far/near = `ratio`, and the 32-bit
-/// one's.
-pub fn z16_on_far_pair(gap: f64, ratio: u32) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
-    let (w, h) = SMALL;
-    let (vs, is, ls) = far_pair(gap);
-    let objects = [soup_object(&vs, &is, &ls)];
-    let scene =
-        crate::core_render::scene_of(&objects, camera_with_near(w, h, near_for_ratio(ratio)));
-    let renderer = Renderer::for_scene(&scene)?;
-    let mut scratch = vec![PreparedVertex::default(); vs.len()];
-    let mut table = vec![PolygonRows::default(); is.len() / 3];
+    let vertices: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
+    let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
+    let mut scratch = vec![PreparedVertex::default(); vertices];
+    let mut table = vec![PolygonRows::default(); polygons];
     let scratch = BandScratch {
         vertices: &mut scratch,
         polygons: &mut table,
     };
-    let (z16, _, _) = render_picture::<u16, 4>(&renderer, (w, h), None, scratch)?;
-    let (z32, _) = render_visible(&renderer, (w, h), Visibility::ZBuffer, None, h)?;
-    Ok((z16, z32))
+    render_picture::<D, 4>(renderer, (vp.width, vp.height), band_rows, scratch)
+        .map(|(pixels, _, _)| pixels)
+}
+
+/// `method`'s picture of `trap` and the 32-bit z-buffer's.
+pub fn against_z32(trap: Trap, method: Method) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+    trap.with(|r| Ok((method.draw(r)?, Method::ZBuffer32.draw(r)?)))
+}
+
+/// `method` on the standard bunny (the painter with a split budget of `splits`, `None`: no
+/// test 6) against the 32-bit z-buffer.
+pub fn on_bunny(
+    method: Visibility,
+    splits: Option<usize>,
+) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+    Trap::Bunny.with(|r| {
+        let vp = *r.scene().camera.viewport();
+        let (m, _) = render_visible(r, (vp.width, vp.height), method, splits, 1)?;
+        Ok((m, Method::ZBuffer32.draw(r)?))
+    })
 }
 
 /// Every failure the docs show, in the docs' order.
 pub fn failures() -> Result<Vec<Failure>, RenderError> {
-    let small = |name, caption, (method, reference)| Failure {
-        name,
-        caption,
-        size: SMALL,
-        method,
-        reference,
+    let case = |name, caption, trap: Trap, method| {
+        let (method, reference) = against_z32(trap, method)?;
+        let size = if trap == Trap::Bunny {
+            (320, 240)
+        } else {
+            SMALL
+        };
+        Ok::<_, RenderError>(Failure {
+            name,
+            caption,
+            size,
+            method,
+            reference,
+        })
     };
-    let bunny = on_bunny(Visibility::BackFace, None)?;
     Ok(vec![
-        small(
+        case(
             "fail_painter_cycle",
             "painter without test 6, cycle of three triangles",
-            painter_on(&cycle_of_three(), None)?,
-        ),
-        small(
+            Trap::Cycle,
+            Method::PainterWithoutTest6,
+        )?,
+        case(
             "fail_painter_interpenetration",
             "painter without test 6, two interpenetrating triangles",
-            painter_on(&interpenetrating(), None)?,
-        ),
-        Failure {
-            name: "fail_backface_bunny",
-            caption: "back faces alone, standard bunny (not convex)",
-            size: (320, 240),
-            method: bunny.0,
-            reference: bunny.1,
-        },
-        small(
+            Trap::Interpenetration,
+            Method::PainterWithoutTest6,
+        )?,
+        case(
+            "fail_backface_bunny",
+            "back faces alone, standard bunny (not convex)",
+            Trap::Bunny,
+            Method::BackFace,
+        )?,
+        case(
             "fail_z16_ratio1000",
             "16-bit z-buffer, surfaces 0.5 apart, far/near = 1000",
-            z16_on_far_pair(0.5, 1000)?,
-        ),
-        small(
+            Trap::FarPair1000,
+            Method::ZBuffer16,
+        )?,
+        case(
             "fail_z16_ratio10000",
             "16-bit z-buffer, surfaces 0.5 apart, far/near = 10,000",
-            z16_on_far_pair(0.5, 10_000)?,
-        ),
+            Trap::FarPair10000,
+            Method::ZBuffer16,
+        )?,
     ])
 }

@@ -17,11 +17,12 @@ use zscan::raster::SubpixelPoint;
 use zscan::render::{
     render_in_bands, render_scene, BandScratch, PreparedVertex, RenderError, RenderStats, Renderer,
 };
-use zscan::scene::Scene;
 use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
 use zscan::target::{DepthBuffer, DepthValue, Framebuffer};
 use zscan::visibility::Visibility;
-use zscan_host::core_render::{render_compact_picture, render_visible, CoreFrame, CoreMesh};
+use zscan_host::core_render::{
+    render_compact_picture, render_visible, scene_of, CoreFrame, CoreMesh,
+};
 use zscan_host::reference::compare::Rng;
 use zscan_host::reference::exact_fill::covered;
 
@@ -170,13 +171,7 @@ fn maximum_viewports_render_the_quad() {
     for (w, h, fov, p) in sizes {
         let mesh = quad_at(w, h, fov, p);
         let objects = [mesh.object(ShadeMode::GouraudExact).unwrap()];
-        let scene = Scene {
-            camera: mesh.camera,
-            objects: &objects,
-            background: 0,
-            ambient: 0,
-            lights: &[],
-        };
+        let scene = scene_of(&objects, mesh.camera);
         let renderer = Renderer::for_scene(&scene).unwrap();
         let mut scratch = vec![PreparedVertex::<4>::default(); 4];
         let n = w as usize * ROWS as usize;
@@ -213,13 +208,7 @@ fn maximum_viewports_render_the_quad() {
 fn zero_band_rows_are_an_error() {
     let mesh = quad_at(32, 24, 60, (15.5, 11.5));
     let objects = [mesh.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene {
-        camera: mesh.camera,
-        objects: &objects,
-        background: 0,
-        ambient: 0,
-        lights: &[],
-    };
+    let scene = scene_of(&objects, mesh.camera);
     let renderer = Renderer::for_scene(&scene).unwrap();
     let (mut px, mut zs) = (vec![0u8; 32 * 24], vec![0u16; 32 * 24]);
     let mut bands = 0;
@@ -316,13 +305,7 @@ fn zero_band_rows_are_an_error_in_every_banded_entry() {
         .unwrap_err();
     assert!(e.contains("bands of 0 rows"), "{e}");
     let objects = [mesh.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene {
-        camera: mesh.camera,
-        objects: &objects,
-        background: 0,
-        ambient: 0,
-        lights: &[],
-    };
+    let scene = scene_of(&objects, mesh.camera);
     let renderer = Renderer::for_scene(&scene).unwrap();
     let scan = render_visible(&renderer, (32, 24), Visibility::ScanLine, None, 0);
     assert_eq!(scan.unwrap_err(), RenderError::BadBandRows { band_rows: 0 });

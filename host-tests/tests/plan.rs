@@ -19,8 +19,7 @@ use zscan::visibility::{
     Convexity, DepthWidth, LayoutReason, MeshFacts, MethodReason, Plan, PlanError, Visibility,
 };
 use zscan_host::cli::render::load_scene;
-use zscan_host::core_render::scene_of as unlit;
-use zscan_host::core_render::{mesh_facts, render_picture, render_planned, to_core};
+use zscan_host::core_render::{mesh_facts, render_picture, render_planned, scene_of, to_core};
 use zscan_host::scenes::standard_scene;
 use zscan_host::test_rng::XorShift;
 
@@ -89,7 +88,7 @@ fn the_standard_scenes_take_the_cheapest_method_and_keep_the_picture() {
     ] {
         let core = standard(name);
         let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-        let scene = unlit(&objects, core.camera);
+        let scene = scene_of(&objects, core.camera);
         let (plan, wrong) = check(&scene, usize::MAX).unwrap();
         assert_eq!(plan.visibility, method, "{name}: {plan}");
         assert_eq!(wrong, 0, "{name}: {plan}");
@@ -139,7 +138,7 @@ fn the_standard_cube_and_sphere_are_creased_not_convex_and_need_no_depth_buffer(
 fn the_plan_sizes_every_buffer_and_names_the_bytes_it_lacks() {
     let core = standard("bunny");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = unlit(&objects, core.camera);
+    let scene = scene_of(&objects, core.camera);
     let mut pairs = Vec::new();
     let facts = mesh_facts(&scene, &mut pairs);
     let mut order = [0u16];
@@ -376,8 +375,9 @@ fn object(t: &Tables) -> Object<'_> {
     o
 }
 
-fn scene_of<'a>(objects: &'a [Object<'a>]) -> Scene<'a> {
-    unlit(objects, camera(64, 48))
+/// The objects in the 64 × 48 frame of [`camera`].
+fn small_scene<'a>(objects: &'a [Object<'a>]) -> Scene<'a> {
+    scene_of(objects, camera(64, 48))
 }
 
 /// 1,000 random scenes of 1 to 5 objects (turned boxes and spheres, convex as designed; tori,
@@ -400,7 +400,7 @@ fn the_plan_of_random_scenes_keeps_the_picture() {
             .map(|_| random_tables(&mut rng, spread, depth, small))
             .collect();
         let objects: Vec<Object<'_>> = tables.iter().map(object).collect();
-        let scene = scene_of(&objects);
+        let scene = small_scene(&objects);
         // No limit, bands, and the narrow window where only one row of 16-bit depth fits.
         let largest = tables.iter().map(|t| t.vertices.len()).max().unwrap_or(0);
         let one_row_u16 = 28 * largest + 64 * 3;
@@ -465,7 +465,7 @@ fn trap_convex_objects_with_overlapping_boxes() {
     };
     let near = [slab, sphere(0.0)];
     let objects: Vec<Object<'_>> = near.iter().map(object).collect();
-    let (plan, wrong) = check(&scene_of(&objects), usize::MAX).unwrap();
+    let (plan, wrong) = check(&small_scene(&objects), usize::MAX).unwrap();
     assert_eq!(plan.visibility, Visibility::ZBuffer, "{plan}");
     assert_eq!(
         plan.method_reason,
@@ -476,7 +476,7 @@ fn trap_convex_objects_with_overlapping_boxes() {
     let [slab, _] = near;
     let apart = [sphere(1.5), slab];
     let objects: Vec<Object<'_>> = apart.iter().map(object).collect();
-    let (plan, wrong) = check(&scene_of(&objects), usize::MAX).unwrap();
+    let (plan, wrong) = check(&small_scene(&objects), usize::MAX).unwrap();
     assert_eq!(plan.visibility, Visibility::BackFace, "{plan}");
     assert_eq!(wrong, 0);
 }
@@ -502,7 +502,7 @@ fn trap_a_cycle_of_three_bars() {
         })
         .collect();
     let objects: Vec<Object<'_>> = bars.iter().map(object).collect();
-    let (plan, wrong) = check(&scene_of(&objects), usize::MAX).unwrap();
+    let (plan, wrong) = check(&small_scene(&objects), usize::MAX).unwrap();
     assert_eq!(plan.visibility, Visibility::ZBuffer, "{plan}");
     assert!(matches!(
         plan.method_reason,
@@ -540,12 +540,12 @@ fn trap_a_non_convex_mesh_inside_a_convex_one() {
     };
     let both = [ring, shell];
     let objects: Vec<Object<'_>> = both.iter().map(object).collect();
-    let (plan, wrong) = check(&scene_of(&objects), usize::MAX).unwrap();
+    let (plan, wrong) = check(&small_scene(&objects), usize::MAX).unwrap();
     assert_eq!(plan.visibility, Visibility::ZBuffer, "{plan}");
     assert_eq!(plan.method_reason, MethodReason::NotConvex { object: 0 });
     assert_eq!(wrong, 0);
     let alone = &objects[..1];
-    let (plan, wrong) = check(&scene_of(alone), usize::MAX).unwrap();
+    let (plan, wrong) = check(&small_scene(alone), usize::MAX).unwrap();
     assert_eq!(plan.visibility, Visibility::ZBuffer);
     assert_eq!(wrong, 0);
 }
@@ -572,7 +572,7 @@ fn triangles_below_the_rounding_fold_keep_the_depth_buffer() {
         rng.below(5); // the draft's budget
         for (k, t) in tables.iter().enumerate() {
             let objects = [object(t)];
-            let (plan, wrong) = check(&scene_of(&objects), usize::MAX).unwrap();
+            let (plan, wrong) = check(&small_scene(&objects), usize::MAX).unwrap();
             assert_eq!(wrong, 0, "case {case}, object {k}: {plan}");
             refused += (plan.method_reason == MethodReason::RoundingMayFold { object: 0 }) as u32;
             back_faces += (plan.visibility == Visibility::BackFace) as u32;
@@ -617,7 +617,7 @@ fn a_mirrored_creased_mesh_keeps_the_depth_buffer() {
                 .unwrap(),
         };
         let objects = [object(&t)];
-        let (plan, wrong) = check(&scene_of(&objects), usize::MAX).unwrap();
+        let (plan, wrong) = check(&small_scene(&objects), usize::MAX).unwrap();
         assert_eq!(plan.visibility, method, "{plan}");
         assert_eq!(wrong, 0);
     }
@@ -671,7 +671,7 @@ fn a_short_scratch_plans_the_same_and_the_frame_names_what_it_lacks() {
     use zscan::visibility::{plan_frame, PlannedFrame};
     let core = standard("sphere");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = unlit(&objects, core.camera);
+    let scene = scene_of(&objects, core.camera);
     let mut pairs = Vec::new();
     let facts = mesh_facts(&scene, &mut pairs);
     let renderer = Renderer::for_scene(&scene).unwrap();

@@ -9,7 +9,7 @@ use zscan::scene::{Object, Scene};
 use zscan::shade::span_writer::ShadeMode;
 use zscan::visibility::Visibility;
 use zscan_host::cli::render::load_scene;
-use zscan_host::core_render::{render_visible, to_core};
+use zscan_host::core_render::{render_visible, scene_of, to_core};
 use zscan_host::failures::{
     camera, camera_with_near as far_camera, cycle_of_three, far_pair, interpenetrating,
     soup_object as soup_objects, v,
@@ -54,13 +54,7 @@ fn standard_wrong_with(
 ) -> usize {
     let core = standard_scene_core(name);
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene {
-        camera: core.camera,
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = scene_of(&objects, core.camera);
     let vp = *core.camera.viewport();
     let (m, z) = both(&scene, (vp.width, vp.height), method, splits, band_rows).unwrap();
     assert!(
@@ -97,10 +91,8 @@ fn warnock_draws_the_z_buffer_pictures_of_the_standard_scenes() {
     }
 }
 
-/// Every scene file of `host-tests/scenes/` that Warnock's method can store (the demo's Phong
-/// object carries normals: refused by name) draws the 32-bit z-buffer's picture.
-#[test]
-fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
+/// The scene files of `host-tests/scenes/`, sorted.
+fn scene_files() -> Vec<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let mut paths: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -108,6 +100,14 @@ fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     paths.sort();
+    paths
+}
+
+/// Every scene file of `host-tests/scenes/` that Warnock's method can store (the demo's Phong
+/// object carries normals: refused by name) draws the 32-bit z-buffer's picture.
+#[test]
+fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
+    let paths = scene_files();
     let (mut drawn, mut refused) = (0, 0);
     for path in &paths {
         let scene = load_scene(path).unwrap();
@@ -133,13 +133,7 @@ fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
 /// by name) draws the 32-bit z-buffer's picture.
 #[test]
 fn painter_draws_the_z_buffer_pictures_of_the_scene_files() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
+    let paths = scene_files();
     let mut drawn = 0;
     for path in &paths {
         let scene = load_scene(path).unwrap();
@@ -171,13 +165,7 @@ fn warnock_keeps_the_z_buffer_tie_rule_on_coplanar_faces() {
     for levels in [[90u8, 200], [200, 90]] {
         let (is, ls) = ((0..6).collect::<Vec<u16>>(), levels.to_vec());
         let objects = [soup_objects(&vs, &is, &ls)];
-        let scene = Scene {
-            camera: camera(160, 120),
-            ambient: 0,
-            lights: &[],
-            objects: &objects,
-            background: 0,
-        };
+        let scene = scene_of(&objects, camera(160, 120));
         let (w, z) = both(&scene, (160, 120), Visibility::Warnock, None, 1).unwrap();
         assert_eq!(differing(&w, &z), 0, "{levels:?}");
         // The centre, covered by both: the first triangle's level.
@@ -194,13 +182,7 @@ fn warnock_names_each_exhausted_capacity() {
     use zscan::visibility::{render_warnock, Area, StoredTriangle, WarnockMemory};
     let core = standard_scene_core("sphere");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-    let scene = Scene {
-        camera: core.camera,
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = scene_of(&objects, core.camera);
     let renderer = Renderer::for_scene(&scene).unwrap();
     let vp = *core.camera.viewport();
     let run = |stored: usize, candidates: usize, windows: usize| {
@@ -265,13 +247,7 @@ fn painter_draws_the_bunny_and_names_a_short_split_budget() {
     let renderer_stats = |splits| {
         let core = standard_scene_core("bunny");
         let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
-        let scene = Scene {
-            camera: core.camera,
-            ambient: 0,
-            lights: &[],
-            objects: &objects,
-            background: 0,
-        };
+        let scene = scene_of(&objects, core.camera);
         let renderer = Renderer::for_scene(&scene).unwrap();
         let vp = *core.camera.viewport();
         render_visible(
@@ -302,13 +278,7 @@ fn painter_draws_the_bunny_and_names_a_short_split_budget() {
 fn painter_needs_test_6_on_a_cycle_of_three() {
     let (vs, is, ls) = cycle_of_three();
     let objects = [soup_objects(&vs, &is, &ls)];
-    let scene = Scene {
-        camera: camera(160, 120),
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = scene_of(&objects, camera(160, 120));
     let (never, z) = both(&scene, (160, 120), Visibility::Painter, None, 1).unwrap();
     let wrong_never = differing(&never, &z);
     println!("cycle of three: painter without test 6 {wrong_never} wrong pixels");
@@ -331,13 +301,7 @@ fn painter_needs_test_6_on_a_cycle_of_three() {
 fn painter_splits_interpenetrating_triangles() {
     let (vs, is, ls) = interpenetrating();
     let objects = [soup_objects(&vs, &is, &ls)];
-    let scene = Scene {
-        camera: camera(160, 120),
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = scene_of(&objects, camera(160, 120));
     let (never, z) = both(&scene, (160, 120), Visibility::Painter, None, 1).unwrap();
     let (split, _) = both(&scene, (160, 120), Visibility::Painter, Some(16), 1).unwrap();
     let (scan, _) = both(&scene, (160, 120), Visibility::ScanLine, None, 1).unwrap();
@@ -380,13 +344,7 @@ fn random_scenes_agree_with_the_z_buffer() {
             .iter()
             .map(|(v, i, l)| soup_objects(v, i, l))
             .collect();
-        let scene = Scene {
-            camera: camera(96, 72),
-            ambient: 0,
-            lights: &[],
-            objects: &objects,
-            background: 0,
-        };
+        let scene = scene_of(&objects, camera(96, 72));
         let (s, z) = both(
             &scene,
             (96, 72),
@@ -480,13 +438,7 @@ fn z_fighting_counted_by_depth_bits_and_far_near_ratio() {
         for gap in GAPS {
             let (vs, is, ls) = far_pair(gap);
             let objects = [soup_objects(&vs, &is, &ls)];
-            let scene = Scene {
-                camera: far_camera(w, h, near),
-                ambient: 0,
-                lights: &[],
-                objects: &objects,
-                background: 0,
-            };
+            let scene = scene_of(&objects, far_camera(w, h, near));
             let renderer = Renderer::for_scene(&scene).unwrap();
             let mut scratch = vec![PreparedVertex::default(); vs.len()];
             let mut table = vec![PolygonRows::default(); 4];

@@ -23,7 +23,7 @@
 //!   the visible surface point of `reference::float_render` (perspective-correct position and
 //!   smooth area-weighted normal interpolated in 3D): the picture every mode approximates.
 //!   Maximum and mean over pixels covered in both frames.
-use super::CliError;
+use super::{visibility_chart, CliError};
 use crate::reference::float_lighting::{unit, FloatLight, FloatLighting, FloatMaterial, V3};
 use crate::reference::float_render;
 use crate::scenes::{self, Scene};
@@ -57,6 +57,9 @@ pub struct ChartArgs {
     /// Internal: render one variant inside the measured region (what callgrind runs).
     #[arg(long, hide = true)]
     pub run_variant: Option<String>,
+    /// Internal: draw one visibility point (`trap:method`) inside the measured region.
+    #[arg(long, hide = true)]
+    pub run_visibility: Option<String>,
 }
 
 const LEVELS: u16 = 32;
@@ -206,13 +209,6 @@ fn render(p: &mut Prepared, v: &Variant) -> Result<u32, String> {
     Ok(stats.pixels_covered)
 }
 
-/// The measured region: callgrind collects exactly this call.
-#[no_mangle]
-#[inline(never)]
-pub fn zscan_chart_region(f: &mut dyn FnMut() -> u32) -> u32 {
-    f()
-}
-
 /// Smooth normals of SCENES.md (area-weighted sum of face normals, normalised), `f64`.
 fn smooth_normals(scene: &Scene) -> Vec<V3> {
     let mut n = vec![[0.0; 3]; scene.vertices.len()];
@@ -297,25 +293,25 @@ fn errors(pixels: &[u8], reference: &[Option<f64>]) -> Errors {
     e
 }
 
-/// Host instructions of one variant's frame, by running this tool under callgrind.
-fn host_instructions(v: &Variant) -> Result<u64, CliError> {
+/// Host instructions inside `zscan_chart_region` of `zscan chart FLAG TAG` (one frame), by
+/// running this tool under callgrind.
+fn host_instructions(flag: &str, tag: &str) -> Result<u64, CliError> {
     let exe = std::env::current_exe()?;
     let dir = std::env::temp_dir().join(format!("zscan-chart-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
-    let out_file = dir.join(format!("callgrind.{}", v.name()));
+    let out_file = dir.join(format!("callgrind.{}", tag.replace(':', "-")));
     let out = Command::new("valgrind")
         .arg("--tool=callgrind")
         .arg("--collect-atstart=no")
         .arg("--toggle-collect=zscan_chart_region")
         .arg(format!("--callgrind-out-file={}", out_file.display()))
         .arg(&exe)
-        .args(["chart", "--run-variant", &v.name()])
+        .args(["chart", flag, tag])
         .output()
         .map_err(|e| format!("valgrind (is it installed?): {e}"))?;
     if !out.status.success() {
         return Err(format!(
-            "callgrind run of {} failed:\n{}",
-            v.name(),
+            "callgrind run of {tag} failed:\n{}",
             String::from_utf8_lossy(&out.stderr)
         )
         .into());
@@ -355,23 +351,45 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
         return Ok(());
     }
     if let Some(name) = &args.run_variant {
-        let v = Variant::all()
-            .into_iter()
-            .find(|v| &v.name() == name)
-            .ok_or_else(|| format!("no variant {name:?}"))?;
-        let mut p = Prepared::new(v.scene)?;
-        render(&mut p, &v)?; // warm-up
-        let mut res = Ok(0);
-        zscan_chart_region(&mut || {
-            res = render(std::hint::black_box(&mut p), &v);
-            0
-        });
-        println!("{} covered={}", v.name(), res?);
-        return Ok(());
+        return run_variant(name);
+    }
+    if let Some(tag) = &args.run_visibility {
+        return visibility_chart::run_one(tag);
     }
     if cfg!(debug_assertions) && !args.no_measure {
         eprintln!("zscan chart: warning: a debug build; run with --release for meaningful figures");
     }
+    let rows = shading_rows(!args.no_measure)?;
+    print_rows(&rows);
+    let count: visibility_chart::Counter<'_> = &host_instructions;
+    let visibility = visibility_chart::points((!args.no_measure).then_some(count))?;
+    visibility_chart::print(&visibility);
+    if args.no_measure {
+        return Ok(());
+    }
+    let m4 = m4_per_pixel(&rows, args.m4.as_deref())?;
+    let svg = chart(&rows, &m4, &visibility)?;
+    std::fs::write(&args.out, svg)?;
+    eprintln!("zscan chart: wrote {}", args.out.display());
+    Ok(())
+}
+
+/// What callgrind runs: one shading variant's frame in the measured region.
+fn run_variant(name: &str) -> Result<(), CliError> {
+    let v = Variant::all()
+        .into_iter()
+        .find(|v| v.name() == name)
+        .ok_or_else(|| format!("no variant {name:?}"))?;
+    let mut p = Prepared::new(v.scene)?;
+    render(&mut p, &v)?; // warm-up
+    let covered = crate::core_render::measured(|| render(std::hint::black_box(&mut p), &v));
+    println!("{} covered={}", v.name(), covered?);
+    Ok(())
+}
+
+/// Every shading variant's row: covered pixels, errors and (when `measure`) host
+/// instructions.
+fn shading_rows(measure: bool) -> Result<Vec<Row>, CliError> {
     let mut rows = Vec::new();
     for scene in SCENES {
         let mut p = Prepared::new(scene)?;
@@ -379,10 +397,10 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
         for v in Variant::all().into_iter().filter(|v| v.scene == scene) {
             let covered = render(&mut p, &v)?;
             let errors = errors(&p.pixels, &reference);
-            let instructions = if args.no_measure {
-                None
+            let instructions = if measure {
+                Some(host_instructions("--run-variant", &v.name())?)
             } else {
-                Some(host_instructions(&v)?)
+                None
             };
             rows.push(Row {
                 variant: v,
@@ -392,11 +410,15 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
             });
         }
     }
+    Ok(rows)
+}
+
+fn print_rows(rows: &[Row]) {
     println!(
         "{:<28} {:>8} {:>12} {:>10} {:>9} {:>9}",
         "variant", "covered", "host instr", "instr/px", "max err", "mean err"
     );
-    for r in &rows {
+    for r in rows {
         println!(
             "{:<28} {:>8} {:>12} {:>10} {:>9.3} {:>9.3}",
             r.variant.name(),
@@ -407,10 +429,15 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
             r.errors.mean
         );
     }
-    if args.no_measure {
-        return Ok(());
-    }
-    let m4_counts = match &args.m4 {
+}
+
+/// Cortex-M4 instructions per covered pixel of each row from the bench table at `path` (none
+/// without one), printed.
+fn m4_per_pixel(
+    rows: &[Row],
+    path: Option<&std::path::Path>,
+) -> Result<Vec<Option<f64>>, CliError> {
+    let m4_counts = match path {
         Some(p) => read_m4(p)?,
         None => Default::default(),
     };
@@ -433,10 +460,7 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
             );
         }
     }
-    let svg = chart(&rows, &m4)?;
-    std::fs::write(&args.out, svg)?;
-    eprintln!("zscan chart: wrote {}", args.out.display());
-    Ok(())
+    Ok(m4)
 }
 
 /// Colours of the modes (flat, fast Gouraud, exact Gouraud, Phong).
@@ -470,16 +494,7 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
         .build_cartesian_2d(0f64..xmax, 0f64..ymax)
         .map_err(|x| e(&x))?;
     let grey = RGBColor(220, 220, 220);
-    let step = |max: f64| {
-        let raw = max / 6.0;
-        let mag = 10f64.powf(raw.log10().floor());
-        [1.0, 2.0, 5.0, 10.0]
-            .iter()
-            .map(|m| m * mag)
-            .find(|s| *s >= raw)
-            .unwrap_or(raw)
-    };
-    let (sx, sy) = (step(xmax), step(ymax));
+    let (sx, sy) = (nice_step(xmax), nice_step(ymax));
     let mut x = 0.0;
     while x <= xmax {
         chart
@@ -492,19 +507,7 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
         ));
         x += sx;
     }
-    let mut y = 0.0;
-    while y <= ymax {
-        chart
-            .draw_series(LineSeries::new([(0.0, y), (xmax, y)], grey))
-            .map_err(|q| e(&q))?;
-        let (px, py) = chart.backend_coord(&(0.0, y));
-        texts.push(format!(
-            r#"<text x="{}" y="{}" text-anchor="end" font-size="12">{y:.0}</text>"#,
-            px - 6,
-            py + 4
-        ));
-        y += sy;
-    }
+    y_grid(&mut chart, (0.0, xmax), (ymax, sy), (grey, 12), texts)?;
     chart
         .draw_series(LineSeries::new(
             [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
@@ -561,13 +564,63 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
     Ok(())
 }
 
+/// A grid step for an axis from 0 to `max`: the smallest of 1, 2, 5 or 10 times a power of
+/// ten giving at most about six steps.
+pub(super) fn nice_step(max: f64) -> f64 {
+    let raw = max / 6.0;
+    let mag = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|s| *s >= raw)
+        .unwrap_or(raw)
+}
+
+/// Horizontal grid lines in `grey` every `step` from 0 to `ymax` across `x0..x1` of `chart`,
+/// each labelled on the left at font size `size` (the texts collected in `texts`).
+pub(super) fn y_grid<DB, X>(
+    chart: &mut plotters::prelude::ChartContext<
+        '_,
+        DB,
+        plotters::prelude::Cartesian2d<X, plotters::coord::types::RangedCoordf64>,
+    >,
+    (x0, x1): (f64, f64),
+    (ymax, step): (f64, f64),
+    (grey, size): (plotters::prelude::RGBColor, u32),
+    texts: &mut Vec<String>,
+) -> Result<(), CliError>
+where
+    DB: plotters::prelude::DrawingBackend,
+    X: plotters::prelude::Ranged<ValueType = f64>,
+{
+    use plotters::prelude::*;
+    let mut y = 0.0;
+    while y <= ymax {
+        chart
+            .draw_series(LineSeries::new([(x0, y), (x1, y)], grey))
+            .map_err(|q| q.to_string())?;
+        let (px, py) = chart.backend_coord(&(x0, y));
+        texts.push(format!(
+            r#"<text x="{}" y="{}" text-anchor="end" font-size="{size}">{y:.0}</text>"#,
+            px - 6,
+            py + 4
+        ));
+        y += step;
+    }
+    Ok(())
+}
+
 /// Panel margins: left, top, right, bottom.
-const MARGINS: (i32, i32, i32, i32) = (70, 40, 250, 50);
+pub(super) const MARGINS: (i32, i32, i32, i32) = (70, 40, 250, 50);
 
 /// The SVG: one panel per platform (host, Cortex-M4 when given), x = instructions per covered
 /// pixel (linear), y = error in LUT levels; a marker at the mean error joined to a cross at
 /// the maximum. Circles: sphere, triangles: bunny; filled: plain ramp, hollow: dithered.
-fn chart(rows: &[Row], m4: &[Option<f64>]) -> Result<String, CliError> {
+fn chart(
+    rows: &[Row],
+    m4: &[Option<f64>],
+    visibility: &[visibility_chart::Point],
+) -> Result<String, CliError> {
     use plotters::prelude::*;
     let e = |x: &dyn std::fmt::Display| -> CliError { x.to_string().into() };
     let ymax = rows.iter().map(|r| r.errors.max).fold(0.0, f64::max) * 1.08;
@@ -581,26 +634,41 @@ fn chart(rows: &[Row], m4: &[Option<f64>]) -> Result<String, CliError> {
         vec![("host x86-64 (valgrind callgrind)", &host[..])]
     };
     let (width, panel_h) = (900u32, 440u32);
-    let height = 60 + panel_h * panels.len() as u32;
+    let shading_h = 60 + panel_h * panels.len() as u32;
+    let traps = crate::failures::Trap::ALL.len() as u32;
+    let height = shading_h + visibility_chart::HEADING + visibility_chart::PANEL_HEIGHT * traps;
     let mut svg = String::new();
     let mut texts: Vec<String> = Vec::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(|x| e(&x))?;
-        let body = root.margin(50, 10, 0, 0);
+        let (upper, lower) = root.split_vertically(shading_h);
+        let body = upper.margin(50, 10, 0, 0);
         let areas = body.split_evenly((panels.len(), 1));
         for (area, (title, xs)) in areas.iter().zip(&panels) {
             panel(area, rows, xs, title, ymax, &mut texts)?;
         }
+        let at = (width as i32, shading_h as i32);
+        visibility_chart::draw(&lower, visibility, at, &mut texts)?;
         root.present().map_err(|x| e(&x))?;
     }
-    // Title, axis name and the legend as plain SVG text (no font library needed).
-    let w = width as i32;
+    shading_legend(width as i32, shading_h as i32, &mut texts);
+    let body = texts.join("\n");
+    let svg = match svg.rfind("</svg>") {
+        Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
+        None => svg,
+    };
+    Ok(svg)
+}
+
+/// The shading half's title, axis name and legend as plain SVG text (no font library needed),
+/// for a figure `w` wide whose shading panels end at `bottom`.
+fn shading_legend(w: i32, bottom: i32, texts: &mut Vec<String>) {
     texts.push(format!(
         r#"<text x="{}" y="28" text-anchor="middle" font-size="16" font-weight="bold">zscan shading: speed vs accuracy (standard sphere and bunny, 320x240, 32-level ramp)</text>"#,
         w / 2
     ));
-    let mid = 50 + (height as i32 - 50) / 2;
+    let mid = 50 + (bottom - 50) / 2;
     texts.push(format!(
         r#"<text x="18" y="{mid}" text-anchor="middle" font-size="13" transform="rotate(-90 18 {mid})">error vs f64 per-pixel Phong, LUT levels (marker: mean, cross: max)</text>"#
     ));
@@ -635,12 +703,6 @@ fn chart(rows: &[Row], m4: &[Option<f64>]) -> Result<String, CliError> {
         ));
         ly += 20;
     }
-    let body = texts.join("\n");
-    let svg = match svg.rfind("</svg>") {
-        Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
-        None => svg,
-    };
-    Ok(svg)
 }
 
 /// Cortex-M4 instructions per case from a saved `zscan bench` table (cases `lit_<variant>`):
@@ -675,13 +737,7 @@ type PlanPoint = (String, String, f64, [Option<f64>; 2], bool);
 fn planner_pick(name: &str) -> Result<String, CliError> {
     let core = crate::core_render::to_core(&scenes::standard_scene(name)?)?;
     let objects = [core.object(ShadeMode::GouraudExact)?];
-    let scene = zscan::scene::Scene {
-        camera: core.camera,
-        ambient: 0,
-        lights: &[],
-        objects: &objects,
-        background: 0,
-    };
+    let scene = crate::core_render::scene_of(&objects, core.camera);
     let mut pairs = Vec::new();
     let facts = crate::core_render::mesh_facts(&scene, &mut pairs);
     let plan = zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut [0])

@@ -8,6 +8,7 @@ pub mod failures;
 pub mod lines;
 pub mod render;
 pub mod spans;
+pub mod visibility_chart;
 
 /// Largest picture side the tool draws (`zscan lines`, `zscan render`'s viewport): 4096
 /// pixels, so a picture's buffers (one byte of index, up to four of depth, three of colour per

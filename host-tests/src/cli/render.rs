@@ -1429,8 +1429,7 @@ impl LoadedScene {
             )
             .map_err(|e| render_error_words(&e))?;
             let bands = if visibility == Visibility::ScanLine {
-                // The scan-line drew, so `band` ≥ 1.
-                h.div_ceil(band.clamp(1, h)) as u32
+                band_count(h, band)
             } else {
                 1
             };
@@ -1458,8 +1457,7 @@ impl LoadedScene {
             },
         )
         .map_err(|e| render_error_words(&e))?;
-        // The core drew, so the band height is at least 1 (a 0 is `BadBandRows`).
-        let bands = h.div_ceil(band_rows.unwrap_or(h).clamp(1, h)) as u32;
+        let bands = band_count(h, band_rows.unwrap_or(h));
         Ok(Frame {
             pixels,
             depth,
@@ -1467,6 +1465,14 @@ impl LoadedScene {
             bands,
         })
     }
+}
+
+/// The number of bands of `band_rows` rows a picture `h` rows high is drawn in (the last band
+/// may be shorter; a band taller than the picture is the picture). Counted after the core drew,
+/// which refuses a `band_rows` of 0 (`BadBandRows`): a 0 here is taken as one row, and a
+/// picture of no row has no band.
+fn band_count(h: u16, band_rows: u16) -> u32 {
+    h.div_ceil(band_rows.clamp(1, h.max(1))) as u32
 }
 
 /// Words for a core [`RenderError`](zscan::render::RenderError), naming the limit that was
@@ -1711,7 +1717,7 @@ fn finish_auto(args: &RenderArgs, scene: &LoadedScene) -> Result<(), CliError> {
         let json = serde_json::json!({
             "width": w,
             "height": h,
-            "bands": h.div_ceil(plan.band_rows.max(1)),
+            "bands": band_count(h, plan.band_rows),
             "band_rows": plan.band_rows,
             "depth_bits": depth_bits,
             "visibility": plan.visibility.name(),
