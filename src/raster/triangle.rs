@@ -154,11 +154,15 @@ fn fill_setup_with<W: EdgeWalker, const S: u32>(
         if y >= y_end {
             return;
         }
+        // `y == rows_end` here (the rows run one by one from `y_first < rows_end`): the
+        // bottom walker starts at `rows_end`, a value fixed for the rows above, so the row
+        // loop carries nothing for it (started at `y`, LLVM stepped its numerator along
+        // every row: 4 instructions a row on the Cortex-M4).
         let bottom = t.edges()[2];
         if t.middle_left() {
-            left_w = W::start::<S>(&bottom, EdgeSide::Left, y);
+            left_w = W::start::<S>(&bottom, EdgeSide::Left, rows_end);
         } else {
-            right_w = W::start::<S>(&bottom, EdgeSide::Left, y);
+            right_w = W::start::<S>(&bottom, EdgeSide::Left, rows_end);
         }
         rows_end = y_end;
     }

@@ -380,3 +380,216 @@ fn edges<const S: u32>(p: [(i32, i32); 3], top: i32, bottom: i32) -> ([i32; 3], 
     let short = [edge(a, b, first), edge(b, c, middle.max(first))];
     (rows, edge(a, c, first), short)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::MAX_COORD;
+    use crate::shade::span::Direct;
+    use crate::shade::span_writer::{draw_tiny_or_planar, LuminanceRamp, RasterTarget};
+    use crate::target::{DepthBuffer, Framebuffer};
+
+    const TW: usize = 80;
+    const TH: usize = 80;
+
+    /// Triangle `v` with `values` (luminance with the ramp's offset, `0..=510`) drawn over the
+    /// depth contents `init` by the tiny-triangle writer and by the general exact path. `None`
+    /// when the tiny writer does not apply; otherwise both must agree on every pixel, every
+    /// depth sample and the counts, which are returned.
+    fn tiny_vs_general<const S: u32>(
+        v: [SubpixelPoint<S>; 3],
+        values: [[u32; 2]; 3],
+        init: &[u16; TW * TH],
+    ) -> Option<(u32, u32)> {
+        tiny_vs_general_in((0, TH as u16), v, values, init)
+    }
+
+    /// [`tiny_vs_general`] into the band of rows `top..top + height`.
+    fn tiny_vs_general_in<const S: u32>(
+        rows: (u16, u16),
+        v: [SubpixelPoint<S>; 3],
+        values: [[u32; 2]; 3],
+        init: &[u16; TW * TH],
+    ) -> Option<(u32, u32)> {
+        tiny_vs_general_mapped(rows, v, values, init, |_, _| Direct)
+    }
+
+    /// [`tiny_vs_general_in`] with luminances (`0..=255`) mapped by `quantizer_at` in both
+    /// writers.
+    fn tiny_vs_general_mapped<const S: u32, Q: Quantizer>(
+        (top, height): (u16, u16),
+        v: [SubpixelPoint<S>; 3],
+        values: [[u32; 2]; 3],
+        init: &[u16; TW * TH],
+        quantizer_at: impl Fn(i32, i32) -> Q + Copy,
+    ) -> Option<(u32, u32)> {
+        let draw = |tiny: bool| {
+            let mut px = [7u8; TW * TH];
+            let mut zs = *init;
+            let n = TW * height as usize;
+            let mut fb = Framebuffer::band(&mut px[..n], TW as u16, height, top).unwrap();
+            let mut zb = DepthBuffer::band(&mut zs[..n], TW as u16, height, top).unwrap();
+            let mut target = RasterTarget::new(&mut fb, &mut zb);
+            let t = TriangleSetup::in_range(v);
+            let counts = draw_tiny_or_planar(&mut target, t, values, quantizer_at, tiny);
+            (counts, px, zs)
+        };
+        let (tiny, tiny_px, tiny_zs) = draw(true);
+        let tiny = tiny?;
+        let (general, px, zs) = draw(false);
+        assert!(tiny_px == px, "pixels {v:?} {values:?}");
+        assert!(tiny_zs == zs, "depths {v:?} {values:?}");
+        assert_eq!(Some(tiny), general, "counts {v:?} {values:?}");
+        Some(tiny)
+    }
+
+    /// Random triangles of every size up to and past the tiny writer's box limit, placed in,
+    /// across and outside the frame's edges, with depths over the whole 32-bit range (and at
+    /// its ends) drawn over random stored depths: where the writer applies it draws exactly
+    /// what the general path draws, and it applies exactly to boxes below `2^K` inside the
+    /// window.
+    fn tiny_matches_general_on_random_triangles<const S: u32>(seed: u64, n: usize) -> u32 {
+        let mut rng = crate::test_rng::XorShift(seed);
+        let mut init = [0u16; TW * TH];
+        let lim = 1i32 << small_bits(S);
+        let mut drawn = 0;
+        for i in 0..n {
+            let mut rnd = |m: u64| rng.next_u64() % m;
+            // Box sizes: one pixel, a few, up to the limit, and just past it.
+            let m = [1 << S, 4 << S, lim / 4, lim - 1, lim + 40][i % 5] as i64;
+            let (cx, cy) = (
+                rnd((TW as u64 + 8) << S) as i64 - (4 << S),
+                rnd((TH as u64 + 8) << S) as i64 - (4 << S),
+            );
+            let mut v = [SubpixelPoint::<S>::new(0, 0); 3];
+            for p in v.iter_mut() {
+                let x = cx + rnd(m as u64 + 1) as i64 - m / 2;
+                let y = cy + rnd(m as u64 + 1) as i64 - m / 2;
+                *p = SubpixelPoint::new(x as i32, y as i32);
+            }
+            let z0 = rnd(1 << 32) as u32;
+            let mut values = [[0u32; 2]; 3];
+            for a in values.iter_mut() {
+                a[0] = match rnd(8) {
+                    0 => 0,
+                    1 => u32::MAX,
+                    2..=4 => z0.wrapping_add(rnd(1 << 22) as u32),
+                    _ => rnd(1 << 32) as u32,
+                };
+                a[1] = rnd(511) as u32;
+            }
+            for s in init.iter_mut() {
+                *s = match rnd(3) {
+                    0 => u16::MAX,
+                    1 => (z0 >> 16) as u16,
+                    _ => rnd(1 << 16) as u16,
+                };
+            }
+            let (xs, ys) = (v.map(|p| p.x), v.map(|p| p.y));
+            let (x_lo, x_hi) = (*xs.iter().min().unwrap(), *xs.iter().max().unwrap());
+            let (y_lo, y_hi) = (*ys.iter().min().unwrap(), *ys.iter().max().unwrap());
+            let applies =
+                x_hi - x_lo < lim && y_hi - y_lo < lim && x_lo >> S >= 0 && (x_hi >> S) < TW as i32;
+            // One in three into a 16-row band (rows 30..46), the others into the whole frame.
+            let rows = if i % 3 == 0 { (30, 16) } else { (0, TH as u16) };
+            // Luminances offset to indices (a 256-level ramp) in half of the triangles; in the
+            // others levels of 0..=255 through a 32-level ramp, plain or dithered.
+            let ramp = LuminanceRamp {
+                first: 100,
+                levels: 32,
+            };
+            let counts = match i % 4 {
+                0 | 2 => tiny_vs_general_in(rows, v, values, &init),
+                1 => {
+                    let values = values.map(|[z, l]| [z, l / 2]);
+                    tiny_vs_general_mapped(rows, v, values, &init, |_, _| ramp)
+                }
+                _ => {
+                    let values = values.map(|[z, l]| [z, l / 2]);
+                    let dither = |x, y| crate::shade::dither::Bayer4::at(ramp, x, y);
+                    tiny_vs_general_mapped(rows, v, values, &init, dither)
+                }
+            };
+            assert_eq!(counts.is_some(), applies, "{v:?}");
+            drawn += counts.map_or(0, |(covered, _)| (covered > 0) as u32);
+        }
+        drawn
+    }
+
+    #[test]
+    fn tiny_writer_draws_what_the_general_path_draws() {
+        // Enough of the triangles are drawn for the comparison to mean something.
+        let drawn = tiny_matches_general_on_random_triangles::<4>(0x9E37_79B9_7F4A_7C15, 20_000);
+        assert!(drawn > 4000, "{drawn}");
+        // At S = 0 the larger boxes (up to 1023 pixels) rarely fit the 80-pixel frame.
+        let drawn = tiny_matches_general_on_random_triangles::<0>(0xD1B5_4A32_D192_ED03, 3000);
+        assert!(drawn > 300, "{drawn}");
+        let drawn = tiny_matches_general_on_random_triangles::<8>(0x8CB9_2BA7_2F3D_8DD7, 3000);
+        assert!(drawn > 600, "{drawn}");
+    }
+
+    /// The tiny writer's limits: the largest box it takes and the first it leaves to the
+    /// general path, boxes touching the window's last row and column and boxes one pixel out,
+    /// zero area, vertex values at the ends of their ranges, coordinates whose differences
+    /// wrap, and sub-pixel precisions too fine for its 32-bit luminance step.
+    #[test]
+    fn tiny_writer_limits() {
+        let init = [u16::MAX; TW * TH];
+        let q = |x: i32, y: i32| SubpixelPoint::<4>::new(x, y);
+        let ends = [[0, 0], [u32::MAX, 510], [1 << 31, 255]];
+        // Box 1023 × 1023 units (63.9 px): taken; 1024: not.
+        let big = [q(8, 8), q(8 + 1023, 8 + 500), q(8 + 300, 8 + 1023)];
+        let (covered, written) = tiny_vs_general(big, ends, &init).unwrap();
+        assert!(covered > 1000 && written == covered, "{covered} {written}");
+        let wide = [q(8, 8), q(8 + 1024, 8 + 500), q(8 + 300, 8 + 100)];
+        assert!(tiny_vs_general(wide, ends, &init).is_none());
+        let tall = [q(8, 8), q(8 + 100, 8 + 1024), q(8 + 300, 8 + 100)];
+        assert!(tiny_vs_general(tall, ends, &init).is_none());
+        // The last column and row of the window (pixel 79, 59) are in; one more is out.
+        let (xe, ye) = ((TW as i32) << 4, (TH as i32) << 4);
+        let corner = [q(xe - 100, ye - 90), q(xe - 1, ye - 40), q(xe - 60, ye - 1)];
+        assert!(tiny_vs_general(corner, ends, &init).unwrap().0 > 0);
+        let past = [q(xe - 100, ye - 90), q(xe, ye - 40), q(xe - 60, ye - 1)];
+        assert!(tiny_vs_general(past, ends, &init).is_none());
+        let left = [q(-1, 20), q(50, 40), q(20, 60)];
+        assert!(tiny_vs_general(left, ends, &init).is_none());
+        // Rows are clipped, not refused: boxes across the window's top or bottom, or across
+        // both edges of a band, or wholly outside its rows, draw what the general path draws.
+        let below = [
+            q(xe - 100, ye - 90),
+            q(xe - 1, ye - 40),
+            q(xe - 60, ye + 200),
+        ];
+        assert!(tiny_vs_general(below, ends, &init).unwrap().0 > 0);
+        let above = [q(10, -200), q(50, 40), q(20, 60)];
+        assert!(tiny_vs_general(above, ends, &init).unwrap().0 > 0);
+        let tall = [q(100, 100), q(700, 400), q(300, 1000)];
+        let (covered, _) = tiny_vs_general_in((30, 4), tall, ends, &init).unwrap();
+        assert!(covered > 40, "{covered}");
+        assert_eq!(
+            tiny_vs_general_in((30, 4), corner, ends, &init),
+            Some((0, 0))
+        );
+        // Zero area (collinear, repeated vertices): nothing drawn.
+        for flat in [
+            [q(16, 16), q(48, 48), q(80, 80)],
+            [q(16, 16), q(16, 16), q(90, 40)],
+            [q(16, 16), q(16, 16), q(16, 16)],
+        ] {
+            assert_eq!(tiny_vs_general(flat, ends, &init), Some((0, 0)));
+        }
+        // The widest box of the raster's range (2^29 units) is not a small box.
+        let huge = [q(-MAX_COORD, 16), q(MAX_COORD, 16), q(0, 40)];
+        let window = Window::new(0, 0, TW as i32, TH as i32);
+        let t = TriangleSetup::in_range(huge);
+        assert!(TinyTriangle::<4>::new(&t, ends, &window).is_none());
+        // S + K > 19: never taken.
+        let v12 = [
+            SubpixelPoint::<12>::new(0, 0),
+            SubpixelPoint::<12>::new(3000, 0),
+            SubpixelPoint::<12>::new(0, 3000),
+        ];
+        let t = TriangleSetup::in_range(v12);
+        assert!(TinyTriangle::<12>::new(&t, ends, &window).is_none());
+    }
+}
