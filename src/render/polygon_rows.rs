@@ -11,7 +11,7 @@
 //! clipped polygon's rows are those of its clipped projection, found once per frame, so that
 //! bands it does not reach skip it without clipping). A projected polygon's top is rounded
 //! down to even, a clipped one's down to odd, and a clipped polygon from row 0 has a top of
-//! 65535 (read as 0): at most one band more than the exact rows is visited.
+//! 65535 (`CLIPPED_FROM_ROW_0`, read as 0): at most one band more than the exact rows is visited.
 
 use super::PreparedVertex;
 use crate::raster::edge_walker::ceil_shift;
@@ -41,7 +41,11 @@ impl PolygonRows {
     pub const NEVER: PolygonRows = PolygonRows::pack(u16::MAX, 0);
     /// Crosses a frustum plane, rows unknown: every band runs the clipper (and the raster's
     /// own band limit).
-    pub const CLIP: PolygonRows = PolygonRows::pack(u16::MAX, u16::MAX);
+    pub const CLIP: PolygonRows = PolygonRows::pack(Self::CLIPPED_FROM_ROW_0, u16::MAX);
+    /// The `top` of a clipped polygon whose rows start at row 0 (0 is even, which would read
+    /// as drawn from the prepared vertices): read as row 0 by [`meets`](Self::meets) and by
+    /// the band scan's packed pre-test (`PolygonStage::in_table`).
+    pub(super) const CLIPPED_FROM_ROW_0: u16 = u16::MAX;
 
     const fn pack(top: u16, bottom: u16) -> PolygonRows {
         PolygonRows {
@@ -71,7 +75,7 @@ impl PolygonRows {
     /// row 0).
     pub fn clipped(top: i32, bottom: i32) -> PolygonRows {
         let top = match clamp_row(top) {
-            0 => u16::MAX,
+            0 => Self::CLIPPED_FROM_ROW_0,
             t => t - (1 - (t & 1)),
         };
         PolygonRows::pack(top, clamp_row(bottom))
@@ -87,7 +91,7 @@ impl PolygonRows {
     #[inline(always)]
     pub(super) fn meets(self, band: (i32, i32)) -> bool {
         let top = match self.top() {
-            u16::MAX => 0,
+            Self::CLIPPED_FROM_ROW_0 => 0,
             t => t as i32,
         };
         (self.bottom() as i32) > band.0 && top < band.1

@@ -264,8 +264,9 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         let indices = self.object.mesh.indices();
         let table = table.get(..indices.len() / 3).unwrap_or(table);
         // The scan finds the entries that `path` may draw with one or two tests for most: rows
-        // below the band's end (clamped so that rows up to 65535 pass) and above its start (a
-        // top of 65535 is a clipped polygon from row 0); `path` then decides exactly.
+        // below the band's end (clamped so that rows up to 65535 pass) and above its start (or
+        // a clipped polygon from row 0, `PolygonRows::CLIPPED_FROM_ROW_0`); `path` then decides
+        // exactly.
         let (b0, b1) = self.rows;
         let (c0, c1) = (
             b0.clamp(-1, u16::MAX as i32 - 1),
@@ -273,8 +274,10 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         );
         // `bottom > c0` on the packed word: `c0 + 1` is in `0..=65535`.
         let below = ((c0 + 1) as u32) << 16;
-        let maybe =
-            |r: &PolygonRows| r.packed >= below && ((r.top() as i32) < c1 || r.top() == u16::MAX);
+        let maybe = |r: &PolygonRows| {
+            r.packed >= below
+                && ((r.top() as i32) < c1 || r.top() == PolygonRows::CLIPPED_FROM_ROW_0)
+        };
         let mut one = |pi: usize, r: PolygonRows| {
             let Some(poly) = indices.get(3 * pi..3 * pi + 3) else {
                 return Ok(());

@@ -44,9 +44,16 @@ impl<const S: u32> Renderer<S> {
     /// hundreds of bytes, and a copy costs thousands of Cortex-M instructions).
     #[inline(always)]
     fn build(camera: &Camera, illumination: Illumination) -> Result<Self, RenderError> {
+        // A `match`, not `map_err(…)?`: converting the whole `Result` moved the 56-byte
+        // projector through two unaligned temporaries, three byte-wise copies (Cortex-M4
+        // `setup` 10,462 instructions against 9,794 with the match).
+        let projector = match Projector::new(camera) {
+            Ok(p) => p,
+            Err(e) => return Err(RenderError::Projection(e)),
+        };
         Ok(Renderer {
             camera: *camera,
-            projector: Projector::new(camera).map_err(RenderError::Projection)?,
+            projector,
             frustum: Frustum::new::<S>(camera, Frustum::DEFAULT_GUARD)
                 .map_err(RenderError::Clip)?,
             view: *camera.view_transform(),
