@@ -223,6 +223,17 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
 ) -> u32 {
     let mut written = 0u32;
     if Z::IS_CONSTANT && Sh::IS_CONSTANT {
+        // A sample of no bits (`NoDepth`) has one value: the test is the same at every pixel
+        // and nothing is stored, so the span is one fill, inline (out of line, the call cost
+        // the back-face frames about 9 instructions a span on the host).
+        if D::BITS == 0 {
+            let d = D::from_depth32(z.value());
+            if !d.nearer(d) {
+                return 0;
+            }
+            colours.fill(shading.index());
+            return colours.len() as u32 * C::COUNTS as u32;
+        }
         return constant_span::<D, C>(colours, depths, D::from_depth32(z.value()), shading.index());
     }
     // A shading constant along the span (flat) is mapped to its index once.
@@ -256,16 +267,6 @@ fn constant_span<D: DepthValue, C: WrittenCount>(
     d: D,
     index: u8,
 ) -> u32 {
-    // A sample of no bits (`NoDepth`) has one value: the test is the same at every pixel and
-    // nothing is stored, so the span is one fill (the blocks below cost the back-face frames
-    // up to a quarter more on the host).
-    if D::BITS == 0 {
-        if !d.nearer(d) {
-            return 0;
-        }
-        colours.fill(index);
-        return colours.len() as u32 * C::COUNTS as u32;
-    }
     let mut written = 0u32;
     let select = |c: &mut u8, stored: &mut D| {
         let nearer = d.nearer(*stored);
