@@ -359,6 +359,22 @@ pub const CASES: &[Case] = &[
         name: "lit_bunny_phong_dither",
         run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::Phong, true),
     },
+    Case {
+        name: "shadow_map_cube",
+        run: |fb, st| scene::shadow_map(fb, st, &scene::CUBE, false),
+    },
+    Case {
+        name: "shadow_map_sphere_point",
+        run: |fb, st| scene::shadow_map(fb, st, &scene::SPHERE, true),
+    },
+    Case {
+        name: "shadow_map_bunny",
+        run: |fb, st| scene::shadow_map(fb, st, &scene::BUNNY, false),
+    },
+    Case {
+        name: "shadow_map_bunny_point",
+        run: |fb, st| scene::shadow_map(fb, st, &scene::BUNNY, true),
+    },
 ];
 
 /// FNV-1a (32-bit) of a byte slice: the framebuffer checksum every platform prints.
@@ -1193,5 +1209,42 @@ pub mod scene {
             Ok(()) => stats.pixels_covered,
             Err(_) => 0,
         }
+    }
+
+    /// Texels across and down of the shadow-map cases: 160 × 240 16-bit samples, whose 76,800
+    /// bytes are the framebuffer's.
+    const MAP_SIZE: (u16, u16) = (160, 240);
+
+    /// A shadow map's pass 1 ([`ShadowMap::render`](zscan::shade::shadow::ShadowMap::render)):
+    /// the map (the harness's depth storage) built and cleared for a directional light toward
+    /// (1, 2, 1), or a point light at (2, 3, 2), over the sphere of radius 1.25 at the origin,
+    /// then the scene's mesh drawn into it (both faces, depth only). The samples' bytes are
+    /// then copied into the framebuffer, so that its checksum is the map's (the copy, about
+    /// 2 instructions a byte, is part of the count). Returns the texels.
+    pub fn shadow_map(
+        fb: &mut Framebuffer<'_>,
+        st: &mut Storage,
+        s: &StandardScene,
+        point: bool,
+    ) -> u32 {
+        use zscan::geometry::matrix::Affine3;
+        use zscan::shade::shadow::ShadowMap;
+        let (w, h) = MAP_SIZE;
+        let samples = &mut st.depth[..w as usize * h as usize];
+        let radius = Coord::from_bits(5 << 14);
+        let map = if point {
+            ShadowMap::point(samples, w, h, Vec3::from_int(2, 3, 2), Vec3::ZERO, radius)
+        } else {
+            ShadowMap::new(samples, w, h, Vec3::from_int(1, 2, 1), Vec3::ZERO, radius)
+        };
+        let Ok(mut map) = map else { return 0 };
+        if map.render(&s.mesh, &Affine3::IDENTITY).is_err() {
+            return 0;
+        }
+        let texels = &st.depth[..w as usize * h as usize];
+        for (pair, d) in fb.pixels_mut().chunks_exact_mut(2).zip(texels) {
+            pair.copy_from_slice(&d.to_le_bytes());
+        }
+        w as u32 * h as u32
     }
 }

@@ -7,6 +7,12 @@
 //! says at compile time whether written pixels are counted. `Targets` hands the writers each
 //! span's pixels of the frame and depth buffer as two slices.
 //!
+//! The depth-only span (`depth_only_span`, the shadow map's pass 1) is the same loop, its core
+//! `span_core`, with no colour: a `ColourPixel` that stores nothing and a `Shading` that is
+//! never read. `DepthTargets` hands it each span's depth samples alone (a shadow map's, with
+//! no framebuffer); both kinds of target are a `SpanTarget`, what the one triangle writer
+//! (`span_writer`'s span loop) slices spans from.
+//!
 //! Numeric contract: luminance `0..=255` (the writers saturate vertex values at 255, so the
 //! interpolants stay in range and the loops map without a test); depth values are the
 //! projection's 32-bit normalised depth, stored through [`DepthValue::from_depth32`]. Span
@@ -217,11 +223,10 @@ impl WrittenCount for SkipWritten {
 pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
     colours: &mut [u8],
     depths: &mut [D],
-    mut z: Z,
-    mut shading: Sh,
-    _: C,
+    z: Z,
+    shading: Sh,
+    count: C,
 ) -> u32 {
-    let mut written = 0u32;
     if Z::IS_CONSTANT && Sh::IS_CONSTANT {
         // A sample of no bits (`NoDepth`) has one value: the test is the same at every pixel
         // and nothing is stored, so the span is one fill, inline (out of line, the call cost
@@ -236,17 +241,80 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
         }
         return constant_span::<D, C>(colours, depths, D::from_depth32(z.value()), shading.index());
     }
+    span_core(colours.iter_mut(), depths, z, shading, count)
+}
+
+/// The depth-only span: every sample of `depths` (the span's samples) replaced by the depth
+/// `z` steps to where it is nearer, no colour stored ([`span_core`] with [`NoColour`]): the
+/// shadow map's pass 1. Returns the samples written, counted as `C` says.
+#[inline(always)]
+pub(crate) fn depth_only_span<D: DepthValue, Z: Interpolant, C: WrittenCount>(
+    depths: &mut [D],
+    z: Z,
+    count: C,
+) -> u32 {
+    span_core(core::iter::repeat(()), depths, z, NoColour, count)
+}
+
+/// Where a pixel that passes the depth test stores its palette index: a frame's pixel
+/// (`&mut u8`), or nowhere (`()`, the depth-only span).
+pub(crate) trait ColourPixel {
+    /// Stores `index` (or nothing).
+    fn store(self, index: u8);
+}
+
+impl ColourPixel for &mut u8 {
+    #[inline(always)]
+    fn store(self, index: u8) {
+        *self = index;
+    }
+}
+
+impl ColourPixel for () {
+    #[inline(always)]
+    fn store(self, _: u8) {}
+}
+
+/// The shading of a depth-only span: no colour (its index is never stored).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct NoColour;
+
+impl Shading for NoColour {
+    const IS_CONSTANT: bool = true;
+
+    #[inline(always)]
+    fn index(&self) -> u8 {
+        0
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {}
+}
+
+/// The one per-pixel loop of [`depth_span`] and [`depth_only_span`]: each pixel of `colours`
+/// (one [`ColourPixel`] per depth sample, or an endless run of `()` for no colour) zipped with
+/// `depths`, with depth `z` and colour `shading` at the first pixel: depth test, then the depth
+/// and the index stored where it passes.
+#[inline(always)]
+fn span_core<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount, P: ColourPixel>(
+    colours: impl Iterator<Item = P>,
+    depths: &mut [D],
+    mut z: Z,
+    mut shading: Sh,
+    _: C,
+) -> u32 {
+    let mut written = 0u32;
     // A shading constant along the span (flat) is mapped to its index once.
     let constant_index = shading.index();
-    for (c, stored) in colours.iter_mut().zip(depths.iter_mut()) {
+    for (c, stored) in colours.zip(depths.iter_mut()) {
         let d = D::from_depth32(z.value());
         if d.nearer(*stored) {
             *stored = d;
-            *c = if Sh::IS_CONSTANT {
+            c.store(if Sh::IS_CONSTANT {
                 constant_index
             } else {
                 shading.index()
-            };
+            });
             written += C::COUNTS as u32;
         }
         z.step();
@@ -358,5 +426,56 @@ impl<'t, D: DepthValue> Targets<'t, D> {
             self.colours.get_mut(c..c.wrapping_add(len))?,
             self.depths.get_mut(z..z.wrapping_add(len))?,
         ))
+    }
+}
+
+/// Where the one triangle writer's span loop takes each span's pixels: the samples of the
+/// depth buffer and the colours beside them. [`Targets`] (a frame and its depth buffer) for the
+/// shaded kinds; [`DepthTargets`] (depth samples alone, no colours: an empty colour slice) for
+/// the depth-only kind, whose span ignores the colours.
+pub(crate) trait SpanTarget {
+    /// The depth samples' type.
+    type Depth: DepthValue;
+    /// The pixels of span `s` (inside the drawable window): colours and depth samples.
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [Self::Depth])>;
+}
+
+impl<D: DepthValue> SpanTarget for Targets<'_, D> {
+    type Depth = D;
+
+    #[inline(always)]
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
+        Targets::span(self, s)
+    }
+}
+
+/// The depth samples of a z-buffer without a frame (a shadow map's, `width` samples a row from
+/// row 0), sliced per span like [`Targets`]: one checked `get_mut` per span (a span outside
+/// the samples is skipped, never a panic). Its colours are empty: only the depth-only kind
+/// draws into it.
+#[derive(Debug)]
+pub(crate) struct DepthTargets<'t, D> {
+    depths: &'t mut [D],
+    stride: usize,
+}
+
+impl<'t, D: DepthValue> DepthTargets<'t, D> {
+    /// The samples `depths`, `stride` to a row.
+    #[inline(always)]
+    pub(crate) fn new(depths: &'t mut [D], stride: usize) -> Self {
+        DepthTargets { depths, stride }
+    }
+}
+
+impl<D: DepthValue> SpanTarget for DepthTargets<'_, D> {
+    type Depth = D;
+
+    #[inline(always)]
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
+        let len = s.x1.wrapping_sub(s.x0) as usize;
+        let at = (s.y as usize)
+            .wrapping_mul(self.stride)
+            .wrapping_add(s.x0 as usize);
+        Some((&mut [], self.depths.get_mut(at..at.wrapping_add(len))?))
     }
 }

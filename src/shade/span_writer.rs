@@ -7,7 +7,10 @@
 //! fill (`fill_setup`, on the same set-up) takes the exact values at the span start from it
 //! and runs one generic loop, `depth_span`: depth test (strict, nearer wins, see
 //! [`DepthValue`]), palette index from a `Shading`, two stores. Phong's seven attributes are
-//! one more span kind of the same loop (`shade/phong.rs`, through `draw_general_exact`).
+//! one more span kind of the same loop (`shade/phong.rs`, through `draw_general_exact`), and
+//! so is depth only (`DepthOnlyKind`, through `draw_depth_only`: the shadow map's pass 1 into
+//! a `DepthTarget`, the map's samples with no framebuffer; the same plane choice and span
+//! loop, whose colour side stores nothing).
 //!
 //! Small triangles (bounding box below `2^K` sub-pixel units on both axes,
 //! `K =` `small_bits``(S)`: 64 pixels at `S = 4`) get a
@@ -37,10 +40,10 @@ use super::attributes::{
     SmallPlane, SpanStarts, WidePlane,
 };
 pub use super::span::LuminanceRamp;
+use super::span::{depth_only_span, DepthTargets, Direct, InRange, SpanTarget, Targets};
 pub(crate) use super::span::{
     depth_span, CountWritten, Gouraud, Quantizer, Shading, SkipWritten, WrittenCount,
 };
-use super::span::{Direct, InRange, Targets};
 use super::tiny_triangle::TinyTriangle;
 use crate::arith::euclid::Divisor;
 use crate::arith::TINY_WRITER;
@@ -563,7 +566,7 @@ impl FromExact<Exact> for ExactRunFrom {
 /// What one span of a triangle writes, given its `N` exact interpolants at the span start:
 /// chosen once per triangle, so the span loop holds one kind only. The kinds: constant depth
 /// and colour (no plane: [`TriangleSpans::constant`]), [`FlatKind`], [`ExactKind`],
-/// [`FastKind`] here, and Phong's (`shade/phong.rs`).
+/// [`FastKind`] and [`DepthOnlyKind`] here, and Phong's (`shade/phong.rs`).
 pub(crate) trait SpanKind<const N: usize> {
     /// Writes the span (`colours`, `depths`: its pixels) starting at pixel `(x, y)`; `attrs[0]`
     /// is the depth. Returns the pixels written (0 when `count` does not count them).
@@ -650,20 +653,79 @@ impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
     }
 }
 
+/// Depth only: the exact depth plane (one attribute), the nearer depth stored, no colour
+/// ([`depth_only_span`]). Drawn into a [`DepthTarget`], whose colour slices are empty.
+struct DepthOnlyKind;
+
+impl SpanKind<1> for DepthOnlyKind {
+    #[inline(always)]
+    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<1>, C: WrittenCount>(
+        &self,
+        _: &mut [u8],
+        depths: &mut [D],
+        [z]: [I; 1],
+        _: &St,
+        _: (i32, i32),
+        count: C,
+    ) -> u32 {
+        depth_only_span(depths, z, count)
+    }
+}
+
+/// A depth buffer without a frame, prepared once for many depth-only triangles
+/// ([`draw_depth_only`]): a shadow map's samples, `width × height` from row 0.
+#[derive(Debug)]
+pub(crate) struct DepthTarget<'t, D> {
+    window: Window,
+    targets: DepthTargets<'t, D>,
+}
+
+impl<'t, D: DepthValue> DepthTarget<'t, D> {
+    /// Borrows `samples` (at least `width × height`, row by row) for drawing depths.
+    pub(crate) fn new(samples: &'t mut [D], width: u16, height: u16) -> Self {
+        DepthTarget {
+            window: Window::new(0, 0, width as i32, height as i32),
+            targets: DepthTargets::new(samples, width as usize),
+        }
+    }
+}
+
+/// The depth-only span kind ([`DepthOnlyKind`]) of set-up triangle `t` with vertex depths
+/// `depths` (any `u32`: a depth whose stored value is `FAR` stores nothing, as the strict test
+/// against a cleared sample fails) into `target`, through the writer's plane choice (small,
+/// general with its runs, or wide: the same exact value at every texel) and span loop.
+/// Returns the samples the triangle covers inside the target.
+pub(crate) fn draw_depth_only<D: DepthValue, const S: u32>(
+    target: &mut DepthTarget<'_, D>,
+    t: &TriangleSetup<S>,
+    depths: [u32; 3],
+) -> u32 {
+    let spans = TriangleSpans {
+        t: *t,
+        window: target.window,
+        targets: &mut target.targets,
+        count: SkipWritten,
+    };
+    spans.planar(depths.map(|z| [z]), DepthOnlyKind).0
+}
+
 /// One triangle's span drawing, set up (see [`draw_triangle_quantized`]).
 ///
 /// The set-up is held by value, like every argument of an out-of-line callee
 /// (`TriangleSpans::wide`, `tiny_mapped`): a reference would keep the whole set-up in memory
 /// on every path (Cortex-M4 `frame_bunny` +3.8 %, measured), a copy is made only on the
 /// path that calls.
-struct TriangleSpans<'a, 't, D, C, const S: u32> {
+///
+/// `T` is where its spans are written ([`SpanTarget`]): a frame and its depth buffer
+/// ([`Targets`]), or depth samples alone ([`DepthTargets`], the depth-only kind).
+struct TriangleSpans<'a, T, C, const S: u32> {
     t: TriangleSetup<S>,
     window: Window,
-    targets: &'a mut Targets<'t, D>,
+    targets: &'a mut T,
     count: C,
 }
 
-impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleSpans<'_, '_, D, C, S> {
+impl<T: SpanTarget, C: WrittenCount, const S: u32> TriangleSpans<'_, T, C, S> {
     /// Constant depth `z` and flat luminance `lum`: no plane, any size (a zero-area triangle
     /// covers nothing in the fill).
     #[inline(always)]
@@ -1134,5 +1196,84 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The depth-only kind ([`draw_depth_only`]: the writer's plane choice, small, general with
+    /// its runs or wide, and the span loop without colour) stores at every texel what the exact
+    /// plane evaluated there directly gives ([`WidePlane::exact`] at each texel of the fill,
+    /// no stepping), where it is nearer than the stored sample, for 16- and 32-bit samples over
+    /// random contents, and reports the covered texels; triangles of every size class, depths
+    /// at both ends of the range (those stored as `FAR` are never stored) and zero area.
+    #[test]
+    fn depth_only_stores_the_exact_nearer_depth() {
+        fn check<D: DepthValue + core::fmt::Debug>(
+            rng: &mut crate::test_rng::XorShift,
+            to: impl Fn(u64) -> D,
+        ) -> u32 {
+            const W: usize = 48;
+            const H: usize = 40;
+            let mut drawn = 0;
+            for i in 0..3000 {
+                // Boxes from a few texels to far beyond the map (general and wide planes).
+                let reach = [40i64, 400, 2000, 1 << 20, 1 << 27][i % 5];
+                let mut v = [0; 3].map(|_| {
+                    let mut c = |n: usize| rng.range(-reach, reach + ((n as i64) << 4));
+                    SubpixelPoint::<4>::new(c(W) as i32, c(H) as i32)
+                });
+                if i % 97 == 0 {
+                    v[2] = v[1]; // zero area
+                }
+                let depths = [0; 3].map(|_| match rng.below(8) {
+                    0 => u32::MAX - rng.below(1 << 17) as u32,
+                    1 => rng.below(1 << 17) as u32,
+                    _ => rng.next_u64() as u32,
+                });
+                let init: [D; W * H] = core::array::from_fn(|_| to(rng.next_u64()));
+                let mut got = init;
+                let t = TriangleSetup::in_range(v);
+                let covered = draw_depth_only(
+                    &mut DepthTarget::new(&mut got, W as u16, H as u16),
+                    &t,
+                    depths,
+                );
+                let mut want = init;
+                let mut want_covered = 0;
+                if let Ok(plane) = WidePlane::<1, 4>::of(&t, depths.map(|z| [z])) {
+                    let window = Window::new(0, 0, W as i32, H as i32);
+                    fill_setup(&t, &window, |s| {
+                        for x in s.x0..s.x1 {
+                            let d = D::from_depth32(plane.exact(0, x, s.y).value());
+                            let stored = &mut want[s.y as usize * W + x as usize];
+                            if d.nearer(*stored) {
+                                *stored = d;
+                            }
+                            want_covered += 1;
+                        }
+                    });
+                }
+                assert_eq!(got, want, "{v:?} {depths:?}");
+                assert_eq!(covered, want_covered, "{v:?} {depths:?}");
+                drawn += covered;
+            }
+            drawn
+        }
+        // Half the samples far (as a cleared map), the others anywhere.
+        let mut rng = crate::test_rng::XorShift::new(0x5EED_0019);
+        let drawn = check::<u16>(&mut rng, |r| {
+            if r & 1 == 1 {
+                u16::MAX
+            } else {
+                (r >> 16) as u16
+            }
+        });
+        assert!(drawn > 500_000, "{drawn}");
+        let drawn = check::<u32>(&mut rng, |r| {
+            if r & 1 == 1 {
+                u32::MAX
+            } else {
+                (r >> 32) as u32
+            }
+        });
+        assert!(drawn > 500_000, "{drawn}");
     }
 }

@@ -11,10 +11,11 @@
 //!   every polygon is tested against the six clip planes ([`Plane::distance`], exact `i64`),
 //!   then takes the renderer's polygon-to-triangles path (`clip::fan`): clipped by
 //!   Sutherland–Hodgman only against the planes it crosses, projected
-//!   ([`Projection::project`]) and drawn as a fan of depth-only triangles with
-//!   [`AttributePlane<1, 4>`](AttributePlane) (exact, correctly rounded 32-bit depth at every
-//!   texel) through the triangle fill (`raster::triangle`). The parent module's size limits keep every triangle
-//!   within the interpolation's limits; a triangle beyond them is an error, never skipped.
+//!   ([`Projection::project`]) and drawn as a fan of triangles by the renderer's triangle
+//!   writer with its depth-only span kind (`shade::span_writer::draw_depth_only`: the one
+//!   triangle set-up, the writer's plane choice and span loop; exact, correctly rounded 32-bit
+//!   depth at every texel, the nearer kept). The parent module's size limits keep every triangle
+//!   within the raster's range; a vertex beyond it is an error, never skipped.
 //! - The test compares `D::from_depth32(d − bias)` with the stored sample (`d − bias`
 //!   saturating at 0): the bias is in 32-bit depth units for both storage widths.
 
@@ -35,10 +36,9 @@ use crate::geometry::trig::{sin_cos_bits, Angle};
 use crate::geometry::vector::{unit_bits, Vec3};
 use crate::project::Projector;
 use crate::raster::setup::TriangleSetup;
-use crate::raster::triangle::fill_setup;
-use crate::raster::{SubpixelPoint, Window};
-use crate::shade::attributes::{AttributePlane, Interpolant, PlaneError, WidePlane};
+use crate::raster::SubpixelPoint;
 use crate::shade::lighting::Light;
+use crate::shade::span_writer::{draw_depth_only, DepthTarget};
 use crate::target::DepthValue;
 
 /// Largest full field of view of a framed point-light map (120°): wider cones waste texels
@@ -420,94 +420,12 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
         let m = transform
             .then(&self.frame)
             .map_err(|_| ShadowError::Transform)?;
-        for poly in mesh.polygons() {
-            self.polygon(mesh.vertices(), poly, &m)?;
-        }
-        Ok(())
-    }
-
-    /// One polygon of pass 1 (`poly`, indices into `vertices`, placed in the light frame by
-    /// `m`), through the polygon stage's path ([`clip_project_fan`]): rejected when wholly
-    /// outside one plane of the map's volume, clipped against the planes it crosses,
-    /// projected, and drawn as a fan of depth-only triangles ([`Self::draw_triangle`]).
-    fn polygon(&mut self, vertices: &[Vec3], poly: &[u16], m: &Affine3) -> Result<(), ShadowError> {
-        if poly.len() < 3 {
-            return Ok(());
-        }
-        if poly.len() > MAX_POLYGON_VERTICES {
-            return Err(ShadowError::PolygonTooLarge);
-        }
-        let mut pts: Vec<ClipVertex<0>, CLIP_CAPACITY> = Vec::new();
-        let (mut any, mut all) = (0u8, 0xFFu8);
-        for &i in poly {
-            let v = *vertices.get(i as usize).ok_or(ShadowError::Raster)?;
-            let p = m.transform_point(v);
-            let code = self.planes.outcode(p);
-            any |= code;
-            all &= code;
-            // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
-            let _ = pts.push(ClipVertex::new(p, []));
-        }
-        if all != 0 {
-            return Ok(()); // wholly outside one plane
-        }
         let (planes, projection) = (self.planes, self.projection);
-        let lim = crate::raster::edge_walker::MAX_COORD as i64;
-        let project = |v: &ClipVertex<0>| {
-            let (sx, sy, d) = projection.project(v.pos).ok_or(ShadowError::Raster)?;
-            if sx.abs() > lim || sy.abs() > lim {
-                return Err(ShadowError::Raster.into());
-            }
-            Ok((SubpixelPoint::new(sx as i32, sy as i32), d))
-        };
-        clip_project_fan(&planes, &pts, any != 0, project, |tri| {
-            self.draw_triangle(tri).map_err(PassError)
-        })
-        .map_err(|e: PassError| e.0)
-    }
-
-    /// One triangle of depths, nearest kept; one too large for the [`AttributePlane`] takes
-    /// the [`WidePlane`] (the same exact values).
-    fn draw_triangle(
-        &mut self,
-        c: [(SubpixelPoint<SUBPIXEL_BITS>, u32); 3],
-    ) -> Result<(), ShadowError> {
-        let t = TriangleSetup::new(c.map(|c| c.0)).map_err(|_| ShadowError::Raster)?;
-        let values = c.map(|c| [c.1]);
-        match AttributePlane::<1, SUBPIXEL_BITS>::of(&t, values) {
-            Ok(p) => self.fill(&t, |x, y| p.exact(0, x, y)),
-            Err(PlaneError::Degenerate) => {} // covers no texel
-            Err(PlaneError::TooLarge) => {
-                if let Ok(p) = WidePlane::<1, SUBPIXEL_BITS>::of(&t, values) {
-                    self.fill(&t, |x, y| p.exact(0, x, y))
-                }
-            }
+        let mut target = DepthTarget::new(self.samples, self.width, self.height);
+        for poly in mesh.polygons() {
+            polygon(&planes, &projection, &mut target, mesh.vertices(), poly, &m)?;
         }
         Ok(())
-    }
-
-    /// The texels of set-up triangle `t`, each span's depths stepped from `start(x0, y)`.
-    fn fill<I: Interpolant>(
-        &mut self,
-        t: &TriangleSetup<SUBPIXEL_BITS>,
-        start: impl Fn(i32, i32) -> I,
-    ) {
-        let window = Window::new(0, 0, self.width as i32, self.height as i32);
-        let w = self.width as usize;
-        let samples = &mut *self.samples;
-        fill_setup(t, &window, |s| {
-            let mut z = start(s.x0, s.y);
-            let row = s.y as usize * w;
-            if let Some(span) = samples.get_mut(row + s.x0 as usize..row + s.x1 as usize) {
-                for stored in span {
-                    let d = D::from_depth32(z.value());
-                    if d < *stored {
-                        *stored = d;
-                    }
-                    z.step();
-                }
-            }
-        })
     }
 
     /// Pass 2 for one world point: lit, shadowed, or outside the map (lit). `bias` in 32-bit
@@ -553,4 +471,61 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
             .get(y as usize * self.width as usize + x as usize)
             .copied()
     }
+}
+
+/// One polygon of pass 1 (`poly`, indices into `vertices`, placed in the light frame by `m`),
+/// through the polygon stage's path ([`clip_project_fan`]): rejected when wholly outside one of
+/// the map's `planes`, clipped against the planes it crosses, projected by `projection`, and
+/// drawn into `target` as a fan of depth-only triangles ([`draw_triangle`]).
+fn polygon<D: DepthValue>(
+    planes: &[Plane; 6],
+    projection: &Projection,
+    target: &mut DepthTarget<'_, D>,
+    vertices: &[Vec3],
+    poly: &[u16],
+    m: &Affine3,
+) -> Result<(), ShadowError> {
+    if poly.len() < 3 {
+        return Ok(());
+    }
+    if poly.len() > MAX_POLYGON_VERTICES {
+        return Err(ShadowError::PolygonTooLarge);
+    }
+    let mut pts: Vec<ClipVertex<0>, CLIP_CAPACITY> = Vec::new();
+    let (mut any, mut all) = (0u8, 0xFFu8);
+    for &i in poly {
+        let v = *vertices.get(i as usize).ok_or(ShadowError::Raster)?;
+        let p = m.transform_point(v);
+        let code = planes.outcode(p);
+        any |= code;
+        all &= code;
+        // Capacity holds: poly.len() ≤ MAX_POLYGON_VERTICES < CLIP_CAPACITY.
+        let _ = pts.push(ClipVertex::new(p, []));
+    }
+    if all != 0 {
+        return Ok(()); // wholly outside one plane
+    }
+    let lim = crate::raster::edge_walker::MAX_COORD as i64;
+    let project = |v: &ClipVertex<0>| {
+        let (sx, sy, d) = projection.project(v.pos).ok_or(ShadowError::Raster)?;
+        if sx.abs() > lim || sy.abs() > lim {
+            return Err(ShadowError::Raster.into());
+        }
+        Ok((SubpixelPoint::new(sx as i32, sy as i32), d))
+    };
+    clip_project_fan(planes, &pts, any != 0, project, |tri| {
+        draw_triangle(target, tri).map_err(PassError)
+    })
+    .map_err(|e: PassError| e.0)
+}
+
+/// One triangle of depths (corners: sub-pixel position and 32-bit depth), the nearer kept at
+/// every texel: the one set-up, then the writer's depth-only kind ([`draw_depth_only`]).
+fn draw_triangle<D: DepthValue>(
+    target: &mut DepthTarget<'_, D>,
+    c: [(SubpixelPoint<SUBPIXEL_BITS>, u32); 3],
+) -> Result<(), ShadowError> {
+    let t = TriangleSetup::new(c.map(|c| c.0)).map_err(|_| ShadowError::Raster)?;
+    draw_depth_only(target, &t, c.map(|c| c.1));
+    Ok(())
 }

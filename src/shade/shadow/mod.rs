@@ -3,8 +3,9 @@
 //!
 //! Role in the pipeline: beside lighting, around the renderer. **Pass 1**
 //! ([`ShadowMap::render`]) draws every occluder's depth *as seen from the light* into a
-//! caller-provided map of `u16` or `u32` samples, with the raster stage's exact triangle fill
-//! and exact depth interpolation (nearest wins, both faces). **Pass 2** asks, for a visible
+//! caller-provided map of `u16` or `u32` samples, through the renderer's triangle writer with
+//! its depth-only span kind: the raster stage's exact triangle fill and exact depth
+//! interpolation, no colour (nearest wins, both faces). **Pass 2** asks, for a visible
 //! point, whether its depth from the light is at most the map's nearest texel plus a bias (the
 //! course's `S_i`: 0 in shadow, 1 lit): for one world point ([`ShadowMap::is_lit`],
 //! [`ShadowMap::classify`]), or for every written pixel of a rendered frame or band
@@ -107,8 +108,8 @@
 //! ## Numeric contract
 //! - Map sizes: `1 ≤ w, h ≤ 2^14` (perspective: `≥ 4`) and `w·h ≤ 2^19`. Clipped polygons
 //!   then stay inside `(2w + 2) × (2h + 2)` texels, so every fan triangle's doubled area is
-//!   below `2^30` sub-pixel units², the exact interpolation's limit
-//!   (`AttributePlane`).
+//!   below `2^30` sub-pixel units², the 32-bit stepping's limit of the writer's general plane
+//!   (`AttributePlane`; its wide plane would take a larger one, with the same values).
 //! - Orthographic: `0 < r ≤ 8192` units (the clip planes' `2r` fits I16F16); texel positions
 //!   are `i0 + x·8w/r` sub-pixel units by one `i64` product with a 31-bit multiplier
 //!   (`|x·m| < 2^62`); depth `(z + r)·m_d >> s` with `z + r` clamped to `0..=2r` (`< 2^31`)
