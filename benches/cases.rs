@@ -23,9 +23,9 @@
 //! The harness clears the framebuffer to index 0 before each call, calls the case once to warm
 //! up, clears again, then measures one call between the region markers.
 use zscan::internals::{DivisionWalker, IncrementalWalker};
+use zscan::output::Framebuffer;
+use zscan::raster::triangle::ShadeMode;
 use zscan::render::PreparedVertex;
-use zscan::shade::span_writer::ShadeMode;
-use zscan::target::Framebuffer;
 
 /// Framebuffer width of every case.
 pub const WIDTH: u16 = 320;
@@ -42,7 +42,7 @@ pub struct Storage {
     pub depth: [u16; FB_LEN],
     /// Vertex scratch for the largest standard mesh (28 bytes per vertex).
     pub vertices: [PreparedVertex<4>; scene::MAX_VERTICES],
-    /// The visibility methods' triangle store (56 bytes per front triangle or piece).
+    /// The visibility methods' triangle store (52 bytes per front triangle or piece).
     pub triangles: [zscan::visibility::StoredTriangle<4>; scene::MAX_STORED],
     /// Their order (painter, scan-line table; Warnock's candidate lists).
     pub order: [u32; scene::MAX_STORED],
@@ -412,7 +412,7 @@ fn empty(_fb: &mut Framebuffer<'_>) -> u32 {
 /// 320 × 240, as [`scene::frame`] does them; returns 0 pixels.
 fn clear(fb: &mut Framebuffer<'_>, st: &mut Storage) -> u32 {
     fb.clear(0);
-    if let Ok(mut zb) = zscan::target::DepthBuffer::new(&mut st.depth, WIDTH, HEIGHT) {
+    if let Ok(mut zb) = zscan::output::DepthBuffer::new(&mut st.depth, WIDTH, HEIGHT) {
         zb.clear();
     }
     core::hint::black_box(&st.depth);
@@ -510,15 +510,15 @@ pub mod scene {
     use super::Storage;
     use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
     use zscan::geometry::fixed::Coord;
-    use zscan::geometry::mesh::{Mesh, PolygonSizes};
-    use zscan::geometry::trig::Angle;
+    use zscan::geometry::mesh::{triangle_indices, vec3s_from_bits, Mesh, PolygonSizes};
+    use zscan::geometry::trig::BinaryAngle;
     use zscan::geometry::vector::Vec3;
     use zscan::internals::EdgeWalker;
-    use zscan::raster::triangle::{cross, fill_triangle_with};
+    use zscan::output::{DepthBuffer, Framebuffer};
+    use zscan::raster::triangle::{fill_triangle_with, twice_area};
+    use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
     use zscan::render::{RenderStats, Renderer, StatsSink, StatsWithoutWritten};
     use zscan::scene::{Intensities, Object};
-    use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-    use zscan::target::{DepthBuffer, Framebuffer};
 
     mod quad {
         include!("scenes/quad.rs");
@@ -557,73 +557,74 @@ pub mod scene {
         }
     }
 
-    /// The planner's facts of the standard meshes (indexed as [`STANDARD`]),
-    /// computed once by [`MeshFacts::of`](zscan::visibility::MeshFacts::of) into pair buffers
-    /// of their own (the bunny's too short on purpose: not convex, found after a few faces).
+    /// The planner's facts of the standard meshes (indexed as [`STANDARD`]), computed once by
+    /// [`MeshFacts::of`](zscan::visibility::MeshFacts::of) into word buffers of their own
+    /// ([`MeshFacts::words_needed`](zscan::visibility::MeshFacts::words_needed): twice the
+    /// corners; the edge table is the first half). The bunny's are its bounds alone, kept not
+    /// convex without its 88 KB buffer (its facts say so: `host-tests/tests/plan.rs`).
     pub struct KeptFacts {
-        cube: [[u32; 2]; 32],
-        sphere: [[u32; 2]; 2560],
+        quad: [u32; 12],
+        cube: [u32; 72],
+        sphere: [u32; 5760],
         kept: [Kept; 4],
     }
 
-    /// One mesh's facts without the borrow: kind (0 not convex, 1 convex, 2 creased), pair
-    /// counts, bounds and tolerance.
+    /// One mesh's facts without the borrow: convex (the edge table kept), and bounds.
     #[derive(Clone, Copy)]
-    struct Kept(u8, usize, usize, [[i32; 3]; 2], i32);
+    struct Kept(bool, [[i32; 3]; 2]);
 
     impl Kept {
-        fn of(f: zscan::visibility::MeshFacts<'_>) -> Kept {
+        fn of(f: Result<zscan::visibility::MeshFacts<'_>, zscan::visibility::FactsError>) -> Kept {
             use zscan::visibility::Convexity;
-            let (kind, m, o) = match f.convexity {
-                Convexity::NotConvex => (0, 0, 0),
-                Convexity::Convex => (1, 0, 0),
-                Convexity::Creased(c) => (2, c.mutual.len(), c.occluders.len()),
-            };
-            Kept(kind, m, o, f.bounds, f.tolerance)
+            match f {
+                Ok(f) => Kept(matches!(f.convexity, Convexity::Convex { .. }), f.bounds),
+                Err(_) => Kept(false, [[0; 3]; 2]),
+            }
         }
     }
 
     impl KeptFacts {
-        /// The four meshes' facts (the sphere's `O(faces²)` certificate: run once, outside the
-        /// measured regions).
+        /// The four meshes' facts (run once, outside the measured regions).
         pub fn new() -> KeptFacts {
             use zscan::visibility::MeshFacts;
-            let none = Kept(0, 0, 0, [[0; 3]; 2], 0);
+            let none = Kept(false, [[0; 3]; 2]);
             let mut k = KeptFacts {
-                cube: [[0; 2]; 32],
-                sphere: [[0; 2]; 2560],
+                quad: [0; 12],
+                cube: [0; 72],
+                sphere: [0; 5760],
                 kept: [none; 4],
             };
-            let mut short = [[0u32; 2]; 16];
-            k.kept[QUAD_ID] = Kept::of(MeshFacts::of(&QUAD.mesh, &mut short));
+            k.kept[QUAD_ID] = Kept::of(MeshFacts::of(&QUAD.mesh, &mut k.quad));
             k.kept[CUBE_ID] = Kept::of(MeshFacts::of(&CUBE.mesh, &mut k.cube));
             k.kept[SPHERE_ID] = Kept::of(MeshFacts::of(&SPHERE.mesh, &mut k.sphere));
-            k.kept[BUNNY_ID] = Kept::of(MeshFacts::of(&BUNNY.mesh, &mut short));
+            let mut bounds = [[i32::MAX; 3], [i32::MIN; 3]];
+            for v in BUNNY.mesh.vertices() {
+                for (a, &c) in v.bits().iter().enumerate() {
+                    bounds[0][a] = bounds[0][a].min(c);
+                    bounds[1][a] = bounds[1][a].max(c);
+                }
+            }
+            k.kept[BUNNY_ID] = Kept(false, bounds);
             k
         }
 
         /// Mesh `which`'s facts.
         pub fn facts(&self, which: usize) -> zscan::visibility::MeshFacts<'_> {
-            use zscan::visibility::{Convexity, Creases, MeshFacts};
-            let Kept(kind, m, o, bounds, tolerance) = self.kept[which % 4];
-            let pairs: &[[u32; 2]] = match which {
+            use zscan::visibility::{Convexity, MeshFacts};
+            let Kept(convex, bounds) = self.kept[which % 4];
+            let words: &[u32] = match which {
+                QUAD_ID => &self.quad,
                 CUBE_ID => &self.cube,
                 SPHERE_ID => &self.sphere,
                 _ => &[],
             };
-            let convexity = match kind {
-                1 => Convexity::Convex,
-                2 => Convexity::Creased(Creases {
-                    mutual: &pairs[pairs.len() - m..],
-                    occluders: &pairs[..o],
-                }),
-                _ => Convexity::NotConvex,
+            let convexity = match convex {
+                true => Convexity::Convex {
+                    twins: &words[..words.len() / 2],
+                },
+                false => Convexity::NotConvex,
             };
-            MeshFacts {
-                convexity,
-                bounds,
-                tolerance,
-            }
+            MeshFacts { convexity, bounds }
         }
     }
 
@@ -635,7 +636,7 @@ pub mod scene {
 
     /// The planner alone on the standard frame of scene `WHICH` ([`STANDARD`]), no memory limit,
     /// no scratch ([`plan`](zscan::visibility::plan)): for the sphere, the per-view check of its
-    /// creases (296 mutual face pairs), placing the vertices it looks at itself. Draws nothing;
+    /// 960 triangles' silhouette, placing the vertices it looks at itself. Draws nothing;
     /// returns 0 pixels.
     pub fn plan_only<const WHICH: usize>(_fb: &mut Framebuffer<'_>, st: &mut Storage) -> u32 {
         let Some(camera) = camera() else { return 0 };
@@ -779,27 +780,6 @@ pub mod scene {
         intensities: Intensities<'static>,
     }
 
-    const fn vec3s<const N: usize>(v: &[[i32; 3]; N]) -> [Vec3; N] {
-        let mut out = [Vec3::ZERO; N];
-        let mut i = 0;
-        while i < N {
-            out[i] = Vec3::from_bits(v[i][0], v[i][1], v[i][2]);
-            i += 1;
-        }
-        out
-    }
-
-    const fn flat<const K: usize>(t: &[[u16; 3]]) -> [u16; K] {
-        assert!(K == 3 * t.len());
-        let mut out = [0u16; K];
-        let mut i = 0;
-        while i < K {
-            out[i] = t[i / 3][i % 3];
-            i += 1;
-        }
-        out
-    }
-
     /// Per-vertex intensities from per-corner ones (the sphere and bunny: corners agree).
     const fn per_vertex<const N: usize>(t: &[[u16; 3]], c: &[[u8; 3]]) -> [u8; N] {
         let mut out = [0u8; N];
@@ -837,8 +817,8 @@ pub mod scene {
         ($name:ident, $m:ident, $nv:expr, $nt:expr, $intens:ident) => {
             mod $name {
                 use super::*;
-                pub static V: [Vec3; $nv] = vec3s(&$m::VERTICES);
-                pub static I: [u16; 3 * $nt] = flat(&$m::TRIANGLES);
+                pub static V: [Vec3; $nv] = vec3s_from_bits(&$m::VERTICES);
+                pub static I: [u16; 3 * $nt] = triangle_indices(&$m::TRIANGLES);
     pub static L: [u8; standard!(@len $intens, $nv, $nt)] =
         standard!(@table $intens, $m, $nv);
             }
@@ -900,7 +880,7 @@ pub mod scene {
     /// (measured: 2.6 k Cortex-M4 instructions per frame).
     fn camera() -> Option<Camera> {
         let lens = Lens {
-            fov: Angle::from_degrees(60),
+            fov: BinaryAngle::from_degrees(60),
             axis: FovAxis::Vertical,
             near: Coord::from_bits(1 << 15),
             far: Coord::from_bits(10 << 16),
@@ -973,7 +953,7 @@ pub mod scene {
                 continue;
             }
             let v = [a.screen, b.screen, c.screen];
-            if cross(v[0], v[1], v[2]) >= 0 {
+            if twice_area(v[0], v[1], v[2]) >= 0 {
                 continue; // back face (clockwise on a y-down screen is front)
             }
             let _ = fill_triangle_with::<W, 4>(v, &window, |span| {
@@ -1174,8 +1154,8 @@ pub mod scene {
         mode: ShadeMode,
         dither: bool,
     ) -> u32 {
+        use zscan::lighting::{Light, Material};
         use zscan::scene::{Intensities, Object};
-        use zscan::shade::lighting::{Light, Material};
         let Ok(mut zb) = DepthBuffer::new(&mut st.depth, super::WIDTH, super::HEIGHT) else {
             return 0;
         };
@@ -1215,7 +1195,7 @@ pub mod scene {
     /// bytes are the framebuffer's.
     const MAP_SIZE: (u16, u16) = (160, 240);
 
-    /// A shadow map's pass 1 ([`ShadowMap::render`](zscan::shade::shadow::ShadowMap::render)):
+    /// A shadow map's pass 1 ([`ShadowMap::render`](zscan::shadow::ShadowMap::render)):
     /// the map (the harness's depth storage) built and cleared for a directional light toward
     /// (1, 2, 1), or a point light at (2, 3, 2), over the sphere of radius 1.25 at the origin,
     /// then the scene's mesh drawn into it (both faces, depth only). The samples' bytes are
@@ -1228,7 +1208,7 @@ pub mod scene {
         point: bool,
     ) -> u32 {
         use zscan::geometry::matrix::Affine3;
-        use zscan::shade::shadow::ShadowMap;
+        use zscan::shadow::ShadowMap;
         let (w, h) = MAP_SIZE;
         let samples = &mut st.depth[..w as usize * h as usize];
         let radius = Coord::from_bits(5 << 14);

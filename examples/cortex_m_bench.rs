@@ -38,7 +38,7 @@ use cortex_m::peripheral::{syst::SystClkSource, Peripherals, SYST};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
-use zscan::target::Framebuffer;
+use zscan::output::Framebuffer;
 
 #[path = "../benches/cases.rs"]
 #[allow(dead_code)]

@@ -6,13 +6,13 @@
 //! ```
 //!
 //! The part between the `[readme]` and `[/readme]` marker comments is quoted verbatim in
-//! README.md (`host-tests/tests/readme_snippet.rs` checks that the two agree).
-use embedded_graphics::draw_target::DrawTarget;
-use embedded_graphics::geometry::Point;
-use embedded_graphics::mock_display::MockDisplay;
-use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+//! README.md (`host-tests/tests/readme_snippet.rs` checks that the two agree). It holds every
+//! import the code needs and is the file's only module-level code besides `main`, whose own
+//! imports are inside it: so the quoted part compiles on its own, as the whole `src/lib.rs` of
+//! a crate with `zscan` and `embedded-graphics` 0.8 as dependencies.
 
 // [readme]
+use embedded_graphics::{draw_target::DrawTarget, pixelcolor::Rgb565};
 use zscan::prelude::*;
 
 const W: u16 = 64;
@@ -21,18 +21,18 @@ const PIXELS: usize = W as usize * H as usize;
 const N: (usize, usize) = torus_sizes(24, 12); // (vertices, indices) of the mesh
 
 #[rustfmt::skip] // one step a line, as the README shows it
-fn render(display: &mut impl DrawTarget<Color = Rgb565>) -> Result<RenderStats, zscan::Error> {
+pub fn render(display: &mut impl DrawTarget<Color = Rgb565>) -> Result<RenderStats, zscan::Error> {
     let (mut vertices, mut indices, mut normals) = ([Vec3::ZERO; N.0], [0; N.1], [Vec3::ZERO; N.0]);
     let (major, minor) = (Coord::lit("1"), Coord::lit("0.4"));
     let mesh = torus(24, 12, major, minor, &mut vertices, &mut indices)?; // or tables in flash
     mesh.vertex_normals(&mut normals)?;
     let mut object = Object::new(mesh);
-    object.transform = Affine3::builder().rotate_x(Angle::from_degrees(60)).build()?;
+    object.transform = Affine3::builder().rotate_x(BinaryAngle::from_degrees(60)).build()?;
     let material = Material::from_thousandths(150, 600, 400, 20); // ambient, diffuse, specular
     object.intensities = Intensities::Lit { material, normals: &normals };
     object.shade = ShadeMode::Phong; // Flat, GouraudExact, GouraudFast, Phong
     let lights = [Light::Point { position: Vec3::from_int(-3, 4, 5), intensity: 230 }];
-    let lens = Lens::new(Angle::from_degrees(45), Coord::lit("0.5"), Coord::lit("20"));
+    let lens = Lens::new(BinaryAngle::from_degrees(45), Coord::lit("0.5"), Coord::lit("20"));
     let (eye, up) = (Vec3::from_int(0, 0, 4), Vec3::from_int(0, 1, 0));
     let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(W, H))?;
     let objects = [object];
@@ -52,6 +52,8 @@ fn render(display: &mut impl DrawTarget<Color = Rgb565>) -> Result<RenderStats, 
 // [/readme]
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    use embedded_graphics::{geometry::Point, mock_display::MockDisplay, pixelcolor::RgbColor};
+
     let mut display = MockDisplay::<Rgb565>::new();
     let stats = render(&mut display)?;
     // The display as text, one character per pixel, from dark to bright.

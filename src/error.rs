@@ -22,17 +22,17 @@ use crate::clip::frustum::ClipError;
 use crate::geometry::camera::CameraError;
 use crate::geometry::matrix::MatrixError;
 use crate::geometry::mesh::MeshError;
+use crate::lighting::{LightingError, MAX_LIGHTS};
+use crate::output::{LutError, TargetError};
 use crate::project::ProjectError;
 use crate::raster::circle::CircleError;
-use crate::raster::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 use crate::raster::line::LineError;
 use crate::raster::polygon::FillError;
+use crate::raster::triangle::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
+use crate::raster::triangle::plane::PlaneError;
+use crate::raster::triangle::DrawError;
 use crate::render::RenderError;
-use crate::shade::attributes::PlaneError;
-use crate::shade::lighting::{LightingError, MAX_LIGHTS};
-use crate::shade::shadow::ShadowError;
-use crate::shade::span_writer::DrawError;
-use crate::target::{LutError, TargetError};
+use crate::shadow::ShadowError;
 
 impl fmt::Display for ProjectError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -50,6 +50,10 @@ impl fmt::Display for ProjectError {
             ProjectError::SubpixelBitsTooLarge => write!(
                 f,
                 "sub-pixel bits exceed the raster's maximum of {MAX_SUBPIXEL_BITS}"
+            ),
+            ProjectError::Orthographic(stage) => write!(
+                f,
+                "{stage} needs a perspective camera and cannot use the orthographic camera"
             ),
         }
     }
@@ -71,9 +75,11 @@ impl fmt::Display for MeshError {
             MeshError::CoordinateOutOfRange => {
                 write!(f, "a vertex coordinate exceeds the mesh range of ±1024")
             }
-            MeshError::OutputTooSmall => {
-                write!(f, "an output slice is shorter than the mesh's table")
-            }
+            MeshError::OutputTooSmall {
+                table,
+                given,
+                needed,
+            } => write!(f, "the {table} holds {given} entries, {needed} are needed"),
             MeshError::BadParameters => write!(
                 f,
                 "generator parameters are invalid (too few segments or rings, radii out of \
@@ -133,6 +139,11 @@ impl fmt::Display for CameraError {
                 f,
                 "a camera position or distance leaves the I16F16 range of ±32768"
             ),
+            CameraError::BadExtent => write!(
+                f,
+                "orthographic view extent must be positive and give between 2^-16 and 2^15 \
+                 pixels per world unit"
+            ),
         }
     }
 }
@@ -166,9 +177,13 @@ impl fmt::Display for LightingError {
                     "a directional light has the zero vector as its direction"
                 )
             }
-            LightingError::OutputTooSmall => write!(
+            LightingError::OutputTooSmall {
+                table,
+                given,
+                needed,
+            } => write!(
                 f,
-                "a lighting output or scratch slice is shorter than the mesh's table"
+                "lighting: the {table} holds {given} entries, the mesh needs {needed}"
             ),
             LightingError::Transform(e) => write!(f, "lighting: model-view transform: {e}"),
         }
@@ -226,7 +241,7 @@ macro_rules! stage_errors {
         /// (`flush(..).map_err(|_| zscan::Error::Display)?`).
         ///
         /// ```
-        /// use zscan::target::Framebuffer;
+        /// use zscan::output::Framebuffer;
         ///
         /// fn too_small() -> Result<(), zscan::Error> {
         ///     let mut pixels = [0u8; 10];
@@ -296,6 +311,10 @@ stage_errors!(
     Shadow(ShadowError),
     /// A frame or object could not be rendered.
     Render(RenderError),
+    /// No plan was made for a scene.
+    Plan(crate::visibility::PlanError),
+    /// A mesh's planner facts were not computed.
+    Facts(crate::visibility::FactsError),
 );
 
 impl From<core::convert::Infallible> for Error {
@@ -375,7 +394,13 @@ mod tests {
             ProjectError::BehindNearPlane,
             ProjectError::OutOfRange,
             ProjectError::SubpixelBitsTooLarge,
+            ProjectError::Orthographic("the shadow pass"),
         ]);
+        assert!(
+            t[3].contains("the shadow pass needs a perspective camera"),
+            "{}",
+            t[3]
+        );
         assert!(t[0].contains("near"), "{}", t[0]);
         assert!(t[1].contains("268435455"), "{}", t[1]);
         assert!(t[2].contains("16"), "{}", t[2]);
@@ -388,11 +413,17 @@ mod tests {
             MeshError::IndexCountMismatch,
             MeshError::IndexOutOfRange,
             MeshError::CoordinateOutOfRange,
-            MeshError::OutputTooSmall,
+            MeshError::OutputTooSmall {
+                table: crate::geometry::mesh::MeshTable::Indices,
+                given: 10,
+                needed: 3840,
+            },
             MeshError::BadParameters,
         ]);
         assert!(t[0].contains("fewer than 3"), "{}", t[0]);
         assert!(t[3].contains("±1024"), "{}", t[3]);
+        let sizes = ["index table", "10", "3840"];
+        assert!(sizes.iter().all(|w| t[4].contains(w)), "{}", t[4]);
         assert!(t[5].contains("65536"), "{}", t[5]);
     }
 
@@ -418,7 +449,9 @@ mod tests {
             CameraError::BadViewport,
             CameraError::BadDepthRange,
             CameraError::OutOfRange,
+            CameraError::BadExtent,
         ]);
+        assert!(t[7].contains("2^15 pixels per world unit"), "{}", t[7]);
         assert!(t[2].contains("180 degrees"), "{}", t[2]);
         assert!(t[3].contains("32768 pixels"), "{}", t[3]);
         assert!(t[4].contains("2^20"), "{}", t[4]);
@@ -468,10 +501,16 @@ mod tests {
         let t = messages(&[
             LightingError::TooManyLights,
             LightingError::ZeroDirection,
-            LightingError::OutputTooSmall,
+            LightingError::OutputTooSmall {
+                table: crate::geometry::mesh::MeshTable::VertexNormals,
+                given: 100,
+                needed: 482,
+            },
             LightingError::Transform(MatrixError::OutOfRange),
         ]);
         assert!(t[0].contains(&MAX_LIGHTS.to_string()), "{}", t[0]);
+        let sizes = ["vertex normal table", "100", "482"];
+        assert!(sizes.iter().all(|w| t[2].contains(w)), "{}", t[2]);
         assert!(t[3].contains("±64"), "the inner message is kept: {}", t[3]);
     }
 
@@ -521,8 +560,15 @@ mod tests {
     #[test]
     fn render_error_names_the_limits() {
         let t = messages(&[
-            RenderError::ScratchTooSmall { needed: 482 },
-            RenderError::IntensitiesTooShort,
+            RenderError::ScratchTooSmall {
+                given: 114,
+                needed: 482,
+            },
+            RenderError::IntensitiesTooShort {
+                table: crate::render::IntensityTable::PerPolygon,
+                given: 5,
+                needed: 6,
+            },
             RenderError::PolygonTooLarge,
             RenderError::Transform(MatrixError::ZeroAxis),
             RenderError::Projection(ProjectError::BehindNearPlane),
@@ -530,7 +576,11 @@ mod tests {
             RenderError::Draw(DrawError::Fill(FillError::CoordinateOutOfRange {
                 vertex: 0,
             })),
-            RenderError::BufferTooSmall,
+            RenderError::BandMemoryTooSmall {
+                part: crate::render::BandPart::Depths,
+                given: 5000,
+                needed: 5120,
+            },
             RenderError::Lighting(LightingError::TooManyLights),
             RenderError::BandMemoryTooSmall {
                 part: crate::render::BandPart::Vertices,
@@ -541,8 +591,28 @@ mod tests {
                 object: 2,
                 vertex: 17,
             },
+            RenderError::PolygonTableTooSmall {
+                given: 3000,
+                needed: 3674,
+            },
+            RenderError::TargetSmallerThanViewport {
+                buffer: crate::render::TargetBuffer::Frame,
+                size: (320, 200),
+                viewport: (320, 240),
+            },
         ]);
-        assert!(t[0].contains("482"), "{}", t[0]);
+        // Every size error names its buffer and both sizes.
+        let has = |k: usize, words: &[&str]| {
+            assert!(words.iter().all(|w| t[k].contains(w)), "{}", t[k]);
+        };
+        has(0, &["vertex scratch", "114", "482"]);
+        has(1, &["per-polygon intensity table", "5", "6 polygons"]);
+        has(7, &["band depth samples", "5000", "5120"]);
+        has(11, &["polygon table", "3000", "3674"]);
+        has(
+            12,
+            &["framebuffer", "320 × 200", "320 × 240 viewport", "cropped"],
+        );
         assert!(t[2].contains("24"), "{}", t[2]);
         let sizes = ["100", "1839", "compact vertices"];
         assert!(sizes.iter().all(|w| t[9].contains(w)), "{}", t[9]);

@@ -3,19 +3,20 @@
 //! A `#![no_std]`, allocation-free 3D rasterizer for microcontrollers with small displays.
 //! The core uses only integer and fixed-point arithmetic on every path that runs per frame.
 //!
-//! The modules follow the pipeline in data-flow order:
+//! A frame goes through these stages, in data-flow order; what you name at each is in
+//! [`prelude`]:
 //!
-//! | stage | module | what it does |
+//! | stage | what you name | what it does |
 //! |---|---|---|
-//! | geometry | [`geometry`] | fixed-point vectors, matrices, sine/cosine, meshes, the observer camera |
-//! | clipping | `clip` | Cohen–Sutherland outcodes (2D), Sutherland–Hodgman against planes (3D) |
-//! | projection | `project` | observer frame → sub-pixel screen coordinates |
-//! | raster | [`raster`] | Bresenham lines, midpoint circles, the exact scanline polygon fill (TIPE 2010) |
-//! | shading | [`shade`] | incremental integer attribute interpolation (depth, luminance) |
-//! | target | [`target`] | the caller's 8-bit indexed framebuffer, depth buffer, the colour LUT, `DrawTarget` output |
+//! | geometry | [`Mesh`](prelude::Mesh), [`Affine3`](prelude::Affine3), [`Camera`](prelude::Camera), [`BinaryAngle`](prelude::BinaryAngle) | fixed-point vectors, transforms, table-free sine/cosine, meshes in your tables, the observer camera |
+//! | scene | [`Scene`](prelude::Scene), [`Object`](prelude::Object), [`Light`](prelude::Light), [`Material`](prelude::Material) | what to draw, where, lit how and shaded how ([`ShadeMode`](prelude::ShadeMode)) |
+//! | renderer | [`Renderer`](prelude::Renderer), [`render_scene`](prelude::render_scene), [`render_in_bands`](prelude::render_in_bands) | the vertex stage (transform, clipping against the frustum, projection to sub-pixel screen coordinates) and the polygon stage (culling, fans), a whole frame or band by band |
+//! | raster | (inside the renderer) | TIPE 2010's exact scanline fill, correctly rounded depth and luminance at every pixel, Phong, shadows |
+//! | output | [`Framebuffer`](prelude::Framebuffer), [`DepthBuffer`](prelude::DepthBuffer), [`Lut`](prelude::Lut), [`flush`](prelude::flush) | your 8-bit indexed frame and depth memory, the colour table, any embedded-graphics `DrawTarget` |
 //!
-//! [`scene`] describes what to draw (meshes in static slices, transforms, intensities) and
-//! [`render`] runs the stages above in order for a whole frame or a band of it.
+//! The public modules hold the rest of each stage's vocabulary (its errors, its less common
+//! entries); [`visibility`] holds the hidden-surface methods that can replace the z-buffer
+//! and the planner that chooses among them.
 //!
 //! ## A frame
 //!
@@ -40,7 +41,7 @@
 //! };
 //! sphere.shade = ShadeMode::GouraudExact;
 //! let lights = [Light::Directional { toward: Vec3::from_int(1, 1, 1), intensity: 255 }];
-//! let lens = Lens::new(Angle::from_degrees(50), Coord::lit("0.5"), Coord::lit("10"));
+//! let lens = Lens::new(BinaryAngle::from_degrees(50), Coord::lit("0.5"), Coord::lit("10"));
 //! let up = Vec3::from_int(0, 1, 0);
 //! let camera = Camera::look_at(Vec3::from_int(0, 0, 4), Vec3::ZERO, up, lens, Viewport::new(48, 32))?;
 //! let objects = [sphere];
@@ -62,9 +63,9 @@
 //! # Ok::<(), zscan::Error>(())
 //! ```
 //!
-//! Then [`target::flush`] sends the frame through a [`target::Lut`] to any embedded-graphics
-//! `DrawTarget`; [`render::render_in_bands`] draws the same picture through band-sized
-//! buffers.
+//! Then [`flush`](prelude::flush) sends the frame through a [`Lut`](prelude::Lut) to any
+//! embedded-graphics `DrawTarget`; [`render_in_bands`](prelude::render_in_bands) draws the same
+//! picture through band-sized buffers.
 //!
 //! ## Conventions (stated once, owned by the modules named)
 //! - **Pixels are lattice points.** Pixel `(x, y)` is the point with integer coordinates `(x, y)`;
@@ -80,7 +81,7 @@
 #![deny(missing_docs)]
 #![deny(missing_debug_implementations)]
 // `unsafe` is denied everywhere but in one function, the buffer clears' aligned split
-// (`target/mod.rs`, `fill_aligned`), which carries its proof and its measured reason.
+// (`fill_aligned`), which carries its proof and its measured reason.
 #![deny(unsafe_code)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
@@ -88,13 +89,15 @@ pub(crate) mod arith;
 pub(crate) mod clip;
 mod error;
 pub mod geometry;
+pub mod lighting;
+pub mod output;
 pub mod prelude;
 pub(crate) mod project;
 pub mod raster;
 pub mod render;
 pub mod scene;
-pub mod shade;
-pub mod target;
+pub mod shadow;
+pub(crate) mod stats;
 #[cfg(test)]
 mod test_rng;
 pub mod visibility;
@@ -117,6 +120,8 @@ pub use error::Error;
 pub mod internals {
     pub use crate::clip::frustum::{ClipVertex, ClipVolume, Frustum, NEAR};
     pub use crate::project::Projector;
-    pub use crate::raster::edge_walker::{DivisionWalker, Edge, EdgeWalker, IncrementalWalker};
-    pub use crate::shade::phong::{draw_triangle_phong, PhongContext, PhongVertex};
+    pub use crate::raster::triangle::edge_walker::{
+        DivisionWalker, Edge, EdgeWalker, IncrementalWalker,
+    };
+    pub use crate::raster::triangle::{draw_triangle_phong, PhongContext, PhongVertex};
 }

@@ -3,17 +3,16 @@
 //!
 //! Re-exports only; every item keeps its home module (linked from each name) and its
 //! documentation there. The list follows a frame's set-up in order: the mesh and its place
-//! in the world, its light and shading, the camera, the renderer and its memory, the target
-//! buffers and the flush.
+//! in the world, its light and shading, the camera, the renderer and its memory (or the
+//! planner's, [`plan`] and [`draw_plan`]), the target buffers and the flush.
 //!
-//! `Angle` is also the name of an item of `embedded_graphics::prelude`. With both preludes
-//! glob-imported, name the one you mean explicitly (`use zscan::prelude::Angle;` after the
-//! globs shadows both) — otherwise a use of `Angle` is ambiguous.
+//! Every name here is distinct from those of `embedded_graphics::prelude`, so both preludes
+//! can be glob-imported side by side (zscan's angle type is [`BinaryAngle`], not `Angle`).
 //!
 //! ```
 //! use zscan::prelude::*;
 //!
-//! let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+//! let lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
 //! let camera = Camera::look_at(
 //!     Vec3::from_int(0, 0, 4),
 //!     Vec3::ZERO,
@@ -36,16 +35,18 @@
 
 // The mesh and its place in the world.
 pub use crate::geometry::fixed::Coord;
-pub use crate::geometry::generators::{torus, torus_sizes, unit_cube, uv_sphere, uv_sphere_sizes};
+pub use crate::geometry::generators::{
+    torus, torus_normals, torus_sizes, unit_cube, uv_sphere, uv_sphere_normals, uv_sphere_sizes,
+};
 pub use crate::geometry::matrix::{Affine3, Affine3Builder};
-pub use crate::geometry::mesh::{Mesh, PolygonSizes};
-pub use crate::geometry::trig::Angle;
+pub use crate::geometry::mesh::{triangle_indices, vec3s_from_bits, Mesh, PolygonSizes};
+pub use crate::geometry::trig::BinaryAngle;
 pub use crate::geometry::vector::Vec3;
 pub use crate::scene::{Intensities, Object, Scene};
 
 // Light and shading.
-pub use crate::shade::lighting::{Light, Material};
-pub use crate::shade::span_writer::{LuminanceRamp, ShadeMode};
+pub use crate::lighting::{Light, Material};
+pub use crate::raster::triangle::{LuminanceRamp, ShadeMode};
 
 // The camera.
 pub use crate::geometry::camera::{Camera, FovAxis, Lens, Viewport};
@@ -55,9 +56,14 @@ pub use crate::render::{
     render_in_bands, render_scene, BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer,
     StatsSink, StatsWithoutWritten,
 };
+pub use crate::render::{BandSink, DisplaySink, DoubleBands};
+
+// The planner: a plan within a memory budget, drawn from memory it sizes.
+pub use crate::render::{CompactVertex, PolygonTop};
+pub use crate::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};
 
 // The target buffers, the palette and the display.
-pub use crate::target::{flush, shaded_index, DepthBuffer, DepthValue, Framebuffer, Lut};
+pub use crate::output::{flush, shaded_index, DepthBuffer, DepthValue, Framebuffer, Lut};
 
 // Errors.
 pub use crate::Error;

@@ -13,7 +13,7 @@
 //!   `A = (2^32−1)·far/(far−near)` and `K = A·near`: 0 at `near`, `2^32 − 1` at `far`,
 //!   increasing with `z`. It is affine in `1/z`, hence **affine in screen space**: the raster can
 //!   interpolate it linearly across a triangle. Smaller is nearer
-//!   ([`DepthValue`](crate::target::DepthValue)). Points beyond `far` get `2^32 − 1` (clamped),
+//!   ([`DepthValue`](crate::output::DepthValue)). Points beyond `far` get `2^32 − 1` (clamped),
 //!   which never wins a depth test.
 //! - Depth resolution: a buffer of `b` bits (the top `b` bits of `D`) separates surfaces at
 //!   distance `z` when they are more than
@@ -60,16 +60,32 @@
 //! `#[inline(always)]`, which saves about 9 more per vertex in the vertex stage (no call, no
 //! result through memory) for a few hundred bytes of code at its four call sites.
 //!
+//! ## Parallel projection (course ch. 1 §3.2)
+//! For an orthographic camera ([`Camera::orthographic`]) the same `project_point` takes a
+//! second path (one branch for perspective cameras):
+//! - `x_s = i0 + s_x·x`, `y_s = j0 − s_y·y`, with the camera's exact scales (pixels per world
+//!   unit, `2^-16 ≤ s < 2^15`) times `2^S` stored as `m·2^-sh`, `m ∈ [2^30, 2^31)`: one
+//!   `i64` product per axis (`|x|·m < 2^62`) and a rounding shift, within
+//!   `1/2 + |offset|·2^-30` units of 2^-S pixel of the exact value;
+//! - depth **linear in `z`**, `D(z) = (2^32 − 1)·(z − near)/(far − near)` correctly rounded
+//!   (ties up): 0 at `near`, `2^32 − 1` at `far`, and `2^32 − 1` beyond. Being affine in `x`, `y`
+//!   and `z`, it is affine in screen space, so the raster interpolates it exactly as it does
+//!   the perspective `D`. A multiply by the stored ratio estimates it within a few units and
+//!   at most a few exact `u64` comparisons correct the estimate (`far − near < 2^32` raw).
+//!   A 16-bit buffer separates surfaces `(far − near)/2^16` apart at every depth.
+//!
 //! Offsets that put a point beyond the raster's range `|x|, |y| ≤ 2^28 − 1`
 //! ([`MAX_COORD`]) are [`ProjectError::OutOfRange`]; the frustum's guard band keeps clipped
 //! polygons well inside it.
 
+use crate::arith::scale::Scale;
+pub(crate) use crate::arith::wide::reciprocal;
 use crate::arith::wide::{mul_wide, mul_wide_u};
 use crate::clip::frustum::ClipVertex;
 use crate::geometry::camera::Camera;
 use crate::geometry::fixed::{shr_round, Coord};
 use crate::geometry::vector::Vec3;
-use crate::raster::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
+use crate::raster::triangle::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 use crate::raster::SubpixelPoint;
 
 /// Why a point could not be projected.
@@ -77,6 +93,8 @@ use crate::raster::SubpixelPoint;
 pub enum ProjectError {
     /// `z < near`: the point must be clipped first (it may be behind the eye).
     BehindNearPlane,
+    /// The named stage needs a perspective camera and was given an orthographic one.
+    Orthographic(&'static str),
     /// The projected point falls outside `|x|, |y| ≤ 2^28 − 1` sub-pixel units.
     OutOfRange,
     /// `S` exceeds the raster's [`MAX_SUBPIXEL_BITS`].
@@ -96,41 +114,18 @@ pub struct ScreenVertex<const S: u32, const A: usize> {
     pub attrs: [i32; A],
 }
 
-/// `r ≈ 2^62 / (z·2^n)` with `n = z.leading_zeros()`, returned as `(r, n)`; `r ∈ [2^30, 2^31)`
-/// and `0 ≤ exact − r ≤ 2` (exact being the real quotient). `z = 0` gives `(2^31, 32)`.
-///
-/// One 32-bit division (a 16-bit estimate) and two Newton–Raphson steps `r += r·(1 − z_n·r)`,
-/// all in 32-bit registers (each step is one 32×32→64 unsigned and one signed multiply):
-/// - the seed `r_0 = ⌊(2^32 − 1)/(⌊z_n/2^16⌋ + 1)⌋·2^14 < 2^31` is below `2^62/z_n` (the
-///   divisor is rounded up), and Newton's iteration for a reciprocal never overshoots
-///   (`r' = 1/m − m·(1/m − r)²` in exact arithmetic, and both floors below only lower it), so
-///   every iterate lies in `[0, 2^62/z_n] ⊂ [0, 2^31]`;
-/// - `e = ⌊(2^62 − z_n·r)/2^30⌋` (Q32 of `1 − m·r`) is `≥ 0` and `< 2^18` after the seed, and
-///   small after one step, so it is the low word of the 64-bit shift: bits 30..61 of
-///   `−z_n·r mod 2^64` (the `2^62` only touches bits 62 and 63);
-/// - `⌊r·e/2^32⌋` is the high word of a signed 32×32 product (`r < 2^31` before each step).
-///
-/// The iterate ends in `[2^30 − 1, 2^31)`; only `z_n = 2^32 − 1` gives `2^30 − 1`, which the
-/// final `max` raises to `2^30` (within 2 of the exact `2^30 + 2^-2`). This is exactly the
-/// former 64-bit formulation (kept as the tests' oracle; equal on every `z`, checked
-/// exhaustively by the ignored test `reciprocal_matches_64_bit_oracle_everywhere` and densely
-/// by the default tests).
-#[inline]
-pub fn reciprocal(z: u32) -> (u32, u32) {
-    if z == 0 {
-        return (1 << 31, 32);
+/// `Ok` for a perspective camera; [`ProjectError::Orthographic`] naming `stage` for an
+/// orthographic one (for the stages whose arithmetic is the perspective's own: the shadow
+/// pass's back-projection through `A − K/z`, the shadow map's depth bounds, the planner's
+/// rounding guard).
+pub(crate) fn require_perspective(
+    camera: &Camera,
+    stage: &'static str,
+) -> Result<(), ProjectError> {
+    match camera.is_orthographic() {
+        true => Err(ProjectError::Orthographic(stage)),
+        false => Ok(()),
     }
-    let n = z.leading_zeros();
-    let zn = z << n; // [2^31, 2^32)
-    let d16 = (zn >> 16) + 1; // (2^15, 2^16], rounds the divisor up: r0 is an underestimate
-    let mut r = (u32::MAX / d16) << 14; // Q30 of 1/m, m = zn/2^32; < 2^31
-    for _ in 0..2 {
-        let prod = mul_wide_u(zn, r); // ≈ 2^62, below 2^63
-        let e = (prod.wrapping_neg() >> 30) as u32 as i32; // ⌊(2^62 − prod)/2^30⌋, |e| < 2^18
-        let d = (mul_wide(r as i32, e) >> 32) as i32; // r < 2^31
-        r = r.wrapping_add(d as u32); // stays in [0, 2^31] (doc)
-    }
-    (r.max(1 << 30), n)
 }
 
 /// Everything the per-vertex projection needs, precomputed from a [`Camera`].
@@ -155,6 +150,18 @@ pub struct Projector<const S: u32> {
     fy_b: u32,
     depth_b: u32,
     depth_ex: u32,
+    /// The parallel projection's scales, for an orthographic camera.
+    ortho: Option<Ortho>,
+}
+
+/// An orthographic camera's projection constants (module doc, "Parallel projection"): raw
+/// I16F16 → sub-pixel units per axis, raw `z − near` → depth units, and `far − near` raw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Ortho {
+    kx: Scale,
+    ky: Scale,
+    kd: Scale,
+    span: u32,
 }
 
 impl<const S: u32> Projector<S> {
@@ -192,10 +199,33 @@ impl<const S: u32> Projector<S> {
         let fx = camera.focal_x().to_bits().max(1) as u32;
         let fy = camera.focal_y().to_bits().max(1) as u32;
         let (ex, ey) = (fx.leading_zeros() - 1, fy.leading_zeros() - 1);
-        if a >= 1 << 61 {
-            // far/(far − near) ≥ 2^29: near and far practically equal.
+        if a >= 1 << 61 && !camera.is_orthographic() {
+            // far/(far − near) ≥ 2^29: near and far practically equal (for the perspective
+            // depth `A − K/z`; the parallel projection's linear depth takes any range).
             return Err(ProjectError::OutOfRange);
         }
+        let ortho = match camera.ortho_scales() {
+            None => None,
+            Some([(nx, dx), (ny, dy)]) => {
+                // Pixels per world unit n/d, so 2^S·n/(d·2^16) sub-pixel units per raw unit;
+                // numerators < 2^38·2^16 ≤ 2^60; multipliers below 2^31 (else out of range).
+                let axis = |n: u128, d: u128| Scale::new(n << S, d << 16, 31);
+                let full = u32::MAX as u128;
+                match (
+                    axis(nx, dx),
+                    axis(ny, dy),
+                    Scale::new(full, span as u128, 32),
+                ) {
+                    (Some(kx), Some(ky), Some(kd)) => Some(Ortho {
+                        kx,
+                        ky,
+                        kd,
+                        span: span as u32,
+                    }),
+                    _ => return Err(ProjectError::OutOfRange),
+                }
+            }
+        };
         Ok(Projector {
             fx_m: fx << ex,
             fy_m: fy << ey,
@@ -211,7 +241,51 @@ impl<const S: u32> Projector<S> {
             depth_b: 30u32.wrapping_sub(ke),
             // A ≥ 2^32 − 1: far/(far − near) > 1.
             depth_ex: (a - u32::MAX as u128).min(u32::MAX as u128) as u32,
+            ortho,
         })
+    }
+
+    /// True for an orthographic camera's projector.
+    pub fn is_orthographic(&self) -> bool {
+        self.ortho.is_some()
+    }
+
+    /// The parallel projection of `(x, y, z)`, `z ≥ near` (module doc, "Parallel
+    /// projection").
+    #[inline(never)]
+    fn project_parallel(
+        &self,
+        o: &Ortho,
+        x: i32,
+        y: i32,
+        z: i32,
+    ) -> Result<(SubpixelPoint<S>, u32), ProjectError> {
+        // |x|, |y| < 2^31 and m < 2^31: the products are below 2^62.
+        let sx = self.i0 as i64 + o.kx.signed(x as i64);
+        let sy = self.j0 as i64 - o.ky.signed(y as i64);
+        let lim = MAX_COORD as i64;
+        if sx.abs() > lim || sy.abs() > lim {
+            return Err(ProjectError::OutOfRange);
+        }
+        let v = (z as i64 - self.near as i64) as u64; // 0 ≤ v < 2^32
+        let depth = if v >= o.span as u64 {
+            u32::MAX
+        } else {
+            // v < span < 2^31 and m < 2^32: v·m < 2^63. The estimate is within a few units of
+            // the quotient; the two loops make it the exact ⌊(v·(2^32 − 1) + ⌊span/2⌋)/span⌋
+            // (n < 2^64 − 2^33 + 2^31, q·span and (q + 1)·span ≤ 2^32·(2^32 − 1)).
+            let span = o.span as u64;
+            let n = v * u32::MAX as u64 + span / 2;
+            let mut q = o.kd.unsigned(v).min(u32::MAX as u64);
+            while q * span > n {
+                q -= 1;
+            }
+            while (q + 1) * span <= n {
+                q += 1;
+            }
+            q as u32
+        };
+        Ok((SubpixelPoint::new(sx as i32, sy as i32), depth))
     }
 
     /// The near plane distance (raw I16F16 checked by [`project_point`](Self::project_point)).
@@ -287,6 +361,9 @@ impl<const S: u32> Projector<S> {
         if z < self.near {
             return Err(ProjectError::BehindNearPlane);
         }
+        if let Some(o) = &self.ortho {
+            return self.project_parallel(o, x, y, z);
+        }
         let (r, n) = reciprocal(z as u32);
         let bx = self.fx_b.wrapping_sub(n); // t − 33, huge when t < 33
         let by = self.fy_b.wrapping_sub(n);
@@ -358,12 +435,126 @@ impl<const S: u32> Projector<S> {
 mod tests {
     extern crate std;
     use super::*;
+    use crate::clip::frustum::{ClipError, ClipVolume, Frustum};
     use crate::geometry::camera::{FovAxis, Lens, Viewport};
-    use crate::geometry::trig::Angle;
+    use crate::geometry::trig::BinaryAngle;
     use crate::test_rng::XorShift;
+    use heapless::Vec;
 
     fn v(x: f64, y: f64, z: f64) -> Vec3 {
         Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))
+    }
+
+    /// Orthographic cameras from a tiny view (huge scale) to a huge one (scale near 2^-16):
+    /// the three outcodes agree, within and at the slab's planes, and points of the guard band
+    /// project inside the raster's range.
+    #[test]
+    fn orthographic_frustum_outcodes_and_guard_band() {
+        use crate::geometry::camera::OrthoView;
+        let mut rng = crate::test_rng::XorShift(0x0DD_BA11u64);
+        let mut rnd = || rng.next_u64();
+        for (extent, w, h) in [
+            (4.0, 320, 240),
+            (0.01, 64, 32),
+            (30000.0, 65535, 7),
+            (1.0, 1, 1),
+        ] {
+            let view = OrthoView::new(
+                Coord::from_num(extent),
+                Coord::from_num(0.5),
+                Coord::from_num(100),
+            );
+            let cam = Camera::orthographic(
+                Vec3::ZERO,
+                v(0.0, 0.0, 1.0),
+                v(0.0, 1.0, 0.0),
+                view,
+                Viewport::new(w, h),
+            )
+            .unwrap();
+            let f = Frustum::new::<4>(&cam, Frustum::DEFAULT_GUARD).unwrap();
+            assert!(f.screen_affine());
+            let proj: Projector<4> = Projector::new(&cam).unwrap();
+            let (dx, dy) = (f.planes()[2].d as i64, f.planes()[4].d as i64);
+            assert!(f.planes()[2].c == 0 && f.planes()[4].c == 0 && dx > 0 && dy > 0);
+            let b = [(1u64 << 30) - 1; 3];
+            assert!(f.narrow_fits(b), "{extent}");
+            for i in 0..20000 {
+                let shift = [0, 8, 14][i % 3];
+                let r = |k: u64| (k as i32) >> shift;
+                let mut p = Vec3::from_bits(r(rnd()), r(rnd()), r(rnd()));
+                if i % 4 == 0 {
+                    // On and next to the slab's planes.
+                    let e = (rnd() % 3) as i64 - 1;
+                    let [_, y, z] = p.bits();
+                    p = Vec3::from_bits((dx + e) as i32 * if i % 8 == 0 { 1 } else { -1 }, y, z);
+                }
+                let code = f.outcode(p);
+                assert_eq!(code, f.outcode_generic(p), "{p:?}");
+                if p.bits().iter().all(|c| c.unsigned_abs() < 1 << 30) {
+                    assert_eq!(f.outcode_narrow(p), code, "{p:?}");
+                }
+                if code == 0 {
+                    assert!(proj.project_point(p).is_ok(), "{extent}: {p:?}");
+                }
+            }
+        }
+    }
+
+    fn cv(x: f64, y: f64, z: f64, a: i32) -> ClipVertex<1> {
+        ClipVertex::new(v(x, y, z), [a])
+    }
+
+    /// The 3D clipper's output projects: polygons crossing the near plane, behind the eye,
+    /// spanning the view and beyond (cut to the guard band), and wholly inside.
+    #[test]
+    fn near_plane_crossing_behind_and_spanning() {
+        let cam = camera();
+        let f = Frustum::new::<4>(&cam, Frustum::DEFAULT_GUARD).unwrap();
+        let proj: Projector<4> = Projector::new(&cam).unwrap();
+        // Crosses the near plane (and the eye plane).
+        let tri = [
+            cv(0.0, 0.0, -2.0, 0),
+            cv(0.3, 0.0, 3.0, 255),
+            cv(-0.3, 0.2, 3.0, 255),
+        ];
+        let out: Vec<_, 9> = f.clip(&tri).unwrap();
+        assert_eq!(out.len(), 4);
+        for p in &out {
+            assert!(p.pos.z >= Coord::from_num(0.5), "{p:?}");
+            proj.project(p).unwrap();
+        }
+        // Wholly behind the eye.
+        let back = [
+            cv(0.0, 0.0, -2.0, 0),
+            cv(1.0, 0.0, -3.0, 0),
+            cv(0.0, 1.0, -1.0, 0),
+        ];
+        assert!(f.clip::<1, 9>(&back).unwrap().is_empty());
+        // Spanning the whole view and beyond, at z = 5: cut to the guard band, all projectable.
+        let big = [
+            cv(-1000.0, -1000.0, 5.0, 0),
+            cv(1000.0, -1000.0, 5.0, 0),
+            cv(1000.0, 1000.0, 5.0, 0),
+            cv(-1000.0, 1000.0, 5.0, 0),
+        ];
+        let out: Vec<_, 10> = f.clip(&big).unwrap();
+        assert_eq!(out.len(), 4);
+        for p in &out {
+            let s = proj.project(p).unwrap();
+            assert!(
+                s.point.x.abs() < 16 * 160 * 6 && s.point.y.abs() < 16 * 160 * 6,
+                "{s:?}"
+            );
+        }
+        // Wholly inside: copied unchanged.
+        let inside = [
+            cv(0.0, 0.0, 2.0, 1),
+            cv(0.1, 0.0, 2.0, 2),
+            cv(0.0, 0.1, 2.0, 3),
+        ];
+        assert_eq!(f.clip::<1, 3>(&inside).unwrap().as_slice(), &inside);
+        assert_eq!(f.clip::<1, 2>(&inside), Err(ClipError::CapacityExceeded));
     }
 
     fn camera() -> Camera {
@@ -569,7 +760,7 @@ mod tests {
                 1 + (xorshift(&mut s) >> (xorshift(&mut s) % 32)) as i32 % i32::MAX,
             );
             let lens = Lens {
-                fov: Angle::from_degrees(fov as i32),
+                fov: BinaryAngle::from_degrees(fov as i32),
                 axis: [FovAxis::Vertical, FovAxis::Horizontal, FovAxis::Diagonal]
                     [cameras as usize % 3],
                 near: Coord::from_bits(near_raw),
@@ -695,6 +886,123 @@ mod tests {
         assert!(Projector::<17>::new(&camera()).is_err());
     }
 
+    /// The parallel projection against `f64`, on views from tiny to huge, square and
+    /// non-square pixels, every sub-pixel precision: positions within
+    /// `0.5 + |offset|·2^-30` units of 2^-S pixel, depth **equal** to the correctly rounded
+    /// `(2^32 − 1)·(z − near)/(far − near)` (exact integers), clamped beyond far.
+    #[test]
+    fn orthographic_against_f64() {
+        fn check<const S: u32>(seed: u64) {
+            use crate::geometry::camera::OrthoView;
+            let mut rng = XorShift::new(seed);
+            let mut checked = 0;
+            for (extent, axis, w, h, pw, ph, near, far) in [
+                (
+                    4.0,
+                    FovAxis::Vertical,
+                    320u16,
+                    240u16,
+                    1u16,
+                    1u16,
+                    0.5,
+                    10.0,
+                ),
+                (3.0, FovAxis::Horizontal, 128, 64, 1, 1, 0.001, 30000.0),
+                (
+                    0.02,
+                    FovAxis::Diagonal,
+                    100,
+                    37,
+                    3,
+                    2,
+                    1.0,
+                    1.0 + 2f64.powi(-16),
+                ),
+                (20000.0, FovAxis::Vertical, 4000, 3000, 1, 1, 2.0, 7.0),
+            ] {
+                let view = OrthoView {
+                    extent: Coord::from_num(extent),
+                    axis,
+                    near: Coord::from_num(near),
+                    far: Coord::from_num(far),
+                };
+                let mut vp = Viewport::new(w, h);
+                (vp.pixel_width, vp.pixel_height) = (pw, ph);
+                let cam =
+                    Camera::orthographic(Vec3::ZERO, v(0.0, 0.0, 1.0), v(0.0, 1.0, 0.0), view, vp)
+                        .unwrap();
+                let p = Projector::<S>::new(&cam).unwrap();
+                assert!(p.is_orthographic());
+                // Exact scales in pixels per unit: 2r/(extent·pixel size).
+                let (wp, hp) = (w as f64 * pw as f64, h as f64 * ph as f64);
+                let r = match axis {
+                    FovAxis::Vertical => hp / 2.0,
+                    FovAxis::Horizontal => wp / 2.0,
+                    // The camera's half-diagonal, rounded down to 2^-11 physical units.
+                    FovAxis::Diagonal => {
+                        (((wp * wp + hp * hp) * 4194304.0).sqrt().floor()) / 2048.0 / 2.0
+                    }
+                };
+                let extent = view.extent.to_num::<f64>(); // as stored
+                let (sx, sy) = (
+                    2.0 * r / (extent * pw as f64),
+                    2.0 * r / (extent * ph as f64),
+                );
+                let unit = (1u64 << S) as f64;
+                let (near_raw, far_raw) = (view.near.to_bits() as i64, view.far.to_bits() as i64);
+                for i in 0..20_000 {
+                    let c = |rng: &mut XorShift| (rng.next_u64() as i32) >> (rng.next_u64() % 31);
+                    let z = match i % 3 {
+                        0 => near_raw + (rng.next_u64() % (far_raw - near_raw + 1) as u64) as i64,
+                        1 => near_raw + (rng.next_u64() % 4) as i64,
+                        _ => (far_raw - 2 + (rng.next_u64() % 5) as i64).max(near_raw),
+                    };
+                    let q =
+                        Vec3::from_bits(c(&mut rng), c(&mut rng), z.min(i32::MAX as i64) as i32);
+                    let [x, y, z] = q.bits();
+                    let ex = p.principal().x as f64 + sx * x as f64 / 65536.0 * unit;
+                    let ey = p.principal().y as f64 - sy * y as f64 / 65536.0 * unit;
+                    match p.project_point(q) {
+                        Ok((pt, d)) => {
+                            let allow = |o: f64| 0.5 + o.abs() * 2f64.powi(-30) + 1e-6;
+                            assert!(
+                                (pt.x as f64 - ex).abs() <= allow(ex - p.principal().x as f64),
+                                "S={S} {q:?} {pt:?} {ex}"
+                            );
+                            assert!(
+                                (pt.y as f64 - ey).abs() <= allow(ey - p.principal().y as f64),
+                                "S={S} {q:?} {pt:?} {ey}"
+                            );
+                            let (v, span) =
+                                ((z as i64 - near_raw) as u128, (far_raw - near_raw) as u128);
+                            let want = if v >= span {
+                                u32::MAX as u128
+                            } else {
+                                (v * u32::MAX as u128 + span / 2) / span
+                            };
+                            assert_eq!(d as u128, want, "S={S} {q:?}");
+                            checked += 1;
+                        }
+                        Err(e) => {
+                            assert_eq!(e, ProjectError::OutOfRange);
+                            let lim = MAX_COORD as f64;
+                            assert!(ex.abs() > lim - 1.0 || ey.abs() > lim - 1.0, "S={S} {q:?}");
+                        }
+                    }
+                }
+                assert_eq!(
+                    p.project_point(Vec3::from_bits(0, 0, near_raw as i32 - 1)),
+                    Err(ProjectError::BehindNearPlane)
+                );
+            }
+            assert!(checked > 20_000, "{checked}");
+        }
+        check::<0>(1);
+        check::<4>(2);
+        check::<8>(3);
+        check::<16>(4);
+    }
+
     #[test]
     fn against_f64() {
         check_against_f64::<0>();
@@ -709,7 +1017,7 @@ mod tests {
         let p: Projector<S> = Projector::new(&camera()).unwrap();
         let (near, far) = (0.5f64, 10.0f64);
         let unit = (1u64 << S) as f64;
-        let lim = crate::raster::edge_walker::MAX_COORD as f64;
+        let lim = crate::raster::triangle::edge_walker::MAX_COORD as f64;
         let fx = camera().focal_x().to_num::<f64>();
         let mut s: u32 = 7;
         let mut next = || {

@@ -8,7 +8,7 @@
 //! Luminance comes either from the caller (a uniform level, or per-vertex or per-polygon
 //! tables `0..=255`) or from the lighting stage ([`Intensities::Lit`]: a [`Material`] and the
 //! mesh's vertex normals, lit by the scene's lights with the course's model,
-//! [`lighting`](crate::shade::lighting)). What each [`ShadeMode`] does with a lit object:
+//! [`lighting`](crate::lighting)). What each [`ShadeMode`] does with a lit object:
 //!
 //! | mode | lighting evaluated | interpolated |
 //! |---|---|---|
@@ -24,8 +24,8 @@ use crate::geometry::camera::Camera;
 use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::vector::Vec3;
-use crate::shade::lighting::{Light, Material};
-use crate::shade::span_writer::{LuminanceRamp, ShadeMode};
+use crate::lighting::{Light, Material};
+use crate::raster::triangle::{LuminanceRamp, ShadeMode};
 
 /// Where an object's luminance comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -52,15 +52,15 @@ pub enum Intensities<'a> {
 ///
 /// ```
 /// use zscan::geometry::{fixed::Coord, generators::unit_cube, matrix::Affine3};
-/// use zscan::geometry::{trig::Angle, vector::Vec3};
+/// use zscan::geometry::{trig::BinaryAngle, vector::Vec3};
 /// use zscan::scene::{Intensities, Object};
-/// use zscan::shade::{lighting::Material, span_writer::{LuminanceRamp, ShadeMode}};
+/// use zscan::{lighting::Material, raster::triangle::{LuminanceRamp, ShadeMode}};
 ///
 /// let mut cube = Object::new(unit_cube()); // the mesh's tables stay where they are (flash)
 /// cube.transform = Affine3::builder()
 ///     .scale(Coord::from_num(2))
 ///     .translate(Vec3::from_int(-1, -1, -1)) // the unit cube [0, 1]³ becomes [−1, 1]³…
-///     .rotate_y(Angle::from_degrees(30)) // …then turns and moves away
+///     .rotate_y(BinaryAngle::from_degrees(30)) // …then turns and moves away
 ///     .translate(Vec3::from_int(0, 0, -3))
 ///     .build()?;
 /// cube.intensities = Intensities::Lit {
@@ -124,11 +124,11 @@ impl<'a> Object<'a> {
 ///
 /// ```
 /// use zscan::geometry::camera::{Camera, Lens, Viewport};
-/// use zscan::geometry::{fixed::Coord, generators::unit_cube, trig::Angle, vector::Vec3};
+/// use zscan::geometry::{fixed::Coord, generators::unit_cube, trig::BinaryAngle, vector::Vec3};
 /// use zscan::scene::{Object, Scene};
-/// use zscan::shade::lighting::Light;
+/// use zscan::lighting::Light;
 ///
-/// let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+/// let lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
 /// let up = Vec3::from_int(0, 1, 0);
 /// let camera = Camera::look_at(Vec3::from_int(3, 2, 4), Vec3::ZERO, up, lens, Viewport::new(320, 240))?;
 /// let lights = [
@@ -146,7 +146,7 @@ pub struct Scene<'a> {
     pub camera: Camera,
     /// Ambient intensity `I_a` (`0..=255`) for lit objects.
     pub ambient: u8,
-    /// Lights in the world frame (at most [`MAX_LIGHTS`](crate::shade::lighting::MAX_LIGHTS)),
+    /// Lights in the world frame (at most [`MAX_LIGHTS`](crate::lighting::MAX_LIGHTS)),
     /// for lit objects.
     pub lights: &'a [Light],
     /// The objects, drawn in order (the depth buffer resolves visibility).

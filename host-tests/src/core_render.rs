@@ -9,15 +9,15 @@
 use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
+use zscan::output::{DepthValue, Framebuffer};
+use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
-    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats,
+    render_in_bands, BandPart, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats,
     SceneRenderer,
 };
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
-use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthValue, Framebuffer};
 use zscan::visibility::{
     render_back_faces, render_painter, render_scan_lines, render_warnock, Area, Normal,
     PainterMemory, ScanLineMemory, SplitPolicy, StoredTriangle, Visibility, WarnockMemory,
@@ -43,6 +43,17 @@ pub struct CoreMesh {
     pub camera: Camera,
 }
 
+/// A `w × h` frame over `pixels` (allocated `w × h` by the caller): refused only for a zero
+/// size, as the pixels the frame needs.
+fn whole_frame(pixels: &mut [u8], w: u16, h: u16) -> Result<Framebuffer<'_>, RenderError> {
+    let given = pixels.len();
+    Framebuffer::new(pixels, w, h).map_err(|_| RenderError::BandMemoryTooSmall {
+        part: BandPart::Pixels,
+        given,
+        needed: w as usize * h as usize,
+    })
+}
+
 /// I16F16 from `f64`, rounded to nearest, saturating.
 pub fn coord(v: f64) -> Coord {
     Coord::saturating_from_num(v)
@@ -56,7 +67,7 @@ fn vec3(v: [f64; 3]) -> Vec3 {
 pub fn core_camera(c: &crate::scenes::Camera) -> Result<Camera, String> {
     let turns = c.fov_y / std::f64::consts::TAU;
     let lens = Lens {
-        fov: Angle::from_turns((turns * (1u64 << 31) as f64).round() as i64, 1 << 31),
+        fov: BinaryAngle::from_turns((turns * (1u64 << 31) as f64).round() as i64, 1 << 31),
         axis: FovAxis::Vertical,
         near: coord(c.near),
         far: coord(c.far),
@@ -335,8 +346,23 @@ pub fn ram_bytes<const SB: u32>(
 /// Renders `scene` into a whole `w × h` picture by the hidden-surface method `visibility`
 /// ([`zscan::visibility`]), with caller memory sized for the scene on the host: the painter
 /// with a split budget of `splits` (`None`: no test 6), the scan-line and z-buffer in bands of
-/// `band_rows` rows (the z-buffer 32-bit, the reference the other methods are compared with).
+/// `band_rows` rows with 32-bit depth (the z-buffer the reference the other methods are
+/// compared with). [`render_visible_at`] takes the depth width.
 pub fn render_visible<const SB: u32>(
+    renderer: &SceneRenderer<'_, SB>,
+    size: (u16, u16),
+    visibility: Visibility,
+    splits: Option<usize>,
+    band_rows: u16,
+) -> Result<(Vec<u8>, RenderStats), RenderError> {
+    render_visible_at::<u32, SB>(renderer, size, visibility, splits, band_rows)
+}
+
+/// [`render_visible`] with depth samples `D` for the methods that keep depth (the scan-line's
+/// band, the z-buffer): at a scene's `depth_bits`, the scan-line draws that z-buffer's picture
+/// (the same writer quantises depth to `D` and compares it). The painter and Warnock keep no
+/// depth: they claim the 32-bit z-buffer's picture whatever `D`.
+pub fn render_visible_at<D: DepthValue, const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
     visibility: Visibility,
@@ -354,15 +380,13 @@ pub fn render_visible<const SB: u32>(
     match visibility {
         Visibility::BackFace => {
             let mut pixels = vec![0u8; total];
-            let mut frame =
-                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            let mut frame = whole_frame(&mut pixels, w, h)?;
             measured(|| render_back_faces(renderer, &mut frame, &mut scratch, &mut stats))?;
             Ok((pixels, stats))
         }
         Visibility::Painter => {
             let mut pixels = vec![0u8; total];
-            let mut frame =
-                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            let mut frame = whole_frame(&mut pixels, w, h)?;
             let mut triangles = vec![StoredTriangle::default(); capacity];
             let mut order = vec![0u32; capacity];
             let mut normals = vec![Normal::DEFAULT; capacity];
@@ -385,7 +409,7 @@ pub fn render_visible<const SB: u32>(
             Ok((pixels, stats))
         }
         Visibility::ScanLine => {
-            let pixels = scan_line_picture(
+            let pixels = scan_line_picture::<D, SB>(
                 renderer,
                 (w, h),
                 band_rows,
@@ -397,8 +421,7 @@ pub fn render_visible<const SB: u32>(
         }
         Visibility::Warnock => {
             let mut pixels = vec![0u8; total];
-            let mut frame =
-                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
+            let mut frame = whole_frame(&mut pixels, w, h)?;
             let mut triangles = vec![StoredTriangle::default(); capacity];
             let mut candidates = vec![0u32; 2 * capacity];
             let mut windows = vec![Area::DEFAULT; WARNOCK_WINDOWS];
@@ -417,15 +440,15 @@ pub fn render_visible<const SB: u32>(
                 polygons: &mut table,
             };
             let (pixels, _, stats) =
-                render_picture::<u32, SB>(renderer, (w, h), Some(band_rows), band_scratch)?;
+                render_picture::<D, SB>(renderer, (w, h), Some(band_rows), band_scratch)?;
             Ok((pixels, stats))
         }
     }
 }
 
-/// [`render_visible`]'s scan-line: bands of `band_rows` rows (32-bit depth), `capacity` stored
-/// triangles, each finished band copied into the whole picture.
-fn scan_line_picture<const SB: u32>(
+/// [`render_visible_at`]'s scan-line: bands of `band_rows` rows (depth samples `D`),
+/// `capacity` stored triangles, each finished band copied into the whole picture.
+fn scan_line_picture<D: DepthValue, const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
     band_rows: u16,
@@ -435,7 +458,7 @@ fn scan_line_picture<const SB: u32>(
 ) -> Result<Vec<u8>, RenderError> {
     // A 0 is passed on for the core to refuse (`BadBandRows`).
     let n = w as usize * band_rows.min(h.max(1)) as usize;
-    let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![0u32; n]);
+    let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
     let mut triangles = vec![StoredTriangle::default(); capacity];
     let (mut order, mut active) = (vec![0u32; capacity], vec![0u32; capacity]);
     let memory = ScanLineMemory {
@@ -538,22 +561,26 @@ impl CoreMesh {
     }
 }
 
-/// Face pairs a mesh's convexity certificate may hold on the host (the standard sphere needs
-/// about 2,500; longer certificates make the mesh "not convex", which is conservative).
-pub const FACT_PAIRS: usize = 8192;
-
 /// Each object's [`MeshFacts`](zscan::visibility::MeshFacts), computed once, with the
-/// buffers its certificate borrows (`pairs[i]` for object `i`).
+/// buffers its edge table borrows (`words[i]` for object `i`, sized by
+/// [`MeshFacts::words_needed`](zscan::visibility::MeshFacts::words_needed): memory
+/// proportional to the mesh).
 pub fn mesh_facts<'p>(
     scene: &CoreScene<'_>,
-    pairs: &'p mut Vec<Vec<[u32; 2]>>,
-) -> Vec<zscan::visibility::MeshFacts<'p>> {
-    *pairs = vec![vec![[0; 2]; FACT_PAIRS]; scene.objects.len()];
+    words: &'p mut Vec<Vec<u32>>,
+) -> Result<Vec<zscan::visibility::MeshFacts<'p>>, String> {
+    use zscan::visibility::MeshFacts;
+    *words = scene
+        .objects
+        .iter()
+        .map(|o| vec![0; MeshFacts::words_needed(&o.mesh)])
+        .collect();
     scene
         .objects
         .iter()
-        .zip(pairs.iter_mut())
-        .map(|(o, p)| zscan::visibility::MeshFacts::of(&o.mesh, p))
+        .zip(words.iter_mut())
+        .enumerate()
+        .map(|(i, (o, w))| MeshFacts::of(&o.mesh, w).map_err(|e| format!("object {i}: {e}")))
         .collect()
 }
 
@@ -612,63 +639,47 @@ fn render_words(e: RenderError) -> String {
     format!("render: {e}")
 }
 
-/// Draws `scene` as `plan` says (objects in `order`), with buffers of the plan's sizes;
-/// returns the whole picture (bands copied out as a display flush would take them).
+/// Draws the renderer's scene as `plan` says (objects in `order`) through the core's one
+/// entry, [`zscan::visibility::draw_plan`], with buffers of exactly the plan's sizes
+/// ([`PlanSizes`](zscan::visibility::PlanSizes)); returns the whole picture (bands copied out
+/// as a display flush would take them) and the frame's counts.
 pub fn draw_plan<const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     plan: &zscan::visibility::Plan,
     order: &[u16],
 ) -> Result<(Vec<u8>, RenderStats), RenderError> {
-    use zscan::visibility::{render_back_faces_in_order, DepthWidth, LayoutReason};
+    use zscan::render::{CompactVertex, PolygonTop};
+    use zscan::visibility::{PlanMemory, PlanSizes};
     let scene = renderer.scene();
     let vp = *scene.camera.viewport();
-    let (w, h) = (vp.width, vp.height);
-    if plan.layout_reason == LayoutReason::CompactBands {
-        let rows = plan.band_rows;
-        let (pixels, stats) = if plan.depth == DepthWidth::U16 {
-            let (p, _, s) = render_compact_picture::<u16, SB>(renderer, (w, h), rows)?;
-            (p, s)
-        } else {
-            let (p, _, s) = render_compact_picture::<u32, SB>(renderer, (w, h), rows)?;
-            (p, s)
-        };
-        return Ok((pixels, stats));
-    }
-    let largest = scene.objects.iter().map(|o| o.mesh.vertices().len());
-    let all: usize = largest.clone().sum();
-    let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
-    let (nv, np) = if plan.vertex_stage_once {
-        (all, polygons)
-    } else {
-        (largest.max().unwrap_or(0), 0)
+    let w = vp.width as usize;
+    let n = PlanSizes::of(plan, scene);
+    let (mut pixels, mut depth16, mut depth32) =
+        (vec![0; n.pixels], vec![0; n.depth16], vec![0; n.depth32]);
+    let mut vertices = vec![PreparedVertex::<SB>::default(); n.vertices];
+    let mut polygons = vec![PolygonRows::default(); n.polygons];
+    let mut compact_vertices = vec![CompactVertex::default(); n.compact_vertices];
+    let (mut levels, mut tops) = (vec![0; n.levels], vec![PolygonTop::default(); n.tops]);
+    let memory = PlanMemory {
+        pixels: &mut pixels,
+        depth16: &mut depth16,
+        depth32: &mut depth32,
+        vertices: &mut vertices,
+        polygons: &mut polygons,
+        compact_vertices: &mut compact_vertices,
+        levels: &mut levels,
+        tops: &mut tops,
     };
-    let mut scratch = vec![PreparedVertex::<SB>::default(); nv.max(1)];
+    let mut picture = vec![scene.background; w * vp.height as usize];
     let mut stats = RenderStats::default();
-    let pixels = match plan.depth {
-        DepthWidth::None => {
-            let mut pixels = vec![0u8; w as usize * h as usize];
-            let mut frame =
-                Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::BufferTooSmall)?;
-            render_back_faces_in_order(renderer, order, &mut frame, &mut scratch, &mut stats)?;
-            pixels
-        }
-        depth => {
-            let mut table = vec![PolygonRows::default(); np];
-            let band = BandScratch {
-                vertices: &mut scratch,
-                polygons: &mut table,
-            };
-            let rows = Some(plan.band_rows);
-            let (pixels, s) = if depth == DepthWidth::U16 {
-                let (p, _, s) = render_picture::<u16, SB>(renderer, (w, h), rows, band)?;
-                (p, s)
-            } else {
-                let (p, _, s) = render_picture::<u32, SB>(renderer, (w, h), rows, band)?;
-                (p, s)
-            };
-            stats = s;
-            pixels
-        }
-    };
-    Ok((pixels, stats))
+    measured(|| {
+        zscan::visibility::draw_plan(renderer, plan, order, memory, &mut stats, |band| {
+            for (y, row) in band.rows() {
+                let at = y as usize * w;
+                picture[at..at + w].copy_from_slice(row);
+            }
+            Ok::<(), RenderError>(())
+        })
+    })?;
+    Ok((picture, stats))
 }

@@ -16,16 +16,16 @@
 use zscan::geometry::camera::{Camera, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
+use zscan::raster::triangle::ShadeMode;
 use zscan::render::{
     BandScratch, PolygonRows, PreparedVertex, RenderError, Renderer, SceneRenderer,
 };
 use zscan::scene::{Intensities, Object};
-use zscan::shade::span_writer::ShadeMode;
 use zscan::visibility::Visibility;
 
-use zscan::target::DepthValue;
+use zscan::output::DepthValue;
 
 use crate::core_render::{
     render_compact_picture, render_picture, render_visible, scene_of, to_core,
@@ -48,7 +48,11 @@ pub fn v(x: f64, y: f64, z: f64) -> Vec3 {
 
 /// The small scenes' camera: at `(0, 0, 6)` looking at the origin, 60°, near `near`, far 50.
 pub fn camera_with_near(w: u16, h: u16, near: &str) -> Camera {
-    let lens = Lens::new(Angle::from_degrees(60), Coord::lit(near), Coord::lit("50"));
+    let lens = Lens::new(
+        BinaryAngle::from_degrees(60),
+        Coord::lit(near),
+        Coord::lit("50"),
+    );
     let up = Vec3::from_int(0, 1, 0);
     Camera::look_at(
         Vec3::from_int(0, 0, 6),

@@ -18,10 +18,10 @@ use std::path::Path;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
+use zscan::output::{flush, Framebuffer, Lut};
 use zscan::raster::line::{Bresenham, Ends};
-use zscan::raster::polygon::fill_polygon;
+use zscan::raster::polygon::{fill_polygon, FillRule};
 use zscan::raster::{circle, line, SubpixelPoint};
-use zscan::target::{flush, Framebuffer, Lut};
 
 use crate::test_rng::XorShift as Rng;
 
@@ -32,7 +32,7 @@ pub enum Target {
     Scene,
     /// OBJ text through `parse_obj` and `ObjMesh::to_zscan`.
     Obj,
-    /// `zscan spans` input through `write_spans`.
+    /// `zscan spans` input through `write_spans`, under both fill rules.
     Spans,
     /// Core API operations generated from a seed (the input is the seed in decimal).
     Core,
@@ -178,7 +178,9 @@ fn run_spans(text: &str) -> Outcome {
     let (bits, body) = text.split_once('\n').unwrap_or(("4", text));
     let bits: u32 = bits.trim().parse().unwrap_or(4);
     let mut out = Vec::new();
-    crate::cli::spans::write_spans(body, bits, &mut out).map_err(|e| e.to_string())?;
+    for rule in [FillRule::NonZero, FillRule::EvenOdd] {
+        crate::cli::spans::write_spans(body, bits, rule, &mut out).map_err(|e| e.to_string())?;
+    }
     Ok(vec![hash(out.iter().map(|&b| b as u64)), out.len() as u64])
 }
 

@@ -17,7 +17,7 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use zscan::target::{Framebuffer, Lut};
+use zscan::output::{Framebuffer, Lut};
 
 /// An image could not be written or read: a message naming the file and the cause.
 #[derive(Debug, Clone, PartialEq, Eq)]

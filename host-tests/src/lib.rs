@@ -7,12 +7,15 @@
 //! - [`cli`]: the subcommands of the `zscan` tool.
 //! - [`failures`]: where the hidden-surface methods fail, as scenes, counts and pictures.
 #![deny(missing_docs)]
+// Standard output and error go through `cli::out` (a failure is an error, not a panic).
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 pub mod cli;
 pub mod core_render;
 pub mod failures;
 pub mod fuzz;
 pub mod image;
+pub mod mesh_files;
 pub mod obj;
 pub mod reference;
 pub mod scenes;

@@ -351,23 +351,64 @@ pub fn bunny_mesh() -> Result<crate::obj::ObjMesh, String> {
 }
 
 /// `bunny`: `host-tests/meshes/bunny.obj` with its bounding box centred, rotated +90° about Y (it
-/// then faces the camera), centred again, fitted to 0.70. Smooth vertex-normal lighting.
+/// then faces the camera), centred again, fitted to 0.70 ([`place`], as `zscan mesh --centre
+/// --turn-y 90 --fit 0.7` places it). Smooth vertex-normal lighting.
 pub fn bunny() -> Result<Scene, String> {
     let mesh = bunny_mesh()?;
-    let raw = mesh.vertices;
     // Polygons fanned as (0, i, i + 1); the bunny's are all triangles already.
     let triangles: Vec<[usize; 3]> = mesh
         .polygons
         .iter()
         .flat_map(|p| (1..p.len() - 1).map(move |i| [p[0], p[i], p[i + 1]]))
         .collect();
-    let centred = centre_bounding_box(&raw);
-    let rot = rot_y(90f64.to_radians());
-    let turned: Vec<Vec3> = centred.iter().map(|&v| mat_vec(rot, v)).collect();
-    let placed = centre_bounding_box(&turned);
-    let s = fit_scale(&placed, &Camera::standard(), 0.70);
-    let vertices = placed.iter().map(|&v| scale(v, s)).collect();
+    let (vertices, s) = place(&mesh.vertices, &STANDARD_BUNNY);
     Ok(finish_smooth("bunny", vertices, triangles, s))
+}
+
+/// How [`place`] puts a mesh read from a file in the model frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// Centre the bounding box on the origin (again after the turn, when there is one).
+    pub centre: bool,
+    /// Turn about `+y` by this many degrees (right-hand rule), after centring.
+    pub turn_y_degrees: Option<f64>,
+    /// The size, last.
+    pub size: Size,
+}
+
+/// The size [`place`] gives a mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Size {
+    /// As read.
+    Keep,
+    /// A uniform scale about the origin.
+    Scale(f64),
+    /// "Fit to F" of SCENES.md ([`fit_scale`] with [`Camera::standard`]).
+    Fit(f64),
+}
+
+/// The standard bunny's placement (SCENES.md).
+pub const STANDARD_BUNNY: Placement = Placement {
+    centre: true,
+    turn_y_degrees: Some(90.0),
+    size: Size::Fit(0.70),
+};
+
+/// `vertices` placed as `p` says (centre, turn, centre again, then the size), and the scale
+/// applied (1 for [`Size::Keep`]).
+pub fn place(vertices: &[Vec3], p: &Placement) -> (Vec<Vec3>, f64) {
+    let centre = |v: Vec<Vec3>| if p.centre { centre_bounding_box(&v) } else { v };
+    let mut placed = centre(vertices.to_vec());
+    if let Some(degrees) = p.turn_y_degrees {
+        let rot = rot_y(degrees.to_radians());
+        placed = centre(placed.iter().map(|&v| mat_vec(rot, v)).collect());
+    }
+    let s = match p.size {
+        Size::Keep => 1.0,
+        Size::Scale(s) => s,
+        Size::Fit(f) => fit_scale(&placed, &Camera::standard(), f),
+    };
+    (placed.iter().map(|&v| scale(v, s)).collect(), s)
 }
 
 /// The per-corner intensity of SCENES.md for a unit normal `n`:

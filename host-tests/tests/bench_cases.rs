@@ -1,6 +1,6 @@
 //! Checks of the shared benchmark cases (`benches/cases.rs`): names, the calibration case, and
 //! that each case's reported pixel count matches what it draws.
-use zscan::target::Framebuffer;
+use zscan::output::Framebuffer;
 use zscan_host::cli::bench::{cases, run_case};
 
 fn draw(case: &cases::Case) -> (u32, Vec<u8>) {

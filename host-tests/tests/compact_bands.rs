@@ -9,16 +9,16 @@ use zscan::geometry::camera::{Camera, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::{torus, torus_sizes, uv_sphere, uv_sphere_sizes};
 use zscan::geometry::matrix::Affine3;
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
+use zscan::lighting::{Light, Material};
+use zscan::output::{DepthBuffer, DepthValue, Framebuffer};
+use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
     render_in_compact_bands, BandPart, CompactBandScratch, CompactSizes, CompactVertex, PolygonTop,
     PreparedVertex, RenderError, RenderStats, Renderer, SceneRenderer,
 };
 use zscan::scene::{Intensities, Object, Scene};
-use zscan::shade::lighting::{Light, Material};
-use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, DepthValue, Framebuffer};
 use zscan_host::core_render::{render_compact_picture, to_core, CoreFrame, CoreMesh};
 use zscan_host::scenes::standard_scenes;
 
@@ -112,7 +112,11 @@ const SPHERE: (usize, usize) = uv_sphere_sizes(20, 12);
 const TORUS: (usize, usize) = torus_sizes(24, 12);
 
 fn camera(eye: Vec3) -> Camera {
-    let lens = Lens::new(Angle::from_degrees(50), Coord::lit("0.5"), Coord::lit("30"));
+    let lens = Lens::new(
+        BinaryAngle::from_degrees(50),
+        Coord::lit("0.5"),
+        Coord::lit("30"),
+    );
     let up = Vec3::from_int(0, 1, 0);
     Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(W, H)).unwrap()
 }
@@ -160,8 +164,8 @@ fn lit(
     let mesh = zscan::geometry::mesh::Mesh::triangles(v, i).unwrap();
     let mut o = Object::new(mesh);
     o.transform = Affine3::builder()
-        .rotate_x(Angle::from_degrees(turn))
-        .rotate_y(Angle::from_degrees(2 * turn))
+        .rotate_x(BinaryAngle::from_degrees(turn))
+        .rotate_y(BinaryAngle::from_degrees(2 * turn))
         .translate(at)
         .build()
         .unwrap();

@@ -5,7 +5,7 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::{hollow_prism, torus, unit_cube, uv_sphere, uv_sphere_sizes};
 use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
-use zscan::geometry::trig::{sin_cos_bits, Angle};
+use zscan::geometry::trig::{sin_cos_bits, BinaryAngle};
 use zscan::geometry::vector::Vec3;
 use zscan::internals::Projector;
 use zscan::internals::{ClipVertex, ClipVolume, Frustum};
@@ -51,7 +51,7 @@ use zscan_host::test_rng::XorShift as Rng;
 
 fn scenes_lens() -> Lens {
     Lens {
-        fov: Angle::from_degrees(60),
+        fov: BinaryAngle::from_degrees(60),
         axis: FovAxis::Vertical,
         near: Coord::from_num(0.5),
         far: Coord::from_num(10),
@@ -75,7 +75,7 @@ fn trig_error_bound_random_angles() {
     let mut worst = 0.0f64;
     for _ in 0..1_000_000 {
         let a = r.next_u64() as u32;
-        let (s, c) = sin_cos_bits(Angle(a));
+        let (s, c) = sin_cos_bits(BinaryAngle(a));
         let t = a as f64 / 4_294_967_296.0 * std::f64::consts::TAU;
         let k = (1u64 << 30) as f64;
         worst = worst
@@ -103,8 +103,8 @@ fn matrix_composition_and_rigid_inverse_vs_f64() {
     // SCENES.md's cube placement: v' = Rx(20°)·Ry(30°)·v, then a translation.
     let m = Affine3::translation(v([0.25, -1.0, 2.5]))
         .mul(
-            &Affine3::rotation_x(Angle::from_degrees(20))
-                .mul(&Affine3::rotation_y(Angle::from_degrees(30)))
+            &Affine3::rotation_x(BinaryAngle::from_degrees(20))
+                .mul(&Affine3::rotation_y(BinaryAngle::from_degrees(30)))
                 .unwrap(),
         )
         .unwrap();
@@ -130,7 +130,7 @@ fn matrix_composition_and_rigid_inverse_vs_f64() {
     }
     // An arbitrary axis against Rodrigues in f64.
     let axis = norm([1.0, -2.0, 0.5]);
-    let g = Affine3::rotation_axis(v([1.0, -2.0, 0.5]), Angle::from_degrees(77)).unwrap();
+    let g = Affine3::rotation_axis(v([1.0, -2.0, 0.5]), BinaryAngle::from_degrees(77)).unwrap();
     let (s, c) = 77f64.to_radians().sin_cos();
     for p in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.3, 0.4, -2.0]] {
         let k = axis;
@@ -285,7 +285,7 @@ fn frame_sphere_vs_f64() {
             v([1.0, 2.0, 3.0]),
             Coord::from_num(rad),
             v([0.0, 0.0, -2.0]),
-            Angle::from_degrees(deg),
+            BinaryAngle::from_degrees(deg),
         )
         .unwrap();
         let e = rad / (deg as f64 / 2.0).to_radians().sin();
@@ -496,8 +496,8 @@ fn extreme_inputs_never_panic() {
             scenes_lens(),
             Viewport::new(pick(&mut r) as u16, 240),
         );
-        let _ = frame_sphere(p, q.x, q, Angle(pick(&mut r) as u32));
-        let _ = Affine3::rotation_axis(p, Angle(q.x.to_bits() as u32)).map(|m| m.mul(&m));
+        let _ = frame_sphere(p, q.x, q, BinaryAngle(pick(&mut r) as u32));
+        let _ = Affine3::rotation_axis(p, BinaryAngle(q.x.to_bits() as u32)).map(|m| m.mul(&m));
     }
     // Random cameras: projector and frustum construction, and the projection of clipped
     // polygons, never panic.
@@ -505,7 +505,7 @@ fn extreme_inputs_never_panic() {
         let p = Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r));
         let q = Vec3::from_bits(pick(&mut r), pick(&mut r), pick(&mut r));
         let lens = Lens {
-            fov: Angle(pick(&mut r) as u32),
+            fov: BinaryAngle(pick(&mut r) as u32),
             axis: [FovAxis::Vertical, FovAxis::Horizontal, FovAxis::Diagonal]
                 [(r.next_u64() % 3) as usize],
             near: Coord::from_bits(pick(&mut r)),
@@ -610,4 +610,65 @@ fn bunny_obj() {
         }
     }
     assert!(bad <= 5, "{bad} vertex normals off by more than 0.5°");
+}
+
+/// The course's exercise 1 (ch. 1): for unit vectors `V1`, `V2` at angle `θ`, the dot product
+/// is `cos θ` and the cross product is a vector of length `sin θ` perpendicular to both, in
+/// the direction that makes `(V1, V2, V1 × V2)` right-handed. The answer, from the component
+/// formulas: rotate the frame so that `V1 = (1, 0, 0)` and `V2 = (cos θ, sin θ, 0)` (both
+/// products are unchanged by rotation); then `V1 · V2 = cos θ` and `V1 × V2 = (0, 0, sin θ)`.
+/// Checked on the fixed-point vectors: `Vec3::dot` and `Vec3::cross_wide` are exact on the
+/// I16F16 components, so the only error is the components' rounding (2^-17 each).
+#[test]
+fn course_exercise_1_dot_and_cross_of_unit_vectors() {
+    let mut checked = 0;
+    for a in (0..360).step_by(15) {
+        for b in (0..180).step_by(20) {
+            for t in (0..360).step_by(25) {
+                // V1 on the unit sphere at azimuth a and polar angle b; V2 at angle t from V1,
+                // turned about an axis perpendicular to V1.
+                let (a, b, t) = (
+                    (a as f64).to_radians(),
+                    (b as f64).to_radians(),
+                    (t as f64).to_radians(),
+                );
+                let v1 = [b.sin() * a.cos(), b.cos(), b.sin() * a.sin()];
+                let axis = if b.sin().abs() > 0.5 {
+                    [0.0, 1.0, 0.0]
+                } else {
+                    [1.0, 0.0, 0.0]
+                };
+                let p = cross(v1, axis);
+                let p = p.map(|x| x / dot(p, p).sqrt());
+                let q = cross(v1, p);
+                let v2: F3 = std::array::from_fn(|k| t.cos() * v1[k] + t.sin() * q[k]);
+                let (u1, u2) = (v(v1), v(v2));
+                let dot_q32 = u1.dot(u2) as f64 / 2f64.powi(32);
+                assert!(
+                    (dot_q32 - t.cos()).abs() < 4e-5,
+                    "dot {dot_q32} vs cos {}",
+                    t.cos()
+                );
+                let c = u1.cross_wide(u2).map(|x| x as f64 / 2f64.powi(32));
+                let length = dot(c, c).sqrt();
+                assert!(
+                    (length - t.sin().abs()).abs() < 4e-5,
+                    "|cross| {length} vs |sin| {}",
+                    t.sin()
+                );
+                assert!(
+                    dot(c, f(u1)).abs() < 4e-5 && dot(c, f(u2)).abs() < 4e-5,
+                    "not perpendicular"
+                );
+                // The direction: with V2 = cos θ·V1 + sin θ·q (q ⟂ V1), V1 × V2 = sin θ·(V1 × q).
+                let want = cross(v1, q).map(|x| x * t.sin());
+                assert!(
+                    (0..3).all(|k| (c[k] - want[k]).abs() < 4e-5),
+                    "{c:?} vs {want:?}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 24 * 9 * 15);
 }

@@ -3,8 +3,9 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use zscan::raster::polygon::FillRule;
 use zscan_host::cli::render::{load_scene_str, LoadedScene};
 use zscan_host::cli::spans::{for_each_span, polygon_spans};
 
@@ -63,7 +64,7 @@ fn camera_values_out_of_range_are_refused() {
 #[test]
 fn sizes_are_limited_before_allocating() {
     let e = load_err("[viewport]\nwidth = 65535\nheight = 65535\n");
-    assert!(e.contains("65535×65535") && e.contains("1..=4096"), "{e}");
+    assert!(e.contains("65535") && e.contains("1..=4096"), "{e}");
     let e = load_err("[viewport]\nwidth = 0\n");
     assert!(e.contains("1..=4096"), "{e}");
     assert!(load("[viewport]\nwidth = 4096\nheight = 16\n").is_ok());
@@ -182,15 +183,16 @@ fn comb(teeth: i32, rows: i32) -> Vec<(i32, i32)> {
     v.into_iter().map(|(x, y)| (x << 4, y << 4)).collect()
 }
 
-/// #10: `zscan spans` was quadratic in active edges per row (insertion sort of a scrambled
-/// list): a 1024-edge comb over 100,000 rows took over 20 s. The active list now stays sorted.
+/// `zscan spans` on many active edges per row: a 1024-edge comb over 100,000 rows and a
+/// 1023-point star give their exact span counts (the active list stays sorted from row to
+/// row, so a row costs O(n + crossings), at most O(n log n)).
 #[test]
 fn spans_are_not_quadratic_in_active_edges() {
     let v = comb(256, 100_000);
     let start = Instant::now();
     let mut spans = 0u64;
     let mut width = 0u64;
-    for_each_span(&v, 4, &mut |s| {
+    for_each_span(&v, 4, FillRule::NonZero, &mut |s| {
         spans += 1;
         width += (s.x1 - s.x0) as u64;
     })
@@ -199,7 +201,10 @@ fn spans_are_not_quadratic_in_active_edges() {
     // Row 0: one span over the whole comb; rows 1..100000: one span per tooth.
     assert_eq!(spans, 1 + 256 * 99_999);
     assert_eq!(width, 8 * 256 + 4 * 256 * 99_999);
-    assert!(took < Duration::from_secs(8), "{took:?}");
+    // Time is printed, not asserted (tests assert no timings): the bound is by construction,
+    // the active list's sort hands over to O(n log n) after a budget of moves
+    // (`sort_nearly_sorted`, tested in the core).
+    eprintln!("comb of 1024 edges over 100,000 rows: {took:?}");
 
     // A 1023-point star of radius 1e5 (a self-intersecting polygon, nonzero winding).
     let n = 1023;
@@ -214,9 +219,9 @@ fn spans_are_not_quadratic_in_active_edges() {
         })
         .collect();
     let start = Instant::now();
-    let spans = polygon_spans(&star, 4).unwrap();
+    let spans = polygon_spans(&star, 4, FillRule::NonZero).unwrap();
     let took = start.elapsed();
-    assert!(took < Duration::from_secs(20), "{took:?}");
+    eprintln!("1023-point star of radius 1e5: {took:?}");
     assert!(spans.len() >= 199_000, "{}", spans.len());
 }
 
@@ -301,7 +306,7 @@ fn non_convex_polygon_through_the_near_plane_draws() {
     assert!(f.stats.pixels_covered > 1000, "{:?}", f.stats);
 }
 
-/// #2 in the shadow map's pass 1 (src/shade/shadow/map.rs, which clips like the renderer):
+/// #2 in the shadow map's pass 1 (src/shadow/map.rs, which clips like the renderer):
 /// the non-convex comb through the map's near plane was `PolygonTooLarge`; its fan triangles
 /// are now clipped one by one and drawn.
 #[test]
@@ -310,12 +315,12 @@ fn non_convex_occluder_through_the_map_near_plane_is_drawn() {
     use zscan::geometry::fixed::Coord;
     use zscan::geometry::matrix::Affine3;
     use zscan::geometry::mesh::{Mesh, PolygonSizes};
-    use zscan::geometry::trig::Angle;
+    use zscan::geometry::trig::BinaryAngle;
     use zscan::geometry::vector::Vec3;
-    use zscan::shade::shadow::ShadowMap;
+    use zscan::shadow::ShadowMap;
     let c = |v: f64| Coord::from_num(v);
     let lens = Lens {
-        fov: Angle::from_degrees(60),
+        fov: BinaryAngle::from_degrees(60),
         axis: FovAxis::Vertical,
         near: c(0.5),
         far: c(10.0),

@@ -1,6 +1,6 @@
 //! Issue 16 #1 at the largest sizes: triangles of any size within the raster's range, and
 //! scenes at the largest viewports the core holds, drawn with the exact fill and the exactly
-//! rounded depth and luminance (the wide attribute plane, `shade::attributes::WidePlane`).
+//! rounded depth and luminance (the wide attribute plane, `raster::triangle::wide_plane::WidePlane`).
 //!
 //! The references here are independent of the core's arithmetic: the exact rational fill of
 //! `reference::exact_fill` (winding numbers in `i128`), the correctly rounded interpolant
@@ -11,14 +11,14 @@
 
 use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
+use zscan::output::{DepthBuffer, DepthValue, Framebuffer};
+use zscan::raster::triangle::{draw_triangle, LuminanceRamp, ShadeMode};
 use zscan::raster::SubpixelPoint;
 use zscan::render::{
     render_in_bands, render_scene, BandScratch, PreparedVertex, RenderError, RenderStats, Renderer,
 };
-use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, DepthValue, Framebuffer};
 use zscan::visibility::Visibility;
 use zscan_host::core_render::{
     render_compact_picture, render_visible, scene_of, CoreFrame, CoreMesh,
@@ -110,7 +110,8 @@ fn quad_at(w: u16, h: u16, fov_y: i32, p: (f64, f64)) -> CoreMesh {
     let c = |v: f64| Coord::from_num(v);
     let mut vp = Viewport::new(w, h);
     (vp.principal_x, vp.principal_y) = (c(p.0), c(p.1));
-    let lens = Lens::new(Angle::from_degrees(fov_y), c(0.5), c(10.0)).with_axis(FovAxis::Vertical);
+    let lens =
+        Lens::new(BinaryAngle::from_degrees(fov_y), c(0.5), c(10.0)).with_axis(FovAxis::Vertical);
     let camera = Camera::look_at(
         Vec3::from_int(0, 0, 3),
         Vec3::ZERO,
@@ -249,7 +250,8 @@ fn zero_band_rows_are_an_error() {
 #[test]
 fn tall_pictures_in_thin_bands_clip_only_where_the_clipped_polygons_reach() {
     let c = |v: f64| Coord::from_num(v);
-    let lens = Lens::new(Angle::from_degrees(60), c(0.5), c(10.0)).with_axis(FovAxis::Vertical);
+    let lens =
+        Lens::new(BinaryAngle::from_degrees(60), c(0.5), c(10.0)).with_axis(FovAxis::Vertical);
     let camera = Camera::look_at(
         Vec3::from_int(0, 0, 3),
         Vec3::ZERO,

@@ -11,20 +11,20 @@ use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::unit_cube;
 use zscan::geometry::matrix::Affine3;
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
 use zscan::internals::{draw_triangle_phong, PhongContext, PhongVertex};
+use zscan::lighting::{light_faces, light_vertices, Illumination, Light, Material};
+use zscan::output::{DepthBuffer, Framebuffer};
+use zscan::raster::triangle::{draw_triangle, LuminanceRamp, ShadeMode};
 use zscan::raster::SubpixelPoint;
-use zscan::shade::lighting::{light_faces, light_vertices, Illumination, Light, Material};
-use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, Framebuffer};
 use zscan_host::reference::float_lighting::{
     centre_intensities, vertex_normals, FloatLight, FloatLighting, FloatMaterial, V3,
 };
 
 fn camera(eye: [i32; 3]) -> Camera {
     let lens = Lens {
-        fov: Angle::from_turns(1, 6),
+        fov: BinaryAngle::from_turns(1, 6),
         axis: FovAxis::Vertical,
         near: Coord::from_num(0.5),
         far: Coord::from_num(100),
@@ -297,7 +297,7 @@ fn phong_keeps_a_highlight_gouraud_misses() {
 #[test]
 fn shadow_acne_and_leaking() {
     use zscan::geometry::mesh::Mesh;
-    use zscan::shade::shadow::ShadowMap;
+    use zscan::shadow::ShadowMap;
     let floor_v = [
         Vec3::from_int(-4, 0, -4),
         Vec3::from_int(-4, 0, 4),

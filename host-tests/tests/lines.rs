@@ -3,10 +3,10 @@
 
 use embedded_graphics::prelude::Point;
 use std::collections::BTreeSet;
+use zscan::output::Framebuffer;
 use zscan::raster::circle::{draw_circle, MidpointCircle, MAX_RADIUS};
 use zscan::raster::line::{draw_line, draw_polyline, Bresenham, Ends, LineError, MAX_COORD};
 use zscan::raster::Window;
-use zscan::target::Framebuffer;
 use zscan_host::cli::lines::{draw, pattern, Primitive};
 use zscan_host::reference::bresenham as reference;
 

@@ -16,19 +16,17 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::{uv_sphere, uv_sphere_sizes};
 use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::Mesh;
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
 use zscan::internals::NEAR;
+use zscan::lighting::{light_faces, light_vertices, Illumination, Light, LightingError, Material};
+use zscan::output::{DepthBuffer, Framebuffer};
+use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
-    render_in_bands, BandScratch, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer,
-    StatsSink, StatsWithoutWritten,
+    render_in_bands, BandScratch, IntensityTable, PolygonRows, PreparedVertex, RenderError,
+    RenderStats, Renderer, StatsSink, StatsWithoutWritten,
 };
 use zscan::scene::{Intensities, Object, Scene};
-use zscan::shade::lighting::{
-    light_faces, light_vertices, Illumination, Light, LightingError, Material,
-};
-use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, Framebuffer};
 
 const W: u16 = 96;
 const H: u16 = 72;
@@ -47,7 +45,7 @@ fn camera(eye: Vec3) -> Camera {
 
 fn camera_at(eye: Vec3, target: Vec3) -> Camera {
     let lens = Lens {
-        fov: Angle::from_degrees(60),
+        fov: BinaryAngle::from_degrees(60),
         axis: FovAxis::Vertical,
         near: Coord::from_num(0.5),
         far: Coord::from_num(20),
@@ -451,7 +449,12 @@ fn bad_lighting_input_is_an_error() {
             normals: &sphere.normals[..NV - 1],
         };
         let e = r.draw_object(&o, &mut scratch, &mut fb, &mut zb, &mut stats);
-        assert_eq!(e, Err(RenderError::IntensitiesTooShort), "{shade:?}");
+        let short = RenderError::IntensitiesTooShort {
+            table: IntensityTable::Normals,
+            given: NV - 1,
+            needed: NV,
+        };
+        assert_eq!(e, Err(short), "{shade:?}");
     }
     // Flat shading reads no vertex normals: an empty table is fine.
     let mut o = sphere.lit(ShadeMode::Flat, false);

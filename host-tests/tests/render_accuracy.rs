@@ -29,8 +29,8 @@
 //!   variant by at most one level, never upward.
 use std::sync::OnceLock;
 
+use zscan::raster::triangle::ShadeMode;
 use zscan::render::{PreparedVertex, Renderer};
-use zscan::shade::span_writer::ShadeMode;
 use zscan_host::core_render::{to_core, CoreFrame, CoreMesh};
 use zscan_host::reference::compare::{
     affine_gradient, depth_from_d32, distance_to_outline, distance_to_segment, dz_per_d32_unit,

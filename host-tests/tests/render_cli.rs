@@ -390,8 +390,8 @@ fn auto_plans_within_a_ram_budget() {
     for (scene, method, budget) in [
         ("standard_quad.toml", "backface", None),
         // The scene file's cube is the core's quad mesh, its rounded quads not planar: the
-        // certificate covers triangle meshes only (`visibility/facts.rs`).
-        ("standard_cube.toml", "zbuffer", None),
+        // per-view check decides on the fans drawn (`visibility/facts.rs`).
+        ("standard_cube.toml", "backface", None),
         ("standard_sphere.toml", "backface", Some("100K")),
         ("standard_bunny.toml", "zbuffer", None),
         ("standard_bunny.toml", "zbuffer", Some("100000")),
@@ -476,4 +476,89 @@ fn auto_plans_within_a_ram_budget() {
         .output()
         .unwrap();
     assert!(String::from_utf8_lossy(&out.stderr).contains("only --visibility auto"));
+}
+
+/// `[camera] projection = "orthographic"`: the orthographic bunny renders; the scan-line and
+/// Warnock methods and bands draw the z-buffer's picture; the planner and perspective-only
+/// keys are refused in words.
+#[test]
+fn orthographic_camera_from_the_command_line() {
+    let dir = out_dir("orthographic");
+    let path = scenes().join("orthographic_bunny.toml");
+    let (z_png, _, stats) = render(&path, &dir.join("z"), &[]);
+    assert!(lit_pixels(&z_png) > 5000, "{stats}");
+    for extra in [
+        &["--visibility", "scanline"][..],
+        &["--visibility", "warnock"][..],
+        &["--bands", "16"][..],
+    ] {
+        let png = dir.join(format!("{}.png", extra[1]));
+        let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+            .args([
+                "render",
+                path.to_str().unwrap(),
+                "-o",
+                png.to_str().unwrap(),
+            ])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(
+            read_png_rgb(&png).unwrap(),
+            read_png_rgb(&z_png).unwrap(),
+            "{extra:?}"
+        );
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .args([
+            "render",
+            path.to_str().unwrap(),
+            "-o",
+            dir.join("a.png").to_str().unwrap(),
+        ])
+        .args(["--visibility", "auto"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the planner needs a perspective camera"),
+        "{err}"
+    );
+    // Width and height together, or a width on a perspective camera, are refused.
+    let text = std::fs::read_to_string(&path).unwrap();
+    for (bad, words) in [
+        (
+            text.replace("height = 3.2", "height = 3.2\nwidth = 3.0"),
+            "exactly one of `width` or",
+        ),
+        (
+            text.replace("projection = \"orthographic\"\n", ""),
+            "are for projection = \"orthographic\"",
+        ),
+        (
+            text.replace("height = 3.2", "height = 0.0"),
+            "[camera] height",
+        ),
+    ] {
+        let scene = dir.join("bad.toml");
+        std::fs::write(&scene, bad).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+            .args([
+                "render",
+                scene.to_str().unwrap(),
+                "-o",
+                dir.join("b.png").to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(words), "{words}: {err}");
+    }
 }

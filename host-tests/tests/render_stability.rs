@@ -7,10 +7,10 @@
 //! core snaps nothing and its coverage must equal the exact fill of those points.
 use zscan::geometry::camera::{Camera as CoreCamera, CameraError, FovAxis, Lens, Viewport};
 use zscan::geometry::fixed::Coord;
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3 as CoreVec3;
+use zscan::raster::triangle::ShadeMode;
 use zscan::render::{PreparedVertex, Renderer};
-use zscan::shade::span_writer::ShadeMode;
 use zscan_host::core_render::{core_camera, to_core, CoreFrame};
 use zscan_host::reference::compare::{
     depth_from_d32, distance_to_outlines, outlines, plane_depth, Rng,
@@ -513,7 +513,7 @@ fn camera_looking_along_the_up_vector_is_an_error() {
     assert!(render(&scene).is_err());
     // The core camera directly, looking down and up the up vector.
     let lens = Lens {
-        fov: Angle::from_degrees(60),
+        fov: BinaryAngle::from_degrees(60),
         axis: FovAxis::Vertical,
         near: Coord::from_num(0.5),
         far: Coord::from_num(10),
@@ -748,7 +748,7 @@ fn guard_band_clipping_keeps_gouraud_luminance() {
     // screen-affine interpolant of the original corners is not linear in the 3D edge
     // parameter, so the cut changes the shading: the picture depends on whether the guard
     // band was crossed (coverage and depth do not, see the test above). Expected (ShadeMode::
-    // GouraudExact, span_writer.rs): every pixel the correctly rounded screen-affine value,
+    // GouraudExact, raster/triangle): every pixel the correctly rounded screen-affine value,
     // i.e. within 1/2 + |∇L|·δ (< 1 here: the projected triangle is thousands of pixels wide)
     // of the reference's screen-affine value. Measured: 80.16 levels on both triangles of
     // `guard_band_scenes` (8.7 and 8.2 from the perspective-correct value: the cut makes the

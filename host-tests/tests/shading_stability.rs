@@ -11,9 +11,9 @@
 //! 3. Affine against perspective-correct interpolation on a steeply receding plane
 //!    (`reference::float_render` computes both): the affine error in levels, and the core
 //!    within ±1 of the affine value.
+use zscan::output::{DepthBuffer, Framebuffer};
+use zscan::raster::triangle::{draw_triangle, LuminanceRamp, ShadeMode};
 use zscan::raster::SubpixelPoint;
-use zscan::shade::span_writer::{draw_triangle, LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, Framebuffer};
 use zscan_host::reference::float_render::{self, Interpolation};
 use zscan_host::scenes::{Camera, Scene};
 

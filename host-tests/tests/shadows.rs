@@ -1,4 +1,4 @@
-//! Shadow maps for point and directional lights (`zscan::shade::shadow`) against a float64
+//! Shadow maps for point and directional lights (`zscan::shadow`) against a float64
 //! ground truth, and the shadow pass over rendered frames.
 //!
 //! - Acne and leaking on a floor with a unit box standing on it, lit by a point light (and by
@@ -21,16 +21,16 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::generators::unit_cube;
 use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
+use zscan::lighting::{Light, Material};
+use zscan::output::{DepthBuffer, DepthValue, Framebuffer, Lut};
+use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{render_scene, PreparedVertex, Renderer};
 use zscan::scene::{Intensities, Object, Scene};
-use zscan::shade::lighting::{Light, Material};
-use zscan::shade::shadow::{
+use zscan::shadow::{
     observer_depth_slack, DepthSample, ShadowError, ShadowMap, ShadowPass, Visibility,
 };
-use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, DepthValue, Framebuffer, Lut};
 use zscan_host::image::write_image;
 
 fn c(v: f64) -> Coord {
@@ -568,7 +568,7 @@ const MATERIAL: Material = Material::from_thousandths(1000, 800, 0, 1);
 
 fn observer() -> Camera {
     let lens = Lens {
-        fov: Angle::from_degrees(50),
+        fov: BinaryAngle::from_degrees(50),
         axis: FovAxis::Vertical,
         near: c(1.0),
         far: c(30.0),
@@ -788,7 +788,7 @@ fn frame_pass_matches_truth_and_bands() {
         vec![0u8; FW as usize * rows as usize],
         vec![0u16; FW as usize * rows as usize],
     );
-    let mut total = zscan::shade::shadow::ShadowStats::default();
+    let mut total = zscan::shadow::ShadowStats::default();
     let mut top = 0u16;
     while top < FH {
         let h = rows.min(FH - top);

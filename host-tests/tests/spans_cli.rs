@@ -299,6 +299,32 @@ fn decimal(units: i64, s: u32) -> String {
     }
 }
 
+/// A pentagram under both rules: the nonzero rule fills its centre, the even-odd rule leaves
+/// it empty. Worked by hand: on row 10, the star (10,0) (16,19) (0,7) (20,7) (4,19) has four
+/// edges crossing (its horizontal edge at y = 7 counts for nothing), at x = 16·3/12 = 4,
+/// 10 − 60/19 ≈ 6.84, 10 + 60/19 ≈ 13.16 and 20 − 16·3/12 = 16. Left in, right out: the
+/// even-odd runs are pixels 4..=6 and 14..=15, the nonzero run 4..=15.
+#[test]
+fn pentagram_under_both_rules() {
+    let star = "10 0\n16 19\n0 7\n20 7\n4 19\n";
+    let nonzero = ok_stdout(&run_stdin(&["--subpixel-bits", "0"], star));
+    let even_odd = ok_stdout(&run_stdin(
+        &["--subpixel-bits", "0", "--rule", "even-odd"],
+        star,
+    ));
+    assert!(nonzero.lines().any(|l| l == "10 4 15"), "{nonzero}");
+    assert!(even_odd.lines().any(|l| l == "10 4 6"), "{even_odd}");
+    assert!(even_odd.lines().any(|l| l == "10 14 15"), "{even_odd}");
+    assert_eq!(even_odd.lines().filter(|l| l.starts_with("10 ")).count(), 2);
+    let explicit = ok_stdout(&run_stdin(
+        &["--subpixel-bits", "0", "--rule", "nonzero"],
+        star,
+    ));
+    assert_eq!(explicit, nonzero);
+    let bad = failure_stderr(&run_stdin(&["--rule", "odd"], star));
+    assert!(bad.contains("even-odd") && bad.contains("nonzero"), "{bad}");
+}
+
 #[test]
 fn random_polygons_match_the_reference() {
     let mut seed = 0x0123_4567_89AB_CDEFu64;
@@ -311,6 +337,7 @@ fn random_polygons_match_the_reference() {
     for s in [0u32, 3, 4, 8] {
         let mut input = String::new();
         let mut want = String::new();
+        let mut want_eo = String::new();
         for k in 0..40 {
             let n = rnd(3, 9);
             let f = 1i64 << s;
@@ -322,11 +349,20 @@ fn random_polygons_match_the_reference() {
             }
             input.push('\n');
             want.push_str(&format!("polygon {k}\n"));
+            want_eo.push_str(&format!("polygon {k}\n"));
             for sp in reference::covered_spans(&v, s) {
                 want.push_str(&format!("{} {} {}\n", sp.y, sp.x0, sp.x1 - 1));
             }
+            for sp in reference::covered_spans_by(&v, s, reference::RefRule::EvenOdd) {
+                want_eo.push_str(&format!("{} {} {}\n", sp.y, sp.x0, sp.x1 - 1));
+            }
         }
-        let out = run_stdin(&["--subpixel-bits", &s.to_string()], &input);
+        let bits = s.to_string();
+        let out = run_stdin(&["--subpixel-bits", &bits], &input);
         assert_eq!(ok_stdout(&out), want, "S = {s}");
+        let out = run_stdin(&["--subpixel-bits", &bits, "--rule", "even-odd"], &input);
+        assert_eq!(ok_stdout(&out), want_eo, "S = {s}, even-odd");
+        // Random polygons of 5 to 9 vertices self-intersect often: the rules must differ.
+        assert_ne!(want, want_eo, "S = {s}: no case tells the rules apart");
     }
 }

@@ -6,7 +6,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{Line, PrimitiveStyle, Rectangle};
 use embedded_graphics::text::{Baseline, Text};
-use zscan::target::{flush, shaded_index, Framebuffer, Lut, LutError, PaletteIndex, TargetError};
+use zscan::output::{flush, shaded_index, Framebuffer, Lut, LutError, PaletteIndex, TargetError};
 
 #[test]
 fn framebuffer_rejects_bad_layouts_without_panicking() {
@@ -386,4 +386,176 @@ fn shaded_palette_errors() {
         LutError::TooManyEntries { needed: 300 }
     );
     assert!(!LutError::ZeroLevels.to_string().is_empty());
+}
+
+/// A framebuffer or depth buffer that does not hold the camera's viewport is refused by every
+/// drawing entry, naming both sizes, and nothing is drawn; a band needs only the viewport's
+/// width. (Before, each entry drew the part of the picture the buffer held: a silent crop.)
+#[test]
+fn buffers_smaller_than_the_viewport_are_refused() {
+    use zscan::prelude::*;
+    use zscan::render::{render_in_compact_bands, CompactBandScratch, RenderError, TargetBuffer};
+    use zscan::render::{CompactVertex, PolygonTop};
+    use zscan::visibility::{
+        render_back_faces, render_painter, render_scan_lines, render_warnock, Area, Normal,
+        PainterMemory, ScanLineMemory, SplitPolicy, StoredTriangle, WarnockMemory,
+    };
+
+    let (vw, vh) = (32u16, 24u16);
+    let lens = Lens::new(
+        BinaryAngle::from_degrees(60),
+        Coord::lit("0.5"),
+        Coord::lit("20"),
+    );
+    let eye = Vec3::from_int(2, 1, 3);
+    let up = Vec3::from_int(0, 1, 0);
+    let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(vw, vh)).unwrap();
+    let objects = [Object::new(unit_cube())];
+    let scene = Scene {
+        camera,
+        objects: &objects,
+        background: 7,
+        ambient: 255,
+        lights: &[],
+    };
+    let renderer = Renderer::for_scene(&scene).unwrap();
+    let too_small = |buffer, size: (u16, u16)| {
+        Err(RenderError::TargetSmallerThanViewport {
+            buffer,
+            size,
+            viewport: (vw, vh),
+        })
+    };
+    let mut scratch = [PreparedVertex::default(); 8];
+    let mut stats = RenderStats::default();
+    let message = too_small(TargetBuffer::Frame, (31, 24))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("31 × 24") && message.contains("32 × 24 viewport"),
+        "{message}"
+    );
+
+    // Whole buffers: narrower, shorter, or a depth buffer smaller than its frame.
+    for (fs, ds, buffer, size) in [
+        ((31, 24), (32, 24), TargetBuffer::Frame, (31, 24)),
+        ((32, 23), (32, 24), TargetBuffer::Frame, (32, 23)),
+        ((32, 24), (32, 20), TargetBuffer::Depth, (32, 20)),
+    ] {
+        let mut pixels = vec![0u8; 32 * 24];
+        let mut depths = vec![0u16; 32 * 24];
+        let mut frame = Framebuffer::new(&mut pixels, fs.0, fs.1).unwrap();
+        let mut depth = DepthBuffer::new(&mut depths, ds.0, ds.1).unwrap();
+        let r = render_scene(&renderer, &mut frame, &mut depth, &mut scratch, &mut stats);
+        assert_eq!(r, too_small(buffer, size), "frame {fs:?}, depth {ds:?}");
+        let r = renderer.renderer().draw_object(
+            &objects[0],
+            &mut scratch,
+            &mut frame,
+            &mut depth,
+            &mut stats,
+        );
+        assert_eq!(r, too_small(buffer, size), "draw_object: {fs:?}, {ds:?}");
+        assert!(
+            pixels.iter().all(|&p| p == 0),
+            "nothing drawn, not even cleared"
+        );
+    }
+    // A band may hold any rows, but not fewer columns.
+    let (mut pixels, mut depths) = (vec![0u8; 32 * 8], vec![0u16; 32 * 8]);
+    let mut band = Framebuffer::band(&mut pixels, 32, 8, 8).unwrap();
+    let mut depth = DepthBuffer::band(&mut depths, 32, 8, 8).unwrap();
+    render_scene(&renderer, &mut band, &mut depth, &mut scratch, &mut stats).unwrap();
+    let mut band = Framebuffer::band(&mut pixels, 31, 8, 8).unwrap();
+    let mut depth = DepthBuffer::band(&mut depths, 31, 8, 8).unwrap();
+    let r = render_scene(&renderer, &mut band, &mut depth, &mut scratch, &mut stats);
+    assert_eq!(r, too_small(TargetBuffer::Frame, (31, 8)));
+
+    // The banded entries: the picture size they are given.
+    for size in [(31u16, 24u16), (32, 23)] {
+        let (mut pixels, mut depths) = (vec![0u8; 32 * 24], vec![0u16; 32 * 24]);
+        let mut polygons = [PolygonRows::NEVER; 6];
+        let band_scratch = BandScratch {
+            vertices: &mut scratch,
+            polygons: &mut polygons,
+        };
+        let r = render_in_bands(
+            &renderer,
+            (&mut pixels, &mut depths),
+            (size.0, size.1, 8),
+            band_scratch,
+            &mut stats,
+            |_, _| Ok::<(), RenderError>(()),
+        );
+        assert_eq!(r, too_small(TargetBuffer::Frame, size), "render_in_bands");
+        let (mut vertices, mut polygons) =
+            ([CompactVertex::default(); 8], [PolygonTop::default(); 6]);
+        let compact = CompactBandScratch {
+            vertices: &mut vertices,
+            levels: &mut [],
+            polygons: &mut polygons,
+        };
+        let r = render_in_compact_bands(
+            &renderer,
+            (&mut pixels, &mut depths),
+            (size.0, size.1, 8),
+            compact,
+            &mut stats,
+            |_, _| Ok::<(), RenderError>(()),
+        );
+        assert_eq!(r, too_small(TargetBuffer::Frame, size), "compact bands");
+        let (mut triangles, mut order) = (vec![StoredTriangle::DEFAULT; 16], vec![0u32; 16]);
+        let mut active = vec![0u32; 16];
+        let memory = ScanLineMemory {
+            triangles: &mut triangles,
+            order: &mut order,
+            active: &mut active,
+            pixels: &mut pixels,
+            depths: &mut depths,
+        };
+        let r = render_scan_lines(
+            &renderer,
+            (size.0, size.1, 8),
+            &mut scratch,
+            memory,
+            &mut stats,
+            |_, _| Ok::<(), RenderError>(()),
+        );
+        assert_eq!(r, too_small(TargetBuffer::Frame, size), "scan-line");
+    }
+
+    // The methods without a depth buffer.
+    let mut pixels = vec![0u8; 32 * 24];
+    let mut frame = Framebuffer::new(&mut pixels, 32, 23).unwrap();
+    let r = render_back_faces(&renderer, &mut frame, &mut scratch, &mut stats);
+    assert_eq!(r, too_small(TargetBuffer::Frame, (32, 23)), "back faces");
+    let (mut triangles, mut order) = (vec![StoredTriangle::DEFAULT; 16], vec![0u32; 16]);
+    let mut normals = vec![Normal::DEFAULT; 16];
+    let memory = PainterMemory {
+        triangles: &mut triangles,
+        order: &mut order,
+        normals: &mut normals,
+    };
+    let policy = SplitPolicy::Budget(4);
+    let r = render_painter(
+        &renderer,
+        &mut frame,
+        &mut scratch,
+        memory,
+        policy,
+        &mut stats,
+    );
+    assert_eq!(r, too_small(TargetBuffer::Frame, (32, 23)), "painter");
+    let (mut candidates, mut windows) = (vec![0u32; 32], vec![Area::DEFAULT; 16]);
+    let memory = WarnockMemory {
+        triangles: &mut triangles,
+        candidates: &mut candidates,
+        windows: &mut windows,
+    };
+    let r = render_warnock(&renderer, &mut frame, &mut scratch, memory, &mut stats);
+    assert_eq!(r, too_small(TargetBuffer::Frame, (32, 23)), "Warnock");
+    assert!(
+        pixels.iter().all(|&p| p == 0),
+        "nothing drawn, not even cleared"
+    );
 }

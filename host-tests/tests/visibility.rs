@@ -4,9 +4,9 @@
 use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::vector::Vec3;
+use zscan::raster::triangle::ShadeMode;
 use zscan::render::{RenderError, Renderer};
 use zscan::scene::{Object, Scene};
-use zscan::shade::span_writer::ShadeMode;
 use zscan::visibility::Visibility;
 use zscan_host::cli::render::load_scene;
 use zscan_host::core_render::{render_visible, scene_of, to_core};
@@ -103,8 +103,9 @@ fn scene_files() -> Vec<std::path::PathBuf> {
     paths
 }
 
-/// Every scene file of `host-tests/scenes/` that Warnock's method can store (the demo's Phong
-/// object carries normals: refused by name) draws the 32-bit z-buffer's picture.
+/// Every scene file of `host-tests/scenes/` that Warnock's method can draw (a core-lit Phong
+/// object carries normals, a fast Gouraud one would be drawn in windows: both refused by name)
+/// draws the 32-bit z-buffer's picture.
 #[test]
 fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
     let paths = scene_files();
@@ -119,12 +120,13 @@ fn warnock_draws_the_z_buffer_pictures_of_the_scene_files() {
                 drawn += 1;
             }
             Err(e) => {
-                assert!(e.contains("a Phong object cannot be stored"), "{e}");
+                let fast = e.contains("fast Gouraud");
+                assert!(fast || e.contains("a Phong object cannot be stored"), "{e}");
                 refused += 1;
             }
         }
     }
-    println!("scene files: Warnock drew {drawn}, refused {refused} (Phong)");
+    println!("scene files: Warnock drew {drawn}, refused {refused} (Phong, fast Gouraud)");
     // The four standard scenes at least (demo and example hold Phong objects).
     assert!(drawn >= 4, "{drawn} of {} scene files", paths.len());
 }
@@ -177,8 +179,8 @@ fn warnock_keeps_the_z_buffer_tie_rule_on_coplanar_faces() {
 /// Warnock's caller memory exhausted: each stack named with its capacity, the store too.
 #[test]
 fn warnock_names_each_exhausted_capacity() {
+    use zscan::output::Framebuffer;
     use zscan::render::{PreparedVertex, RenderStats};
-    use zscan::target::Framebuffer;
     use zscan::visibility::{render_warnock, Area, StoredTriangle, WarnockMemory};
     let core = standard_scene_core("sphere");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
@@ -363,7 +365,7 @@ fn random_scenes_agree_with_the_z_buffer() {
                 painter_wrong += differing(&p, &z);
                 drawn += 1;
             }
-            Err(RenderError::PainterCycle | RenderError::PieceCutTooOften { .. }) => refused += 1,
+            Err(RenderError::PainterCycle) => refused += 1,
             Err(e) => panic!("case {case}: {e}"),
         }
     }
@@ -375,13 +377,9 @@ fn random_scenes_agree_with_the_z_buffer() {
     let w = windows;
     assert!(w.empty > 0 && w.one > 0 && w.front > 0 && w.pixel > 0 && w.split > 0);
     assert_eq!(painter_wrong, 0);
-    // Dense soups of large interpenetrating triangles: the painter refuses some (measured with
-    // pieces judged by their whole triangles: 57 drawn, 143 refused; by their outlines: see
-    // the line printed above); what it draws is exact.
-    assert!(
-        drawn > refused,
-        "the painter should order most random scenes"
-    );
+    // Dense soups of large interpenetrating triangles: the painter, its pieces judged by their
+    // outlines and cut as often as its store and split budget allow, orders every one.
+    assert_eq!(refused, 0, "the painter refused {refused} random scenes");
 }
 
 #[test]
@@ -562,4 +560,313 @@ fn failure_pictures_are_current_and_their_counts_stated() {
         }
         assert!(shown > 0, "{name}.png is shown nowhere in the docs");
     }
+}
+
+/// A camera at `eye` looking at `target`, 60°, near 0.5, far 50, `w × h`.
+fn camera_at(
+    eye: [f64; 3],
+    target: [f64; 3],
+    (w, h): (u16, u16),
+) -> zscan::geometry::camera::Camera {
+    use zscan::geometry::camera::{Camera, Lens, Viewport};
+    use zscan::geometry::trig::BinaryAngle;
+    let lens = Lens::new(
+        BinaryAngle::from_degrees(60),
+        Coord::lit("0.5"),
+        Coord::lit("50"),
+    );
+    let (e, t) = (
+        v(eye[0], eye[1], eye[2]),
+        v(target[0], target[1], target[2]),
+    );
+    Camera::look_at(e, t, Vec3::from_int(0, 1, 0), lens, Viewport::new(w, h)).unwrap()
+}
+
+/// The 12 triangles of the cube of centre `c` and half side `r`, its corners turned by
+/// `turn` (a function of the offset from the centre), one level per face.
+fn cube_soup(
+    c: [f64; 3],
+    r: f64,
+    turn: impl Fn([f64; 3]) -> [f64; 3],
+    levels: [u8; 6],
+) -> zscan_host::failures::Soup {
+    let corner = |i: usize| {
+        let o = [0, 1, 2].map(|k| if i >> k & 1 == 1 { r } else { -r });
+        let o = turn(o);
+        v(c[0] + o[0], c[1] + o[1], c[2] + o[2])
+    };
+    let vs: Vec<Vec3> = (0..8).map(corner).collect();
+    // Faces as corner quads (bit k of a corner index: coordinate k is +r).
+    let faces: [[u16; 4]; 6] = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let is: Vec<u16> = faces
+        .iter()
+        .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
+        .collect();
+    let ls: Vec<u8> = levels.iter().flat_map(|&l| [l, l]).collect();
+    (vs, is, ls)
+}
+
+/// Turns an offset by `a` about y then `b` about x (radians).
+fn turned(a: f64, b: f64) -> impl Fn([f64; 3]) -> [f64; 3] {
+    move |[x, y, z]: [f64; 3]| {
+        let (x, z) = (x * a.cos() + z * a.sin(), -x * a.sin() + z * a.cos());
+        let (y, z) = (y * b.cos() - z * b.sin(), y * b.sin() + z * b.cos());
+        [x, y, z]
+    }
+}
+
+/// The painter's picture and the 32-bit z-buffer's of `tables` (one object each, in order).
+fn painter_and_z(
+    tables: &[zscan_host::failures::Soup],
+    camera: zscan::geometry::camera::Camera,
+    size: (u16, u16),
+    splits: usize,
+) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+    let objects: Vec<Object<'_>> = tables
+        .iter()
+        .map(|(v, i, l)| soup_objects(v, i, l))
+        .collect();
+    let scene = scene_of(&objects, camera);
+    let (p, z) = both(&scene, size, Visibility::Painter, Some(splits), 1)?;
+    assert!(
+        z.iter().filter(|&&p| p != 0).count() > 100,
+        "the z-buffer drew little"
+    );
+    Ok((p, z))
+}
+
+/// Two squares at one depth facing the camera, the second turned 30° about the view axis
+/// (their depths tie exactly wherever both cover): the z-buffer keeps the one drawn first, and
+/// so does the painter, in either scene order, as one object or two.
+#[test]
+fn painter_keeps_the_z_buffer_tie_rule_on_coplanar_quads() {
+    let square = |turn: f64, level: u8| {
+        let corners: Vec<Vec3> = (0..4)
+            .map(|k| {
+                let a = turn + k as f64 * std::f64::consts::FRAC_PI_2 + std::f64::consts::FRAC_PI_4;
+                v(1.6 * a.cos(), 1.6 * a.sin(), 0.0)
+            })
+            .collect();
+        (corners, vec![0u16, 1, 2, 0, 2, 3], vec![level, level])
+    };
+    let (a, b) = (square(0.0, 90), square(std::f64::consts::PI / 6.0, 200));
+    let centre = 60 * 160 + 80;
+    for (first, second) in [(&a, &b), (&b, &a)] {
+        // Two objects.
+        let tables = [first.clone(), second.clone()];
+        let (p, z) = painter_and_z(&tables, camera(160, 120), (160, 120), 64).unwrap();
+        assert_eq!(z[centre], first.2[0]);
+        assert_eq!(differing(&p, &z), 0, "two objects, {} first", first.2[0]);
+        // One object, the first square's triangles stored first.
+        let mut one = first.clone();
+        one.0.extend(second.0.iter().copied());
+        one.1.extend(second.1.iter().map(|i| i + 4));
+        one.2.extend(second.2.iter().copied());
+        let (p, z) = painter_and_z(&[one], camera(160, 120), (160, 120), 64).unwrap();
+        assert_eq!(z[centre], first.2[0]);
+        assert_eq!(differing(&p, &z), 0, "one object, {} first", first.2[0]);
+    }
+}
+
+/// Rectangles on the planes of a cube's faces that face the camera (lattice corners, depths
+/// tied exactly where they overlap the face), stored before the cube and after it, and a
+/// triangle crossing a face's plane (cut by it, the tie on the cut line kept as the z-buffer
+/// keeps it): the painter draws the z-buffer's picture.
+#[test]
+fn painter_keeps_the_z_buffer_tie_rule_on_faces_of_a_cube() {
+    let cube = cube_soup([0.0; 3], 1.0, |o| o, [40, 70, 100, 130, 160, 190]);
+    // On the face z = 1 (facing the camera at z = 6), on the lattice.
+    let decal = (
+        vec![
+            v(-1.0, -1.0, 1.0),
+            v(0.0, -1.0, 1.0),
+            v(0.0, 0.0, 1.0),
+            v(-1.0, 0.0, 1.0),
+        ],
+        vec![0u16, 1, 2, 0, 2, 3],
+        vec![250u8, 250],
+    );
+    // Through the face z = 1 along x = 0.5: half in front of it, half behind.
+    let crossing = (
+        vec![v(0.5, -0.8, 0.0), v(0.5, 0.8, 0.0), v(0.5, 0.0, 2.0)],
+        vec![0u16, 1, 2],
+        vec![220u8],
+    );
+    let (w, h) = (160, 120);
+    for tables in [
+        vec![decal.clone(), cube.clone()],
+        vec![cube.clone(), decal.clone()],
+        vec![cube.clone(), decal.clone(), crossing.clone()],
+        vec![crossing.clone(), decal.clone(), cube.clone()],
+    ] {
+        let order: Vec<u8> = tables.iter().map(|t| t.2[0]).collect();
+        let (p, z) = painter_and_z(&tables, camera(w, h), (w, h), 64).unwrap();
+        assert_eq!(differing(&p, &z), 0, "objects {order:?}");
+    }
+}
+
+/// Two interpenetrating cubes (one turned), seen head-on and from an off-centre 2:1 view and a
+/// 400 × 300 one: pieces cut more than three times are kept (their cuts are a chain in the
+/// store), and the painter draws the z-buffer's picture with the split budget and store its
+/// frame reports; one split fewer is refused by name.
+#[test]
+fn painter_draws_interpenetrating_cubes_from_any_view() {
+    let a = cube_soup([-0.35, 0.0, 0.0], 0.8, |o| o, [40, 60, 80, 100, 120, 140]);
+    let b = cube_soup(
+        [0.35, 0.2, 0.25],
+        0.8,
+        turned(0.5, 0.35),
+        [150, 170, 190, 210, 230, 250],
+    );
+    let views = [
+        ([0.0, 0.0, 6.0], [0.0, 0.0, 0.0], (160, 120)),
+        ([3.5, 2.5, 4.0], [0.8, 0.3, 0.0], (200, 100)),
+        ([-2.0, 3.0, 5.0], [0.0, 0.0, 0.0], (400, 300)),
+    ];
+    for (eye, target, size) in views {
+        let tables = [a.clone(), b.clone()];
+        // Closed cubes: their back faces culled.
+        let objects: Vec<Object<'_>> = tables
+            .iter()
+            .map(|(v, i, l)| {
+                let mut o = soup_objects(v, i, l);
+                o.cull_back_faces = true;
+                o
+            })
+            .collect();
+        let scene = scene_of(&objects, camera_at(eye, target, size));
+        let renderer = Renderer::for_scene(&scene).unwrap();
+        let (p, stats) = render_visible(&renderer, size, Visibility::Painter, Some(4096), 1)
+            .map_err(|e| format!("{eye:?}: {e}"))
+            .unwrap();
+        let (z, _) = render_visible(&renderer, size, Visibility::ZBuffer, None, size.1).unwrap();
+        let m = stats.method;
+        println!("interpenetrating cubes from {eye:?}, {size:?}: {m:?}");
+        assert_eq!(differing(&p, &z), 0, "{eye:?}");
+        let needed = m.painter_splits as usize;
+        assert!(
+            needed > 0,
+            "the cubes pass through each other: test 6 splits"
+        );
+        let (again, _) =
+            render_visible(&renderer, size, Visibility::Painter, Some(needed), 1).unwrap();
+        assert_eq!(again, p);
+        assert_eq!(
+            render_visible(&renderer, size, Visibility::Painter, Some(needed - 1), 1).err(),
+            Some(RenderError::SplitBudgetExhausted { budget: needed - 1 })
+        );
+    }
+}
+
+/// Fast Gouraud (16.16 steps from each span's first pixel) drawn in parts would differ from
+/// the z-buffer by a level at some pixels: Warnock's subdivision refuses a fast Gouraud object,
+/// the painter draws whole fast Gouraud triangles (the z-buffer's picture) and refuses to split
+/// one, naming the object; in exact Gouraud both draw the z-buffer's picture.
+#[test]
+fn fast_gouraud_is_drawn_whole_or_refused_by_name() {
+    use zscan::scene::Intensities;
+    // The standard cube, convex: the painter orders its front faces without a split.
+    let core = standard_scene_core("cube");
+    let vp = *core.camera.viewport();
+    let size = (vp.width, vp.height);
+    let objects = [core.object(ShadeMode::GouraudFast).unwrap()];
+    let scene = scene_of(&objects, core.camera);
+    let (p, z) = both(&scene, size, Visibility::Painter, Some(64), 1).unwrap();
+    assert_eq!(differing(&p, &z), 0);
+    assert_eq!(
+        both(&scene, size, Visibility::Warnock, None, 1).err(),
+        Some(RenderError::FastGouraudInParts { object: 0 })
+    );
+    // Two interpenetrating triangles, one per object, levels per vertex: the painter splits one.
+    let (vs, is, _) = interpenetrating();
+    let levels: Vec<u8> = (0..vs.len()).map(|k| 30 + 37 * k as u8).collect();
+    for (shade, refused) in [
+        (ShadeMode::GouraudExact, false),
+        (ShadeMode::GouraudFast, true),
+    ] {
+        // One triangle per object.
+        let mut first = soup_objects(&vs, &is[..3], &levels);
+        first.intensities = Intensities::PerVertex(&levels);
+        first.shade = shade;
+        let mut second = soup_objects(&vs, &is[3..], &levels);
+        second.intensities = Intensities::PerVertex(&levels);
+        second.shade = shade;
+        let objects = [first, second];
+        let scene = scene_of(&objects, camera(160, 120));
+        for method in [Visibility::Painter, Visibility::Warnock] {
+            let r = both(&scene, (160, 120), method, Some(16), 1);
+            if refused {
+                let e = r.err();
+                assert!(
+                    matches!(e, Some(RenderError::FastGouraudInParts { object: 0 | 1 })),
+                    "{method}: {e:?}"
+                );
+            } else {
+                let (m, z) = r.unwrap();
+                assert_eq!(differing(&m, &z), 0, "{method}");
+            }
+        }
+    }
+}
+
+/// The scan-line at a 16-bit depth width draws the 16-bit z-buffer's picture, z-fighting
+/// included (two surfaces 0.5 apart 40 units away at far/near = 1000, where the 16-bit and the
+/// 32-bit pictures differ), in bands of any height; at 32 bits, the 32-bit one.
+#[test]
+fn scan_line_draws_the_z_buffer_picture_at_the_scene_depth_width() {
+    use zscan_host::core_render::render_visible_at;
+    let (w, h) = (160u16, 120u16);
+    let (vs, is, ls) = far_pair(0.5);
+    let objects = [soup_objects(&vs, &is, &ls)];
+    let scene = scene_of(&objects, far_camera(w, h, "0.05"));
+    let renderer = Renderer::for_scene(&scene).unwrap();
+    let z16 = render_visible_at::<u16, 4>(&renderer, (w, h), Visibility::ZBuffer, None, h)
+        .unwrap()
+        .0;
+    let z32 = render_visible_at::<u32, 4>(&renderer, (w, h), Visibility::ZBuffer, None, h)
+        .unwrap()
+        .0;
+    assert_eq!(
+        differing(&z16, &z32),
+        Z16_RATIO1000_WRONG,
+        "the widths matter here"
+    );
+    for rows in [1, 7, h] {
+        let s16 = render_visible_at::<u16, 4>(&renderer, (w, h), Visibility::ScanLine, None, rows)
+            .unwrap()
+            .0;
+        let s32 = render_visible_at::<u32, 4>(&renderer, (w, h), Visibility::ScanLine, None, rows)
+            .unwrap()
+            .0;
+        assert_eq!(differing(&s16, &z16), 0, "16-bit, bands of {rows}");
+        assert_eq!(differing(&s32, &z32), 0, "32-bit, bands of {rows}");
+    }
+}
+
+/// A 16-bit scene file drawn by `--visibility scanline` is its 16-bit z-buffer's picture.
+#[test]
+fn scene_files_scan_line_at_their_depth_bits() {
+    let mut drawn = 0;
+    for path in scene_files() {
+        let scene = load_scene(&path).unwrap();
+        if scene.depth_bits != 16 {
+            continue;
+        }
+        let z = scene.render_by::<u16>(None, Visibility::ZBuffer).unwrap();
+        if let Ok(s) = scene.render_by::<u16>(Some(3), Visibility::ScanLine) {
+            assert_eq!(differing(&s.pixels, &z.pixels), 0, "{}", path.display());
+            drawn += 1;
+        }
+    }
+    assert!(
+        drawn >= 4,
+        "{drawn} 16-bit scene files drawn by the scan-line"
+    );
 }

@@ -22,6 +22,7 @@
 
 pub mod euclid;
 pub mod isqrt;
+pub(crate) mod scale;
 pub mod wide;
 
 /// True where a 32-bit division is one instruction: x86, x86-64, AArch64, and 32-bit Arm with
@@ -47,7 +48,7 @@ pub const NARROW_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_has_a
 /// [`euclid::div_floor_i64`]'s 32-bit case, the planes' 32-bit set-up) would only cost there.
 pub const WIDE_REGISTERS: bool = cfg!(target_pointer_width = "64");
 
-/// Whether small triangles take the tiny-triangle writer (`shade/tiny_triangle.rs`): on 32-bit
+/// Whether small triangles take the tiny-triangle writer (`raster/triangle/tiny.rs`): on 32-bit
 /// cores with a hardware divider, where its 32-bit set-up and one division per edge and row
 /// replace the general path's spilled state (Cortex-M4 `frame_bunny` −19 %, `frame_sphere`
 /// −11 %, `frame_bunny_bands16` −13 %). Not on cores that divide in software (Cortex-M0:
@@ -55,3 +56,17 @@ pub const WIDE_REGISTERS: bool = cfg!(target_pointer_width = "64");
 /// general path is already 64-bit arithmetic (x86-64 `frame_sphere` +1.7 %,
 /// `frame_bunny_flat` +10.8 %). The pictures are the same either way (tested).
 pub const TINY_WRITER: bool = HARDWARE_DIVIDE && !WIDE_REGISTERS;
+
+/// `v / 2^s` rounded to nearest (ties toward +∞); `s = 0` returns `v`, `s > 62` gives 0.
+/// Never overflows: the rounding bit is added after the shift.
+#[inline(always)]
+pub(crate) const fn shr_round(v: i64, s: u32) -> i64 {
+    if s == 0 {
+        v
+    } else if s > 62 {
+        0
+    } else {
+        // |v >> s| ≤ 2^62, so adding the rounding bit cannot overflow.
+        (v >> s) + ((v >> (s - 1)) & 1)
+    }
+}

@@ -2,7 +2,8 @@
 //!
 //! Role: every stage that needs a full product of two `i32` (the vertex transform, the
 //! projection, the outcodes, the back-face test, the reciprocal divisions of
-//! [`euclid`](super::euclid)) takes it here. Where the core has the instruction (`smull`,
+//! [`euclid`](super::euclid), the reciprocal [`reciprocal`] of the projection, the lighting and
+//! the shadow pass) takes it here. Where the core has the instruction (`smull`,
 //! `umull`, `imul`) it is the plain product; on ARMv6-M ([`NARROW_MULTIPLY`])
 //! it is four 16×16-bit products inline instead of a library call.
 //!
@@ -55,6 +56,43 @@ pub const fn mul_wide_u_split(a: u32, b: u32) -> u64 {
     let (ah, bh) = (a >> 16, b >> 16);
     let middle = (ah * bl) as u64 + (al * bh) as u64;
     ((((ah * bh) as u64) << 32) + (middle << 16)) + (al * bl) as u64
+}
+
+/// `r ≈ 2^62 / (z·2^n)` with `n = z.leading_zeros()`, returned as `(r, n)`; `r ∈ [2^30, 2^31)`
+/// and `0 ≤ exact − r ≤ 2` (exact being the real quotient). `z = 0` gives `(2^31, 32)`.
+///
+/// One 32-bit division (a 16-bit estimate) and two Newton–Raphson steps `r += r·(1 − z_n·r)`,
+/// all in 32-bit registers (each step is one 32×32→64 unsigned and one signed multiply):
+/// - the seed `r_0 = ⌊(2^32 − 1)/(⌊z_n/2^16⌋ + 1)⌋·2^14 < 2^31` is below `2^62/z_n` (the
+///   divisor is rounded up), and Newton's iteration for a reciprocal never overshoots
+///   (`r' = 1/m − m·(1/m − r)²` in exact arithmetic, and both floors below only lower it), so
+///   every iterate lies in `[0, 2^62/z_n] ⊂ [0, 2^31]`;
+/// - `e = ⌊(2^62 − z_n·r)/2^30⌋` (Q32 of `1 − m·r`) is `≥ 0` and `< 2^18` after the seed, and
+///   small after one step, so it is the low word of the 64-bit shift: bits 30..61 of
+///   `−z_n·r mod 2^64` (the `2^62` only touches bits 62 and 63);
+/// - `⌊r·e/2^32⌋` is the high word of a signed 32×32 product (`r < 2^31` before each step).
+///
+/// The iterate ends in `[2^30 − 1, 2^31)`; only `z_n = 2^32 − 1` gives `2^30 − 1`, which the
+/// final `max` raises to `2^30` (within 2 of the exact `2^30 + 2^-2`). This is exactly the
+/// former 64-bit formulation (kept as the tests' oracle; equal on every `z`, checked
+/// exhaustively by the ignored test `reciprocal_matches_64_bit_oracle_everywhere` and densely
+/// by the default tests).
+#[inline]
+pub fn reciprocal(z: u32) -> (u32, u32) {
+    if z == 0 {
+        return (1 << 31, 32);
+    }
+    let n = z.leading_zeros();
+    let zn = z << n; // [2^31, 2^32)
+    let d16 = (zn >> 16) + 1; // (2^15, 2^16], rounds the divisor up: r0 is an underestimate
+    let mut r = (u32::MAX / d16) << 14; // Q30 of 1/m, m = zn/2^32; < 2^31
+    for _ in 0..2 {
+        let prod = mul_wide_u(zn, r); // ≈ 2^62, below 2^63
+        let e = (prod.wrapping_neg() >> 30) as u32 as i32; // ⌊(2^62 − prod)/2^30⌋, |e| < 2^18
+        let d = (mul_wide(r as i32, e) >> 32) as i32; // r < 2^31
+        r = r.wrapping_add(d as u32); // stays in [0, 2^31] (doc)
+    }
+    (r.max(1 << 30), n)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! [`ClipVolume`] clipped (Sutherland–Hodgman, course exercise 12), projected and fanned. The
 //! one path from a polygon's vertices to projected triangles, shared by the renderer's polygon
 //! stage (`render::polygon_stage`, perspective projection, corners with attributes) and the
-//! shadow map's pass 1 (`shade::shadow`, orthographic or perspective, depth only): each
+//! shadow map's pass 1 (`shadow`, orthographic or perspective, depth only): each
 //! passes its projection and its triangle consumer.
 //!
 //! Numeric contract: none of its own; the clipped polygon holds at most [`CLIP_CAPACITY`]

@@ -66,7 +66,7 @@ use crate::arith::wide::mul_wide;
 use crate::geometry::camera::Camera;
 use crate::geometry::fixed::Coord;
 use crate::geometry::vector::Vec3;
-use crate::raster::edge_walker::MAX_COORD;
+use crate::raster::triangle::edge_walker::MAX_COORD;
 
 /// A polygon vertex in the observer frame with `A` integer attributes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -109,8 +109,8 @@ pub const MAX_PLANE_COEFF_BITS: i32 = 1 << 29;
 pub struct Plane {
     a: i32,
     b: i32,
-    c: i32,
-    d: i32,
+    pub(crate) c: i32,
+    pub(crate) d: i32,
 }
 
 impl Plane {
@@ -151,6 +151,7 @@ fn intersect<const A: usize>(
     q: &ClipVertex<A>,
     dp: i64,
     dq: i64,
+    affine: bool,
 ) -> ClipVertex<A> {
     let dp = dp.unsigned_abs();
     let dq = dq.unsigned_abs();
@@ -172,8 +173,9 @@ fn intersect<const A: usize>(
     // that screen-affine interpolant at its projection: screen parameter
     // s = t·z_q / z(t) (z(t) = the new vertex's z), rounded to nearest. Otherwise (the near
     // plane, an end behind the eye) there is no screen interpolant to keep: linear in 3D.
+    // Under a parallel projection (`affine`) the screen parameter is `t` itself: linear in 3D.
     let z_new = pos.bits()[2] as i128;
-    let attrs = if pp[2] > 0 && qq[2] > 0 && z_new > 0 {
+    let attrs = if !affine && pp[2] > 0 && qq[2] > 0 && z_new > 0 {
         let (num, den) = (a as i128 * qq[2] as i128, den as i128 * z_new);
         core::array::from_fn(|i| {
             let delta = q.attrs[i] as i128 - p.attrs[i] as i128;
@@ -188,11 +190,14 @@ fn intersect<const A: usize>(
 }
 
 /// Clips the closed polygon `input` to the inside of `plane`, appending the result to `out`
-/// (Sutherland–Hodgman, one plane). `out` is cleared first.
+/// (Sutherland–Hodgman, one plane). `out` is cleared first. `affine` is true when the result
+/// is projected in parallel (an orthographic camera): the attributes of new vertices then
+/// follow that projection's screen interpolant (see `intersect`).
 pub fn clip_to_plane<const A: usize, const N: usize>(
     plane: &Plane,
     input: &[ClipVertex<A>],
     out: &mut Vec<ClipVertex<A>, N>,
+    affine: bool,
 ) -> Result<(), ClipError> {
     out.clear();
     let Some(last) = input.last() else {
@@ -205,10 +210,10 @@ pub fn clip_to_plane<const A: usize, const N: usize>(
         match (ds >= 0, de >= 0) {
             (true, true) => out.push(*e).map_err(|_| ClipError::CapacityExceeded)?,
             (true, false) => out
-                .push(intersect(s, e, ds, de))
+                .push(intersect(s, e, ds, de, affine))
                 .map_err(|_| ClipError::CapacityExceeded)?,
             (false, true) => {
-                out.push(intersect(e, s, de, ds))
+                out.push(intersect(e, s, de, ds, affine))
                     .map_err(|_| ClipError::CapacityExceeded)?;
                 out.push(*e).map_err(|_| ClipError::CapacityExceeded)?;
             }
@@ -224,6 +229,8 @@ pub fn clip_to_plane<const A: usize, const N: usize>(
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Frustum {
     planes: [Plane; 6],
+    /// The camera is orthographic: the screen is affine in the observer frame.
+    affine: bool,
 }
 
 /// Index of the near plane in [`Frustum::planes`] (bit 0 of an outcode).
@@ -249,28 +256,64 @@ impl Frustum {
         let zero = Coord::ZERO;
         // Extents in Q16 pixels.
         let half = 1i64 << 15;
-        let side = |p: Coord, n: u16, f: Coord| -> Coord {
+        // The guard extent `g` in Q16 pixels along one axis.
+        let extent = |p: Coord, n: u16| -> i64 {
             let p = p.to_bits() as i64;
             let e = (p + half).max(((n as i64) << 16) - half - p).max(1 << 16);
             let range = ((MAX_COORD as i64) >> S.min(16)) << 16; // Q16 pixels
             let cap = ((range - p.abs()) / 2).max(1 << 16);
-            let g = (e * guard).min(cap);
-            // c = g / f in Q16, rounded down (a slightly narrower band is always safe).
-            let c = (g << 16) / (f.to_bits().max(1) as i64);
-            Coord::from_bits(c.clamp(1, MAX_PLANE_COEFF_BITS as i64) as i32)
+            (e * guard).min(cap)
         };
-        let cx = side(vp.principal_x, vp.width, camera.focal_x());
-        let cy = side(vp.principal_y, vp.height, camera.focal_y());
+        let (gx, gy) = (
+            extent(vp.principal_x, vp.width),
+            extent(vp.principal_y, vp.height),
+        );
         let p = Plane::new;
+        let (near, far) = (
+            p(zero, zero, one, -lens.near)?,
+            p(zero, zero, -one, lens.far)?,
+        );
+        let planes = match camera.ortho_scales() {
+            None => {
+                // c = g / f in Q16, rounded down (a slightly narrower band is always safe).
+                let side = |g: i64, f: Coord| -> Coord {
+                    let c = (g << 16) / (f.to_bits().max(1) as i64);
+                    Coord::from_bits(c.clamp(1, MAX_PLANE_COEFF_BITS as i64) as i32)
+                };
+                let cx = side(gx, camera.focal_x());
+                let cy = side(gy, camera.focal_y());
+                [
+                    near,
+                    far,
+                    p(one, zero, cx, zero)?,
+                    p(-one, zero, cx, zero)?,
+                    p(zero, one, cy, zero)?,
+                    p(zero, -one, cy, zero)?,
+                ]
+            }
+            Some([(nx, dx), (ny, dy)]) => {
+                // Orthographic: the slab |x| ≤ g / s_x world units, rounded down, below
+                // 2^30 raw (so that the narrow outcode's sums stay in `i32`); a point beyond
+                // 2^30 raw is never inside the guard band of a scale ≥ 2^-16 px per unit.
+                let side = |g: i64, num: u128, den: u128| -> Coord {
+                    let d = (g as u128 * den) / num.max(1); // g < 2^45, den < 2^47
+                    Coord::from_bits(d.clamp(1, (1 << 30) - 1) as i32)
+                };
+                let dx = side(gx, nx, dx);
+                let dy = side(gy, ny, dy);
+                [
+                    near,
+                    far,
+                    p(one, zero, zero, dx)?,
+                    p(-one, zero, zero, dx)?,
+                    p(zero, one, zero, dy)?,
+                    p(zero, -one, zero, dy)?,
+                ]
+            }
+        };
         Ok(Frustum {
-            planes: [
-                p(zero, zero, one, -lens.near)?,
-                p(zero, zero, -one, lens.far)?,
-                p(one, zero, cx, zero)?,
-                p(-one, zero, cx, zero)?,
-                p(zero, one, cy, zero)?,
-                p(zero, -one, cy, zero)?,
-            ],
+            planes,
+            affine: camera.is_orthographic(),
         })
     }
 
@@ -282,7 +325,8 @@ impl Frustum {
     /// Bit `i` set when `p` is outside plane `i`.
     ///
     /// The planes have the shapes [`Frustum::new`] gives them (`z − near`, `far − z`,
-    /// `±x + cx·z`, `±y + cy·z`), so each distance is formed from its non-zero terms only: the
+    /// `±x + cx·z + dx`, `±y + cy·z + dy`, with `d = 0` for a perspective camera and `c = 0`
+    /// for an orthographic one), so each distance is formed from its non-zero terms only: the
     /// same `i64` values as `Plane::distance` (tested) with two multiplies instead of
     /// eighteen — this runs once per vertex per frame.
     #[inline]
@@ -292,8 +336,8 @@ impl Frustum {
         let (x, y, z) = ((x as i64) << 16, (y as i64) << 16, z as i64);
         let zn = (z << 16) + ((p[NEAR].d as i64) << 16); // z − near
         let zf = ((p[FAR].d as i64) << 16) - (z << 16); // far − z
-        let cxz = p[2].c as i64 * z;
-        let cyz = p[4].c as i64 * z;
+        let cxz = p[2].c as i64 * z + ((p[2].d as i64) << 16);
+        let cyz = p[4].c as i64 * z + ((p[4].d as i64) << 16);
         ((zn < 0) as u8)
             | (((zf < 0) as u8) << 1)
             | (((x + cxz < 0) as u8) << 2)
@@ -304,15 +348,18 @@ impl Frustum {
 
     /// True when [`Frustum::outcode_narrow`] equals [`Frustum::outcode`] for every point whose
     /// raw coordinates satisfy `|x| ≤ bound[0]`, `|y| ≤ bound[1]`, `|z| ≤ bound[2]`: all three
-    /// below `2^30`, `c·bound[2] < 2^46` for both side coefficients (so `|⌊c·z / 2^16⌋| ≤ 2^30`)
-    /// and near and far `|d| ≤ 2^30`; then every sum below stays within `±2^31`. Once per
-    /// object.
+    /// below `2^30`, `c·bound[2] + |d|·2^16 < 2^46` for both side planes (so
+    /// `|⌊c·z / 2^16⌋ + d| ≤ 2^30`) and near and far `|d| ≤ 2^30`; then every sum below stays
+    /// within `±2^31`. Once per object.
     pub fn narrow_fits(&self, bound: [u64; 3]) -> bool {
         let p = &self.planes;
-        let side = |c: i32| (c.unsigned_abs() as u64).saturating_mul(bound[2]) < 1 << 46;
+        let side = |pl: &Plane| {
+            let cz = (pl.c.unsigned_abs() as u64).saturating_mul(bound[2]);
+            cz.saturating_add((pl.d.unsigned_abs() as u64) << 16) < 1 << 46
+        };
         bound.iter().all(|&b| b < 1 << 30)
-            && side(p[2].c)
-            && side(p[4].c)
+            && side(&p[2])
+            && side(&p[4])
             && p[NEAR].d.unsigned_abs() <= 1 << 30
             && p[FAR].d.unsigned_abs() <= 1 << 30
     }
@@ -321,7 +368,8 @@ impl Frustum {
     /// [`Frustum::narrow_fits`] accepted (outside it the code is unspecified, never a panic).
     ///
     /// Each plane distance is a multiple of `2^16` plus at most the product `c·z`, so its sign
-    /// is decided on whole units: with `q = ⌊c·z / 2^16⌋` (remainder `r ∈ [0, 2^16)`),
+    /// is decided on whole units: with `q = ⌊c·z / 2^16⌋ + d` (remainder `r ∈ [0, 2^16)`; the
+    /// side planes' `d` is a whole number of raw units),
     /// `x·2^16 + c·z = (x + q)·2^16 + r < 0 ⟺ x + q < 0` and
     /// `c·z − x·2^16 < 0 ⟺ q − x < 0`; the near plane `(z + d)·2^16 < 0 ⟺ z + d < 0` and
     /// the far plane `(d − z)·2^16 < 0 ⟺ d − z < 0`. Within the bound the six sums do not
@@ -331,8 +379,8 @@ impl Frustum {
     pub fn outcode_narrow(&self, p: Vec3) -> u8 {
         let [x, y, z] = p.bits();
         let p = &self.planes;
-        let qx = (mul_wide(p[2].c, z) >> 16) as i32;
-        let qy = (mul_wide(p[4].c, z) >> 16) as i32;
+        let qx = ((mul_wide(p[2].c, z) >> 16) as i32).wrapping_add(p[2].d);
+        let qy = ((mul_wide(p[4].c, z) >> 16) as i32).wrapping_add(p[4].d);
         let s = [
             z.wrapping_add(p[NEAR].d),
             p[FAR].d.wrapping_sub(z),
@@ -361,6 +409,12 @@ impl Frustum {
 pub trait ClipVolume {
     /// The six planes.
     fn planes(&self) -> &[Plane; 6];
+
+    /// True when the volume's points are projected in parallel (an orthographic camera's
+    /// frustum): new vertices then take attributes linear in 3D at every plane.
+    fn screen_affine(&self) -> bool {
+        false
+    }
 
     /// Bit `i` set when `p` is outside plane `i` (the generic plane distances).
     fn outcode(&self, p: Vec3) -> u8 {
@@ -402,7 +456,7 @@ pub trait ClipVolume {
         let mut b: Vec<ClipVertex<A>, N> = Vec::new();
         for (i, pl) in self.planes().iter().enumerate() {
             if any & (1 << i) != 0 {
-                clip_to_plane(pl, &a, &mut b)?;
+                clip_to_plane(pl, &a, &mut b, self.screen_affine())?;
                 core::mem::swap(&mut a, &mut b);
                 if a.len() < 3 {
                     a.clear();
@@ -462,6 +516,10 @@ impl ClipVolume for Frustum {
         &self.planes
     }
 
+    fn screen_affine(&self) -> bool {
+        self.affine
+    }
+
     #[inline]
     fn outcode(&self, p: Vec3) -> u8 {
         Frustum::outcode(self, p)
@@ -472,8 +530,7 @@ impl ClipVolume for Frustum {
 mod tests {
     use super::*;
     use crate::geometry::camera::{FovAxis, Lens, Viewport};
-    use crate::geometry::trig::Angle;
-    use crate::project::Projector;
+    use crate::geometry::trig::BinaryAngle;
 
     fn v(x: f64, y: f64, z: f64) -> Vec3 {
         Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))
@@ -565,7 +622,7 @@ mod tests {
             cv(-1.0, 1.0, 1.0, 0),
         ];
         let mut out: Vec<ClipVertex<1>, 8> = Vec::new();
-        clip_to_plane(&pl, &sq, &mut out).unwrap();
+        clip_to_plane(&pl, &sq, &mut out, false).unwrap();
         assert_eq!(out.len(), 4);
         for p in &out {
             assert!(p.pos.x >= Coord::ZERO);
@@ -575,59 +632,9 @@ mod tests {
         }
         let mut small: Vec<ClipVertex<1>, 3> = Vec::new();
         assert_eq!(
-            clip_to_plane(&pl, &sq, &mut small),
+            clip_to_plane(&pl, &sq, &mut small, false),
             Err(ClipError::CapacityExceeded)
         );
-    }
-
-    #[test]
-    fn near_plane_crossing_behind_and_spanning() {
-        let cam = camera();
-        let f = Frustum::new::<4>(&cam, Frustum::DEFAULT_GUARD).unwrap();
-        let proj: Projector<4> = Projector::new(&cam).unwrap();
-        // Crosses the near plane (and the eye plane).
-        let tri = [
-            cv(0.0, 0.0, -2.0, 0),
-            cv(0.3, 0.0, 3.0, 255),
-            cv(-0.3, 0.2, 3.0, 255),
-        ];
-        let out: Vec<_, 9> = f.clip(&tri).unwrap();
-        assert_eq!(out.len(), 4);
-        for p in &out {
-            assert!(p.pos.z >= Coord::from_num(0.5), "{p:?}");
-            proj.project(p).unwrap();
-        }
-        // Wholly behind the eye.
-        let back = [
-            cv(0.0, 0.0, -2.0, 0),
-            cv(1.0, 0.0, -3.0, 0),
-            cv(0.0, 1.0, -1.0, 0),
-        ];
-        assert!(f.clip::<1, 9>(&back).unwrap().is_empty());
-        // Spanning the whole view and beyond, at z = 5: cut to the guard band, all projectable.
-        let big = [
-            cv(-1000.0, -1000.0, 5.0, 0),
-            cv(1000.0, -1000.0, 5.0, 0),
-            cv(1000.0, 1000.0, 5.0, 0),
-            cv(-1000.0, 1000.0, 5.0, 0),
-        ];
-        let out: Vec<_, 10> = f.clip(&big).unwrap();
-        assert_eq!(out.len(), 4);
-        for p in &out {
-            let s = proj.project(p).unwrap();
-            assert!(
-                s.point.x.abs() < 16 * 160 * 6 && s.point.y.abs() < 16 * 160 * 6,
-                "{s:?}"
-            );
-        }
-        // Wholly inside: copied unchanged.
-        let inside = [
-            cv(0.0, 0.0, 2.0, 1),
-            cv(0.1, 0.0, 2.0, 2),
-            cv(0.0, 0.1, 2.0, 3),
-        ];
-        assert_eq!(f.clip::<1, 3>(&inside).unwrap().as_slice(), &inside);
-        assert_eq!(f.clip::<1, 2>(&inside), Err(ClipError::CapacityExceeded));
     }
 
     /// Issue "hostile inputs" #2: a planar, simple, non-convex 24-vertex polygon (a comb in
@@ -707,7 +714,7 @@ mod tests {
     #[test]
     fn near_plane_clip_points_stay_within_the_documented_bound() {
         let lens = Lens {
-            fov: Angle::from_degrees(60),
+            fov: BinaryAngle::from_degrees(60),
             axis: FovAxis::Vertical,
             near: Coord::from_num(0.002),
             far: Coord::from_num(10),
@@ -736,7 +743,7 @@ mod tests {
             if dp < 0 || dq >= 0 {
                 continue;
             }
-            let c = intersect(&p, &q, dp, dq);
+            let c = intersect(&p, &q, dp, dq, false);
             let raw = |v: &ClipVertex<1>| v.pos.bits().map(|b| b as f64);
             let (pp, qq, cc) = (raw(&p), raw(&q), raw(&c));
             assert!(cc[2] >= near_raw);

@@ -1,8 +1,8 @@
-//! Clipping: Cohen–Sutherland outcodes in 2D and Sutherland–Hodgman against planes in 3D.
+//! Clipping: Sutherland–Hodgman against planes in 3D.
 //!
-//! Role in the pipeline: between geometry and projection (3D, near plane) and inside the raster
-//! stage (2D lines against the window).
+//! Role in the pipeline: between geometry and projection (the frustum's near and far planes,
+//! and a guard band around the view). The 2D lines' Cohen–Sutherland outcodes against the
+//! window belong to the raster stage ([`raster::outcode`](crate::raster)).
 
 pub(crate) mod fan;
 pub mod frustum;
-pub mod outcode;

@@ -24,16 +24,29 @@
 //!   in those physical units and the focal lengths in pixels are `f_x = d / pixel_width`,
 //!   `f_y = d / pixel_height`.
 //!
+//! - **Parallel projection** (course ch. 1 §3.2, its figure of both projections):
+//!   [`Camera::orthographic`] takes an [`OrthoView`] instead of a [`Lens`]: the view's extent
+//!   in world units along one [`FovAxis`] (its height, width or diagonal) replaces the field
+//!   of view. The screen grid becomes `i = i0 + s_x·x`, `j = j0 − s_y·y` with `s_x = 2r /
+//!   (extent·pixel_width)`, `s_y = 2r / (extent·pixel_height)` pixels per world unit (`r` the
+//!   physical half-extent as above); [`Camera::focal_x`] and [`Camera::focal_y`] hold these
+//!   scales, rounded to I16F16, and [`Camera::projection`] tells the two kinds apart. Depth
+//!   still runs along `U`, from `near` to `far`.
+//!
 //! ## Numeric contract
 //! Set-up only (runs once per camera change): `u64`/`u128` intermediates and divisions are
 //! used freely. Basis vectors are [`Linear`](super::fixed::Linear) (2^-24). Focal lengths and the
 //! principal point are I16F16 pixels; `f < 32 768` pixels (a field of view of 60° on a
 //! 240-row screen gives `f_y = 207.85`). Image extents in physical units (`width·pixel_width`,
-//! `height·pixel_height`) must be at most 2^20. Everything out of range is a [`CameraError`].
+//! `height·pixel_height`) must be at most 2^20. Orthographic: the extent is `0 < extent` (raw
+//! I16F16, so at least 2^-16 world units) and the scales `s_x`, `s_y` lie in
+//! `[2^-16, 2^15)` pixels per world unit (a 240-row view 4 units high: `s_y = 60`); the
+//! projector takes them from the exact ratio, not from the rounded I16F16 value. Everything out
+//! of range is a [`CameraError`].
 
 use super::fixed::{Coord, LINEAR_FRAC};
 use super::matrix::Affine3;
-use super::trig::{sin_cos_bits, Angle};
+use super::trig::{sin_cos_bits, BinaryAngle};
 use super::vector::{unit_bits, Vec3};
 use crate::arith::isqrt::isqrt_u64;
 
@@ -54,6 +67,68 @@ pub enum CameraError {
     BadDepthRange,
     /// A derived position or distance leaves the I16F16 range.
     OutOfRange,
+    /// An orthographic extent that is not positive, or whose scale (pixels per world unit)
+    /// leaves `[2^-16, 2^15)`.
+    BadExtent,
+}
+
+/// How the camera maps the observer frame onto the screen (course ch. 1 §3.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Projection {
+    /// Central projection from the eye: `i = i0 + f_x·x/z` (the [`Lens`]'s field of view).
+    Perspective,
+    /// Parallel projection along `U`: `i = i0 + s_x·x` (an [`OrthoView`]).
+    Orthographic {
+        /// The view's extent in world units along [`Lens::axis`].
+        extent: Coord,
+    },
+}
+
+/// The lens of a parallel (orthographic) projection: the view's extent in world units along
+/// `axis` (top to bottom, left to right, or corner to corner), and the depth range.
+///
+/// ```
+/// use zscan::geometry::camera::{Camera, FovAxis, OrthoView, Projection, Viewport};
+/// use zscan::geometry::{fixed::Coord, vector::Vec3};
+///
+/// // A view 4 units high on a 240-row screen: 60 pixels per unit.
+/// let view = OrthoView::new(Coord::lit("4"), Coord::lit("0.5"), Coord::lit("20"));
+/// let camera = Camera::orthographic(
+///     Vec3::from_int(0, 0, 5), Vec3::from_int(0, 0, -1), Vec3::from_int(0, 1, 0),
+///     view, Viewport::new(320, 240),
+/// )?;
+/// assert_eq!(camera.focal_y(), Coord::lit("60"));
+/// assert_eq!(camera.projection(), Projection::Orthographic { extent: Coord::lit("4") });
+/// # Ok::<(), zscan::geometry::camera::CameraError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct OrthoView {
+    /// The view's extent along `axis`, world units, `> 0`.
+    pub extent: Coord,
+    /// The extent `extent` spans.
+    pub axis: FovAxis,
+    /// Near plane distance along `U`, `> 0`.
+    pub near: Coord,
+    /// Far plane distance, `> near`.
+    pub far: Coord,
+}
+
+impl OrthoView {
+    /// A view `extent` world units **high**, depth range `near..far`
+    /// ([`with_axis`](OrthoView::with_axis) measures the extent on another axis).
+    pub const fn new(extent: Coord, near: Coord, far: Coord) -> OrthoView {
+        OrthoView {
+            extent,
+            axis: FovAxis::Vertical,
+            near,
+            far,
+        }
+    }
+
+    /// The same view with its extent measured on `axis`.
+    pub const fn with_axis(self, axis: FovAxis) -> OrthoView {
+        OrthoView { axis, ..self }
+    }
 }
 
 /// Which extent of the image the field of view spans.
@@ -72,7 +147,7 @@ pub enum FovAxis {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Lens {
     /// Full field of view `φ`, strictly between 0 and half a turn.
-    pub fov: Angle,
+    pub fov: BinaryAngle,
     /// The extent `φ` spans.
     pub axis: FovAxis,
     /// Near plane distance (`z = near`, observer frame), `> 0`.
@@ -89,14 +164,14 @@ impl Lens {
     ///
     /// ```
     /// use zscan::geometry::camera::{FovAxis, Lens};
-    /// use zscan::geometry::{fixed::Coord, trig::Angle};
+    /// use zscan::geometry::{fixed::Coord, trig::BinaryAngle};
     ///
-    /// const LENS: Lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+    /// const LENS: Lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
     /// assert_eq!(LENS.axis, FovAxis::Vertical);
     /// let wide = LENS.with_axis(FovAxis::Horizontal);
     /// assert_eq!((wide.fov, wide.near, wide.far), (LENS.fov, LENS.near, LENS.far));
     /// ```
-    pub const fn new(fov: Angle, near: Coord, far: Coord) -> Lens {
+    pub const fn new(fov: BinaryAngle, near: Coord, far: Coord) -> Lens {
         Lens {
             fov,
             axis: FovAxis::Vertical,
@@ -148,9 +223,9 @@ impl Viewport {
 ///
 /// ```
 /// use zscan::geometry::camera::{Camera, Lens, Viewport};
-/// use zscan::geometry::{fixed::Coord, trig::Angle, vector::Vec3};
+/// use zscan::geometry::{fixed::Coord, trig::BinaryAngle, vector::Vec3};
 ///
-/// let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+/// let lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
 /// let eye = Vec3::from_int(0, 0, 5);
 /// let up = Vec3::from_int(0, 1, 0);
 /// let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(320, 240))?;
@@ -168,6 +243,7 @@ pub struct Camera {
     focal_y: i32,
     viewport: Viewport,
     lens: Lens,
+    projection: Projection,
 }
 
 /// Physical half-extent of the image along `axis` in Q16, checked.
@@ -183,6 +259,39 @@ fn half_extent_q16(axis: FovAxis, vp: &Viewport) -> Result<u64, CameraError> {
         // √(w² + h²)/2: the sum is ≤ 2^41, shifted by 22 stays < 2^64; the root is in Q11.
         FovAxis::Diagonal => (isqrt_u64((w * w + h * h) << 22) as u64) << 4,
     })
+}
+
+/// `target − position`, refused when a component leaves I16F16.
+fn look_direction(position: Vec3, target: Vec3) -> Result<Vec3, CameraError> {
+    if target
+        .bits()
+        .iter()
+        .zip(position.bits())
+        .any(|(a, b)| (*a as i64 - b as i64).abs() > i32::MAX as i64)
+    {
+        return Err(CameraError::OutOfRange);
+    }
+    Ok(target.sub(position))
+}
+
+/// Pixels per world unit of an orthographic view `extent` across along `axis`, per screen
+/// axis, as exact ratios `s = 2r / (extent·pixel size)`: with `r` the physical half-extent in
+/// Q16 (`< 2^37`) and the extent raw I16F16, `(2r, extent_raw·pixel_size)` (the two `2^16`
+/// cancel), below `2^38` and `2^47`.
+fn ortho_ratio(
+    extent: Coord,
+    axis: FovAxis,
+    vp: &Viewport,
+) -> Result<[(u128, u128); 2], CameraError> {
+    if extent.to_bits() <= 0 {
+        return Err(CameraError::BadExtent);
+    }
+    let r = half_extent_q16(axis, vp)? as u128;
+    let e = extent.to_bits() as u128;
+    Ok([
+        (2 * r, e * vp.pixel_width as u128),
+        (2 * r, e * vp.pixel_height as u128),
+    ])
 }
 
 /// The world → observer transform of an observer at `position` looking along `view_dir` with
@@ -293,7 +402,90 @@ impl Camera {
             focal_y,
             viewport,
             lens,
+            projection: Projection::Perspective,
         })
+    }
+
+    /// The parallel projection (course ch. 1 §3.2) of an observer at `position` looking along
+    /// `view_dir` with approximate up `up`: the view `view.extent` world units across along
+    /// `view.axis`. Its [`lens`](Camera::lens) has a zero field of view and `view`'s axis,
+    /// near and far.
+    pub fn orthographic(
+        position: Vec3,
+        view_dir: Vec3,
+        up: Vec3,
+        view: OrthoView,
+        viewport: Viewport,
+    ) -> Result<Camera, CameraError> {
+        let lens = Lens {
+            fov: BinaryAngle(0),
+            axis: view.axis,
+            near: view.near,
+            far: view.far,
+        };
+        if lens.near.to_bits() <= 0 || lens.far <= lens.near {
+            return Err(CameraError::BadDepthRange);
+        }
+        if viewport.pixel_width == 0 || viewport.pixel_height == 0 {
+            return Err(CameraError::BadViewport);
+        }
+        let projection = Projection::Orthographic {
+            extent: view.extent,
+        };
+        let ratio = ortho_ratio(view.extent, view.axis, &viewport)?;
+        // Q16 pixels per world unit, rounded; in [1, 2^31) raw.
+        let q16 = |(num, den): (u128, u128)| {
+            let s = ((num << 16) + den / 2) / den;
+            if s == 0 || s >= 1 << 31 {
+                Err(CameraError::BadExtent)
+            } else {
+                Ok(s as i32)
+            }
+        };
+        let (focal_x, focal_y) = (q16(ratio[0])?, q16(ratio[1])?);
+        Ok(Camera {
+            position,
+            view: view_transform(position, view_dir, up)?,
+            focal_x,
+            focal_y,
+            viewport,
+            lens,
+            projection,
+        })
+    }
+
+    /// [`Camera::orthographic`] looking from `position` at `target`.
+    pub fn look_at_orthographic(
+        position: Vec3,
+        target: Vec3,
+        up: Vec3,
+        view: OrthoView,
+        viewport: Viewport,
+    ) -> Result<Camera, CameraError> {
+        let dir = look_direction(position, target)?;
+        Camera::orthographic(position, dir, up, view, viewport)
+    }
+
+    /// How this camera projects.
+    pub fn projection(&self) -> Projection {
+        self.projection
+    }
+
+    /// True for a parallel projection ([`Camera::orthographic`]).
+    pub fn is_orthographic(&self) -> bool {
+        matches!(self.projection, Projection::Orthographic { .. })
+    }
+
+    /// An orthographic camera's exact scales, pixels per world unit along `x` and `y`, as
+    /// ratios `(numerator, denominator)` (numerators below 2^38, denominators below 2^47);
+    /// `None` for a perspective camera.
+    pub(crate) fn ortho_scales(&self) -> Option<[(u128, u128); 2]> {
+        match self.projection {
+            Projection::Orthographic { extent } => {
+                ortho_ratio(extent, self.lens.axis, &self.viewport).ok()
+            }
+            Projection::Perspective => None,
+        }
     }
 
     /// The unit tests' camera: at the origin looking along `+z` (`y` up), 60° vertical field
@@ -301,7 +493,7 @@ impl Camera {
     #[cfg(test)]
     pub(crate) fn test_standard() -> Camera {
         let lens = Lens {
-            fov: Angle::from_degrees(60),
+            fov: BinaryAngle::from_degrees(60),
             axis: FovAxis::Vertical,
             near: Coord::from_num(0.5),
             far: Coord::from_num(10),
@@ -319,15 +511,7 @@ impl Camera {
         lens: Lens,
         viewport: Viewport,
     ) -> Result<Camera, CameraError> {
-        let dir = target.sub(position);
-        if target
-            .bits()
-            .iter()
-            .zip(position.bits())
-            .any(|(a, b)| (*a as i64 - b as i64).abs() > i32::MAX as i64)
-        {
-            return Err(CameraError::OutOfRange);
-        }
+        let dir = look_direction(position, target)?;
         Camera::new(position, dir, up, lens, viewport)
     }
 
@@ -446,7 +630,7 @@ impl Lens {
     pub fn from_f32(fov_degrees: f32, axis: FovAxis, near: f32, far: f32) -> Lens {
         let c = |v: f32| Coord::saturating_from_num(if v.is_nan() { 0.0 } else { v });
         Lens {
-            fov: Angle::from_degrees_f32(fov_degrees),
+            fov: BinaryAngle::from_degrees_f32(fov_degrees),
             axis,
             near: c(near),
             far: c(far),
@@ -477,7 +661,7 @@ pub fn frame_sphere(
     centre: Vec3,
     radius: Coord,
     view_dir: Vec3,
-    fov: Angle,
+    fov: BinaryAngle,
 ) -> Result<(Vec3, Coord), CameraError> {
     if fov.0 == 0 || fov.0 >= 1 << 31 {
         return Err(CameraError::FovOutOfRange);
@@ -510,7 +694,7 @@ mod tests {
 
     fn lens() -> Lens {
         Lens {
-            fov: Angle::from_degrees(60),
+            fov: BinaryAngle::from_degrees(60),
             axis: FovAxis::Vertical,
             near: Coord::from_num(0.5),
             far: Coord::from_num(10),
@@ -519,7 +703,11 @@ mod tests {
 
     #[test]
     fn lens_new_is_the_literal() {
-        const L: Lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("10"));
+        const L: Lens = Lens::new(
+            BinaryAngle::from_degrees(60),
+            Coord::lit("0.5"),
+            Coord::lit("10"),
+        );
         assert_eq!(L, lens());
         let d = L.with_axis(FovAxis::Diagonal);
         assert_eq!(
@@ -570,7 +758,7 @@ mod tests {
             let mut viewport = Viewport::new(w, h);
             (viewport.pixel_width, viewport.pixel_height) = (pw, ph);
             let lens = Lens {
-                fov: Angle(fov),
+                fov: BinaryAngle(fov),
                 axis,
                 ..lens()
             };
@@ -678,12 +866,12 @@ mod tests {
             Err(CameraError::UpParallelToView)
         );
         let mut l = lens();
-        l.fov = Angle::HALF_TURN;
+        l.fov = BinaryAngle::HALF_TURN;
         assert_eq!(
             Camera::new(o, v(0.0, 0.0, 1.0), up, l, vp),
             Err(CameraError::FovOutOfRange)
         );
-        l.fov = Angle(3);
+        l.fov = BinaryAngle(3);
         assert_eq!(
             Camera::new(o, v(0.0, 0.0, 1.0), up, l, vp),
             Err(CameraError::FocalTooLong)

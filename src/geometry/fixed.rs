@@ -50,19 +50,9 @@ pub(crate) const fn saturate_i32(v: i64) -> i32 {
     }
 }
 
-/// `v / 2^s` rounded to nearest (ties toward +∞); `s = 0` returns `v`, `s > 62` gives 0.
-/// Never overflows: the rounding bit is added after the shift.
-#[inline(always)]
-pub(crate) const fn shr_round(v: i64, s: u32) -> i64 {
-    if s == 0 {
-        v
-    } else if s > 62 {
-        0
-    } else {
-        // |v >> s| ≤ 2^62, so adding the rounding bit cannot overflow.
-        (v >> s) + ((v >> (s - 1)) & 1)
-    }
-}
+/// Rounded shifts live with the integer arithmetic (`arith`); re-exported for the fixed-point
+/// formats' users.
+pub(crate) use crate::arith::shr_round;
 
 #[cfg(test)]
 mod tests {

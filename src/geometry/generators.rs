@@ -29,8 +29,8 @@
 //!   angle `θ_j = 2π·j/sides`: `((R + r cos θ) cos φ, r sin θ, −(R + r cos θ) sin φ)`; quads.
 
 use super::fixed::{saturate_i32, shr_round, Coord};
-use super::mesh::{Mesh, MeshError, PolygonSizes};
-use super::trig::{sin_cos_bits, Angle};
+use super::mesh::{Mesh, MeshError, MeshTable, PolygonSizes};
+use super::trig::{sin_cos_bits, BinaryAngle};
 use super::vector::Vec3;
 
 /// The course's unit cube `[0, 1]³` (ch. 1, example 2): vertex `i` has coordinates given by
@@ -69,7 +69,7 @@ pub fn unit_cube() -> Mesh<'static> {
 }
 
 /// `r·cos a`, `r·sin a` in raw I16F16 (`r` raw, `|r| ≤ 2^32`), saturating.
-fn polar(r: i64, a: Angle) -> (i32, i32) {
+fn polar(r: i64, a: BinaryAngle) -> (i32, i32) {
     let (s, c) = sin_cos_bits(a);
     let f = |t: i32| saturate_i32(shr_round(r * t as i64, 30)); // |r·t| ≤ 2^62
     (f(c), f(s))
@@ -79,8 +79,17 @@ fn check_out(vertices: &[Vec3], indices: &[u16], need: (usize, usize)) -> Result
     if need.0 > MAX_GENERATED_VERTICES {
         return Err(MeshError::BadParameters);
     }
-    if vertices.len() < need.0 || indices.len() < need.1 {
-        return Err(MeshError::OutputTooSmall);
+    for (table, given, needed) in [
+        (MeshTable::Vertices, vertices.len(), need.0),
+        (MeshTable::Indices, indices.len(), need.1),
+    ] {
+        if given < needed {
+            return Err(MeshError::OutputTooSmall {
+                table,
+                given,
+                needed,
+            });
+        }
     }
     Ok(())
 }
@@ -91,9 +100,8 @@ fn finished<'a>(
     indices: &'a mut [u16],
     need: (usize, usize),
 ) -> Result<(&'a [Vec3], &'a [u16]), MeshError> {
-    let vs = vertices.get(..need.0).ok_or(MeshError::OutputTooSmall)?;
-    let is = indices.get(..need.1).ok_or(MeshError::OutputTooSmall)?;
-    Ok((vs, is))
+    check_out(vertices, indices, need)?;
+    Ok((&vertices[..need.0], &indices[..need.1]))
 }
 
 /// Most vertices a generated mesh may have: 65 536 (its indices are `u16`).
@@ -146,25 +154,8 @@ pub fn uv_sphere<'a>(
     }
     let need = uv_sphere_sizes(segments, rings);
     check_out(vertices, indices, need)?;
-    let r = radius.to_bits() as i64;
+    sphere_points(segments, rings, radius.to_bits() as i64, vertices);
     let (ns, nr) = (segments as usize, rings as usize);
-    let mut vi = 0usize;
-    let mut put = |v: Vec3| {
-        if let Some(slot) = vertices.get_mut(vi) {
-            *slot = v;
-        }
-        vi += 1;
-    };
-    put(Vec3::from_bits(0, r as i32, 0));
-    for k in 1..nr {
-        // y = R cos θ, radial = R sin θ
-        let (y, radial) = polar(r, Angle::from_turns(k as i64, 2 * rings as u32));
-        for j in 0..ns {
-            let (x, mz) = polar(radial as i64, Angle::from_turns(j as i64, segments as u32));
-            put(Vec3::from_bits(x, y, mz.saturating_neg()));
-        }
-    }
-    put(Vec3::from_bits(0, -(r as i32), 0));
     let south = (need.0 - 1) as u16;
     let at = |k: usize, j: usize| (1 + (k - 1) * ns + j % ns) as u16;
     let mut ii = 0usize;
@@ -190,6 +181,51 @@ pub fn uv_sphere<'a>(
     }
     let (vs, is) = finished(vertices, indices, need)?;
     Mesh::triangles(vs, is)
+}
+
+/// The analytic vertex normals of [`uv_sphere`]`(segments, rings, …)`: the unit vectors from
+/// the centre through each vertex (the course's ch. 4 §2.5: where the surface is known, its
+/// own normal rather than the average of the faces' normals), in the generator's vertex
+/// order, to I16F16 like the positions (each within 2 units of 2^-16 of the exact unit
+/// vector). `out` needs [`uv_sphere_sizes`]`(segments, rings).0` slots; the same parameter
+/// errors as the generator.
+pub fn uv_sphere_normals(segments: u16, rings: u16, out: &mut [Vec3]) -> Result<(), MeshError> {
+    uv_sphere_sizes_checked(segments, rings)?;
+    let need = uv_sphere_sizes(segments, rings).0;
+    let given = out.len();
+    let out = out.get_mut(..need).ok_or(MeshError::OutputTooSmall {
+        table: MeshTable::VertexNormals,
+        given,
+        needed: need,
+    })?;
+    sphere_points(segments, rings, Coord::ONE.to_bits() as i64, out);
+    Ok(())
+}
+
+/// Writes the UV sphere's vertices of radius `r` (bits of I16F16) into `out` in the module
+/// doc's order (slots past `out`'s end are skipped: callers check the length first).
+fn sphere_points(segments: u16, rings: u16, r: i64, out: &mut [Vec3]) {
+    let (ns, nr) = (segments as usize, rings as usize);
+    let mut vi = 0usize;
+    let mut put = |v: Vec3| {
+        if let Some(slot) = out.get_mut(vi) {
+            *slot = v;
+        }
+        vi += 1;
+    };
+    put(Vec3::from_bits(0, r as i32, 0));
+    for k in 1..nr {
+        // y = R cos θ, radial = R sin θ
+        let (y, radial) = polar(r, BinaryAngle::from_turns(k as i64, 2 * rings as u32));
+        for j in 0..ns {
+            let (x, mz) = polar(
+                radial as i64,
+                BinaryAngle::from_turns(j as i64, segments as u32),
+            );
+            put(Vec3::from_bits(x, y, mz.saturating_neg()));
+        }
+    }
+    put(Vec3::from_bits(0, -(r as i32), 0));
 }
 
 /// `(vertices, indices)` needed by [`hollow_prism`]: `4·sides` and `16·sides` (4n quads).
@@ -225,7 +261,7 @@ pub fn hollow_prism<'a>(
     let n = sides as usize;
     let h = half_height.to_bits();
     for j in 0..n {
-        let a = Angle::from_turns(j as i64, sides as u32);
+        let a = BinaryAngle::from_turns(j as i64, sides as u32);
         let (ox, oy) = polar(outer.to_bits() as i64, a);
         let (ix, iy) = polar(inner.to_bits() as i64, a);
         for (slot, v) in [
@@ -294,20 +330,13 @@ pub fn torus<'a>(
     let need = torus_sizes(rings, sides);
     check_out(vertices, indices, need)?;
     let (nr, ns) = (rings as usize, sides as usize);
-    for i in 0..nr {
-        let phi = Angle::from_turns(i as i64, rings as u32);
-        for j in 0..ns {
-            let (rc, y) = polar(
-                minor.to_bits() as i64,
-                Angle::from_turns(j as i64, sides as u32),
-            );
-            let rad = major.to_bits() as i64 + rc as i64;
-            let (x, mz) = polar(rad, phi);
-            if let Some(s) = vertices.get_mut(i * ns + j) {
-                *s = Vec3::from_bits(x, y, mz.saturating_neg());
-            }
-        }
-    }
+    torus_points(
+        rings,
+        sides,
+        major.to_bits() as i64,
+        minor.to_bits() as i64,
+        vertices,
+    );
     let mut ii = 0;
     for i in 0..nr {
         for j in 0..ns {
@@ -324,6 +353,40 @@ pub fn torus<'a>(
     Mesh::new(vs, is, PolygonSizes::Uniform(4))
 }
 
+/// The analytic vertex normals of [`torus`]`(rings, sides, …)`: at the vertex of azimuth `φ`
+/// and tube angle `θ`, the unit vector `(cos θ cos φ, sin θ, −cos θ sin φ)` from the tube's
+/// centre line through the vertex (course ch. 4 §2.5), whatever the radii; I16F16, in the
+/// generator's vertex order. `out` needs [`torus_sizes`]`(rings, sides).0` slots.
+pub fn torus_normals(rings: u16, sides: u16, out: &mut [Vec3]) -> Result<(), MeshError> {
+    torus_sizes_checked(rings, sides)?;
+    let need = torus_sizes(rings, sides).0;
+    let given = out.len();
+    let out = out.get_mut(..need).ok_or(MeshError::OutputTooSmall {
+        table: MeshTable::VertexNormals,
+        given,
+        needed: need,
+    })?;
+    // The torus of major radius 0 and minor radius 1 is the unit normal at each vertex.
+    torus_points(rings, sides, 0, Coord::ONE.to_bits() as i64, out);
+    Ok(())
+}
+
+/// Writes the torus's vertices (radii in bits of I16F16) into `out` in the module doc's order
+/// (slots past `out`'s end are skipped: callers check the length first).
+fn torus_points(rings: u16, sides: u16, major: i64, minor: i64, out: &mut [Vec3]) {
+    let (nr, ns) = (rings as usize, sides as usize);
+    for i in 0..nr {
+        let phi = BinaryAngle::from_turns(i as i64, rings as u32);
+        for j in 0..ns {
+            let (rc, y) = polar(minor, BinaryAngle::from_turns(j as i64, sides as u32));
+            let (x, mz) = polar(major + rc as i64, phi);
+            if let Some(s) = out.get_mut(i * ns + j) {
+                *s = Vec3::from_bits(x, y, mz.saturating_neg());
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -338,6 +401,55 @@ mod tests {
             let dot: f64 = (0..3).map(|i| n[i] as f64 * d[i] as f64).sum();
             assert!(dot > 0.0, "face {p:?} points inward");
         }
+    }
+
+    #[test]
+    fn analytic_normals_are_unit_vectors_along_the_surface_normal() {
+        // Sphere: the normal is the direction from the centre; torus: from the tube's centre
+        // line. Both against f64, within 2 units of 2^-16 per component.
+        let (nv, ni) = uv_sphere_sizes(12, 7);
+        let (mut v, mut ix, mut n) = (
+            std::vec![Vec3::ZERO; nv],
+            std::vec![0u16; ni],
+            std::vec![Vec3::ZERO; nv],
+        );
+        uv_sphere(12, 7, Coord::from_num(3), &mut v, &mut ix).unwrap();
+        uv_sphere_normals(12, 7, &mut n).unwrap();
+        let f = |c: Coord| c.to_num::<f64>();
+        for (p, q) in v.iter().zip(&n) {
+            let len = (f(p.x).powi(2) + f(p.y).powi(2) + f(p.z).powi(2)).sqrt();
+            for (a, b) in [(p.x, q.x), (p.y, q.y), (p.z, q.z)] {
+                assert!((f(a) / len - f(b)).abs() * 65536.0 <= 2.0, "{p:?} {q:?}");
+            }
+        }
+        let (nv, ni) = torus_sizes(10, 6);
+        let (mut v, mut ix, mut n) = (
+            std::vec![Vec3::ZERO; nv],
+            std::vec![0u16; ni],
+            std::vec![Vec3::ZERO; nv],
+        );
+        let (major, minor) = (Coord::from_num(2), Coord::from_num(0.5));
+        torus(10, 6, major, minor, &mut v, &mut ix).unwrap();
+        torus_normals(10, 6, &mut n).unwrap();
+        for (p, q) in v.iter().zip(&n) {
+            // The tube's centre below the vertex: major radius along the vertex's azimuth.
+            let rho = (f(p.x).powi(2) + f(p.z).powi(2)).sqrt();
+            let c = [f(p.x) * 2.0 / rho, 0.0, f(p.z) * 2.0 / rho];
+            let d = [f(p.x) - c[0], f(p.y), f(p.z) - c[2]];
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            for (k, b) in [q.x, q.y, q.z].into_iter().enumerate() {
+                assert!((d[k] / len - f(b)).abs() * 65536.0 <= 2.0, "{p:?} {q:?}");
+            }
+        }
+        assert_eq!(
+            uv_sphere_normals(12, 7, &mut n[..1]),
+            Err(MeshError::OutputTooSmall {
+                table: MeshTable::VertexNormals,
+                given: 1,
+                needed: 74
+            })
+        );
+        assert_eq!(torus_normals(2, 6, &mut n), Err(MeshError::BadParameters));
     }
 
     #[test]
@@ -429,7 +541,11 @@ mod tests {
         let mut small = [0u16; 10];
         assert_eq!(
             uv_sphere(32, 16, Coord::ONE, &mut vs, &mut small),
-            Err(MeshError::OutputTooSmall)
+            Err(MeshError::OutputTooSmall {
+                table: MeshTable::Indices,
+                given: 10,
+                needed: 2_880
+            })
         );
         assert_eq!(
             uv_sphere(2, 16, Coord::ONE, &mut vs, &mut is),

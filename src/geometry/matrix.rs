@@ -24,7 +24,7 @@
 //!   outside the ranges above are [`MatrixError::OutOfRange`], never wrapped.
 
 use super::fixed::{saturate_i32, shr_round, Coord, Linear, LINEAR_FRAC};
-use super::trig::{sin_cos_bits, Angle};
+use super::trig::{sin_cos_bits, BinaryAngle};
 use super::vector::{unit_bits, Vec3};
 use crate::arith::wide::mul_wide;
 use crate::arith::NARROW_MULTIPLY;
@@ -140,33 +140,33 @@ impl Affine3 {
         Affine3::scale3(s, s, s)
     }
 
-    fn trig24(a: Angle) -> (i32, i32) {
+    fn trig24(a: BinaryAngle) -> (i32, i32) {
         let (s, c) = sin_cos_bits(a);
         let r = |v: i32| shr_round(v as i64, 30 - LINEAR_FRAC) as i32;
         (r(s), r(c))
     }
 
     /// Rotation by `a` about the x axis: `y' = c·y − s·z`, `z' = s·y + c·z`.
-    pub fn rotation_x(a: Angle) -> Affine3 {
+    pub fn rotation_x(a: BinaryAngle) -> Affine3 {
         let (s, c) = Affine3::trig24(a);
         Affine3::raw([[ONE, 0, 0], [0, c, -s], [0, s, c]], [0; 3])
     }
 
     /// Rotation by `a` about the y axis: `z' = c·z − s·x`, `x' = s·z + c·x`.
-    pub fn rotation_y(a: Angle) -> Affine3 {
+    pub fn rotation_y(a: BinaryAngle) -> Affine3 {
         let (s, c) = Affine3::trig24(a);
         Affine3::raw([[c, 0, s], [0, ONE, 0], [-s, 0, c]], [0; 3])
     }
 
     /// Rotation by `a` about the z axis: `x' = c·x − s·y`, `y' = s·x + c·y`.
-    pub fn rotation_z(a: Angle) -> Affine3 {
+    pub fn rotation_z(a: BinaryAngle) -> Affine3 {
         let (s, c) = Affine3::trig24(a);
         Affine3::raw([[c, -s, 0], [s, c, 0], [0, 0, ONE]], [0; 3])
     }
 
     /// Rotation by `a` about the axis through the origin along `axis` (any length; it is
     /// normalised here, in 30-bit precision): Rodrigues' `R = c·I + s·[k]× + (1 − c)·k·kᵀ`.
-    pub fn rotation_axis(axis: Vec3, a: Angle) -> Result<Affine3, MatrixError> {
+    pub fn rotation_axis(axis: Vec3, a: BinaryAngle) -> Result<Affine3, MatrixError> {
         let b = axis.bits();
         let k =
             unit_bits([b[0] as i64, b[1] as i64, b[2] as i64], 30).ok_or(MatrixError::ZeroAxis)?;
@@ -330,10 +330,10 @@ impl Affine3 {
     /// and check the result once with [`build`](Affine3Builder::build).
     ///
     /// ```
-    /// use zscan::geometry::{fixed::Coord, matrix::Affine3, trig::Angle, vector::Vec3};
+    /// use zscan::geometry::{fixed::Coord, matrix::Affine3, trig::BinaryAngle, vector::Vec3};
     ///
     /// let m = Affine3::builder()
-    ///     .rotate_y(Angle::from_degrees(90))
+    ///     .rotate_y(BinaryAngle::from_degrees(90))
     ///     .scale(Coord::from_num(2))
     ///     .translate(Vec3::from_int(0, 1, 0))
     ///     .build()?;
@@ -375,23 +375,23 @@ impl Affine3Builder {
     }
 
     /// Then a rotation by `a` about the x axis ([`Affine3::rotation_x`]).
-    pub fn rotate_x(self, a: Angle) -> Affine3Builder {
+    pub fn rotate_x(self, a: BinaryAngle) -> Affine3Builder {
         self.then(&Affine3::rotation_x(a))
     }
 
     /// Then a rotation by `a` about the y axis ([`Affine3::rotation_y`]).
-    pub fn rotate_y(self, a: Angle) -> Affine3Builder {
+    pub fn rotate_y(self, a: BinaryAngle) -> Affine3Builder {
         self.then(&Affine3::rotation_y(a))
     }
 
     /// Then a rotation by `a` about the z axis ([`Affine3::rotation_z`]).
-    pub fn rotate_z(self, a: Angle) -> Affine3Builder {
+    pub fn rotate_z(self, a: BinaryAngle) -> Affine3Builder {
         self.then(&Affine3::rotation_z(a))
     }
 
     /// Then a rotation by `a` about `axis` through the origin ([`Affine3::rotation_axis`];
     /// a zero axis fails the builder).
-    pub fn rotate_axis(self, axis: Vec3, a: Angle) -> Affine3Builder {
+    pub fn rotate_axis(self, axis: Vec3, a: BinaryAngle) -> Affine3Builder {
         self.then_result(Affine3::rotation_axis(axis, a))
     }
 
@@ -428,7 +428,7 @@ mod tests {
 
     #[test]
     fn builder_equals_chained_then() {
-        let a = Angle::from_degrees(37);
+        let a = BinaryAngle::from_degrees(37);
         let s = Coord::from_num(1.5);
         let t = Vec3::from_int(3, -2, 7);
         let built = Affine3::builder()
@@ -460,10 +460,10 @@ mod tests {
         assert!(b.has_failed());
         // Later steps, even failing ones of another kind, keep the first error.
         let b = b
-            .rotate_axis(Vec3::ZERO, Angle::from_degrees(10))
+            .rotate_axis(Vec3::ZERO, BinaryAngle::from_degrees(10))
             .translate(Vec3::from_int(1, 0, 0));
         assert_eq!(b.build(), Err(MatrixError::OutOfRange));
-        let b = Affine3::builder().rotate_axis(Vec3::ZERO, Angle::from_degrees(10));
+        let b = Affine3::builder().rotate_axis(Vec3::ZERO, BinaryAngle::from_degrees(10));
         assert_eq!(b.scale(big).build(), Err(MatrixError::ZeroAxis));
         // A product out of range fails too: 8 × 8 × 8 exceeds ±64.
         let eight = Coord::from_num(8);
@@ -483,7 +483,7 @@ mod tests {
 
     #[test]
     fn rotations_follow_the_right_hand_rule() {
-        let q = Angle::QUARTER_TURN;
+        let q = BinaryAngle::QUARTER_TURN;
         assert_eq!(
             Affine3::rotation_z(q).transform_point(v(1.0, 0.0, 0.0)),
             v(0.0, 1.0, 0.0)
@@ -501,7 +501,7 @@ mod tests {
     #[test]
     fn axis_rotation_matches_principal_axes() {
         for deg in [0, 17, 90, 123, 200, 359] {
-            let a = Angle::from_degrees(deg);
+            let a = BinaryAngle::from_degrees(deg);
             for (axis, r) in [
                 (v(1.0, 0.0, 0.0), Affine3::rotation_x(a)),
                 (v(0.0, 2.0, 0.0), Affine3::rotation_y(a)),
@@ -516,14 +516,14 @@ mod tests {
             }
         }
         assert_eq!(
-            Affine3::rotation_axis(Vec3::ZERO, Angle(1)),
+            Affine3::rotation_axis(Vec3::ZERO, BinaryAngle(1)),
             Err(MatrixError::ZeroAxis)
         );
     }
 
     #[test]
     fn composition_and_rigid_inverse() {
-        let r = Affine3::rotation_axis(v(1.0, 2.0, -3.0), Angle::from_degrees(40)).unwrap();
+        let r = Affine3::rotation_axis(v(1.0, 2.0, -3.0), BinaryAngle::from_degrees(40)).unwrap();
         let t = Affine3::translation(v(3.0, -1.5, 7.25));
         let m = t.mul(&r).unwrap();
         assert_eq!(m, r.then(&t).unwrap());

@@ -12,6 +12,9 @@
 //!   vertices and may be non-triangular (they should be planar and convex for the fill to draw
 //!   what the normal describes).
 //!
+//! Tables in flash are built at compile time from rows of raw bits by [`vec3s_from_bits`] and
+//! [`triangle_indices`] (`zscan mesh` writes such a module from an OBJ, STL or PLY file).
+//!
 //! [`Mesh::new`] validates everything once (sizes, total count, index range, coordinate range),
 //! so later walks cannot fail; they still use checked slicing and never panic.
 //!
@@ -37,6 +40,34 @@ use super::vector::{unit_bits, Vec3};
 /// Largest raw mesh coordinate magnitude: 2^26 (1024.0 in I16F16).
 pub const MAX_MESH_COORD_BITS: i32 = 1 << 26;
 
+/// A table a mesh function writes or reads ([`MeshError::OutputTooSmall`],
+/// [`LightingError::OutputTooSmall`](crate::lighting::LightingError::OutputTooSmall)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshTable {
+    /// Vertex positions (a generator's output).
+    Vertices,
+    /// Polygon indices (a generator's output).
+    Indices,
+    /// One normal per polygon ([`Mesh::face_normals`]).
+    FaceNormals,
+    /// One normal per vertex ([`Mesh::vertex_normals`]).
+    VertexNormals,
+    /// One intensity level per vertex or per polygon (the lighting functions' output).
+    Levels,
+}
+
+impl core::fmt::Display for MeshTable {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            MeshTable::Vertices => "vertex table",
+            MeshTable::Indices => "index table",
+            MeshTable::FaceNormals => "face normal table",
+            MeshTable::VertexNormals => "vertex normal table",
+            MeshTable::Levels => "level table",
+        })
+    }
+}
+
 /// What is wrong with a mesh or an output buffer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MeshError {
@@ -49,7 +80,14 @@ pub enum MeshError {
     /// A vertex coordinate exceeds ±1024.
     CoordinateOutOfRange,
     /// An output slice is shorter than required.
-    OutputTooSmall,
+    OutputTooSmall {
+        /// Which output.
+        table: MeshTable,
+        /// Entries it holds.
+        given: usize,
+        /// Entries needed.
+        needed: usize,
+    },
     /// A generator's parameters are invalid (too few segments, radii out of order, …) or
     /// need more than 65 536 vertices.
     BadParameters,
@@ -120,6 +158,37 @@ pub fn faces_eye(normal: Vec3, point: Vec3, eye: Vec3) -> bool {
     let e = eye.bits();
     let d = |i: usize| (e[i] as i64 - p[i] as i64) * (n[i] as i64).clamp(-(1 << 29), 1 << 29);
     d(0) + d(1) + d(2) > 0
+}
+
+/// A table of [`Vec3`] from raw I16F16 bits (`Vec3::from_bits` per row), for vertex and
+/// normal tables kept in flash: `static VERTICES: [Vec3; N] = vec3s_from_bits(&[[x, y, z], …]);`
+/// is built at compile time (what `zscan mesh` writes).
+pub const fn vec3s_from_bits<const N: usize>(bits: &[[i32; 3]; N]) -> [Vec3; N] {
+    let mut out = [Vec3::ZERO; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = Vec3::from_bits(bits[i][0], bits[i][1], bits[i][2]);
+        i += 1;
+    }
+    out
+}
+
+/// The concatenated index table of triangles written one per row: `K` must be
+/// `3 × triangles.len()` (else a compile-time error where it is evaluated in a `static`, a
+/// panic at run time), so that `static INDICES: [u16; 3 * M] = triangle_indices(&[[a, b, c], …]);`
+/// keeps a triangle per row in the source and a flat table in flash.
+pub const fn triangle_indices<const K: usize>(triangles: &[[u16; 3]]) -> [u16; K] {
+    assert!(
+        K == 3 * triangles.len(),
+        "triangle_indices: K must be 3 × the triangles"
+    );
+    let mut out = [0u16; K];
+    let mut i = 0;
+    while i < K {
+        out[i] = triangles[i / 3][i % 3];
+        i += 1;
+    }
+    out
 }
 
 impl<'a> Mesh<'a> {
@@ -277,7 +346,11 @@ impl<'a> Mesh<'a> {
     /// Writes each polygon's unit normal into `out` (zero for degenerate polygons).
     pub fn face_normals(&self, out: &mut [Vec3]) -> Result<(), MeshError> {
         if out.len() < self.polygon_count {
-            return Err(MeshError::OutputTooSmall);
+            return Err(MeshError::OutputTooSmall {
+                table: MeshTable::FaceNormals,
+                given: out.len(),
+                needed: self.polygon_count,
+            });
         }
         for (o, p) in out.iter_mut().zip(self.polygons()) {
             *o = self.face_normal(p).unwrap_or(Vec3::ZERO);
@@ -337,8 +410,12 @@ impl<'a> Mesh<'a> {
     /// the face normals shifted right by the smallest `k` for which `v_max·(N_max/2^k + 1)` is
     /// below 2^31 (no sum can overflow), then the normalised results.
     pub fn vertex_normals(&self, out: &mut [Vec3]) -> Result<(), MeshError> {
-        let nv = self.vertices.len();
-        let out = out.get_mut(..nv).ok_or(MeshError::OutputTooSmall)?;
+        let (given, nv) = (out.len(), self.vertices.len());
+        let out = out.get_mut(..nv).ok_or(MeshError::OutputTooSmall {
+            table: MeshTable::VertexNormals,
+            given,
+            needed: nv,
+        })?;
         out.fill(Vec3::ZERO);
         let mut nmax = 0u64;
         for poly in self.polygons() {
@@ -390,6 +467,30 @@ mod tests {
 
     fn v(x: f64, y: f64, z: f64) -> Vec3 {
         Vec3::new(Coord::from_num(x), Coord::from_num(y), Coord::from_num(z))
+    }
+
+    /// Tables built at compile time from rows of raw bits are the tables written by hand.
+    #[test]
+    fn const_tables_from_rows() {
+        static V: [Vec3; 3] = vec3s_from_bits(&[[0, 0, 0], [1 << 16, 0, -5], [0, 1 << 16, 7]]);
+        static I: [u16; 6] = triangle_indices(&[[0, 1, 2], [2, 1, 0]]);
+        static M: Mesh<'static> = match Mesh::new(&V, &I, PolygonSizes::Uniform(3)) {
+            Ok(m) => m,
+            Err(_) => panic!("a valid mesh"),
+        };
+        assert_eq!(V[1], Vec3::from_bits(1 << 16, 0, -5));
+        assert_eq!(V[2].bits(), [0, 1 << 16, 7]);
+        assert_eq!(I, [0, 1, 2, 2, 1, 0]);
+        assert_eq!(M.polygon_count(), 2);
+    }
+
+    /// A length that is not three indices per triangle is refused (at compile time in a
+    /// `static`; here, evaluated at run time, a panic naming the rule).
+    #[test]
+    #[should_panic(expected = "K must be 3")]
+    fn triangle_indices_checks_its_length() {
+        let rows = [[0u16, 1, 2]];
+        let _: [u16; 4] = triangle_indices(&rows);
     }
 
     #[test]
@@ -461,7 +562,11 @@ mod tests {
         assert!(vn.iter().all(|n| *n == v(0.0, 0.0, 1.0)));
         assert_eq!(
             m.vertex_normals(&mut vn[..3]),
-            Err(MeshError::OutputTooSmall)
+            Err(MeshError::OutputTooSmall {
+                table: MeshTable::VertexNormals,
+                given: 3,
+                needed: 4
+            })
         );
     }
 }

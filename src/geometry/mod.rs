@@ -4,7 +4,7 @@
 //!
 //! One concept per module: [`fixed`] (the formats: [`Coord`](fixed::Coord) = I16F16 for
 //! positions, [`Linear`](fixed::Linear) = I8F24 for matrix entries, [`Unit`](fixed::Unit) =
-//! I2F30 for sine/cosine), [`trig`] ([`Angle`](trig::Angle): 2^32 per turn),
+//! I2F30 for sine/cosine), [`trig`] ([`BinaryAngle`](trig::BinaryAngle): 2^32 per turn),
 //! [`vector`] ([`Vec3`](vector::Vec3)), [`matrix`] ([`Affine3`](matrix::Affine3)), [`camera`]
 //! (the course's observer `(Ω, (W, V, U))` and lens), [`mesh`] (vertex and polygon tables,
 //! normals, back-face culling) and [`generators`] (cube, UV sphere, hollow prism, torus).

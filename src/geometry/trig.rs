@@ -4,7 +4,7 @@
 //! distance ([`camera`](super::camera)) and of the generated meshes ([`generators`](super::generators)).
 //!
 //! ## Conventions
-//! - An [`Angle`] is a `u32` in **binary angle units: 2^32 per turn** (one unit ≈ 1.46·10^-9 rad).
+//! - A [`BinaryAngle`] is a `u32` in **binary angle units: 2^32 per turn** (one unit ≈ 1.46·10^-9 rad).
 //!   Arithmetic wraps, which is exactly angle arithmetic modulo a turn. Positive angles turn
 //!   counter-clockwise (right-hand rule about the rotation axis).
 //! - Results are [`Unit`] (I2F30: `1.0 = 2^30`).
@@ -25,39 +25,42 @@
 use super::fixed::Unit;
 
 /// An angle in binary units: 2^32 per turn, wrapping (see the module doc).
+///
+/// Named for its unit rather than `Angle`, so that it never clashes with
+/// `embedded_graphics::prelude::Angle` (an `f32` angle) when both preludes are glob-imported.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
-pub struct Angle(pub u32);
+pub struct BinaryAngle(pub u32);
 
-impl Angle {
+impl BinaryAngle {
     /// Zero.
-    pub const ZERO: Angle = Angle(0);
+    pub const ZERO: BinaryAngle = BinaryAngle(0);
     /// A quarter turn (90°).
-    pub const QUARTER_TURN: Angle = Angle(1 << 30);
+    pub const QUARTER_TURN: BinaryAngle = BinaryAngle(1 << 30);
     /// Half a turn (180°).
-    pub const HALF_TURN: Angle = Angle(1 << 31);
+    pub const HALF_TURN: BinaryAngle = BinaryAngle(1 << 31);
 
     /// `num / den` of a turn, rounded to the nearest unit; `den = 0` gives zero.
     /// Any `num` (reduced modulo `den` first, so negative fractions work).
-    pub const fn from_turns(num: i64, den: u32) -> Angle {
+    pub const fn from_turns(num: i64, den: u32) -> BinaryAngle {
         if den == 0 {
-            return Angle(0);
+            return BinaryAngle(0);
         }
         let n = num.rem_euclid(den as i64) as u64; // < den < 2^32
                                                    // n·2^32 < 2^64 and adding den/2 < 2^31 stays below 2^64 (n ≤ den − 1).
         let v = ((n << 32) + (den as u64 / 2)) / den as u64;
-        Angle(v as u32) // v ≤ 2^32: 2^32 wraps to 0, the same angle
+        BinaryAngle(v as u32) // v ≤ 2^32: 2^32 wraps to 0, the same angle
     }
 
     /// `deg` degrees (any integer, wrapped to a turn), rounded to the nearest unit.
-    pub const fn from_degrees(deg: i32) -> Angle {
-        Angle::from_turns(deg as i64, 360)
+    pub const fn from_degrees(deg: i32) -> BinaryAngle {
+        BinaryAngle::from_turns(deg as i64, 360)
     }
 
     /// `num / den` degrees (e.g. `(605, 10)` for 60.5°), rounded; `den = 0` gives zero.
-    pub const fn from_degrees_ratio(num: i64, den: u32) -> Angle {
+    pub const fn from_degrees_ratio(num: i64, den: u32) -> BinaryAngle {
         // num/(den·360) of a turn; den·360 may exceed u32, so scale in u64 directly.
         if den == 0 {
-            return Angle(0);
+            return BinaryAngle(0);
         }
         let d = den as u64 * 360; // < 2^41
         let n = num.rem_euclid(d as i64) as u64; // < 2^41
@@ -65,12 +68,12 @@ impl Angle {
         let hi = (n << 16) / d; // n·2^16 < 2^57
         let rem = (n << 16) % d;
         let lo = ((rem << 16) + d / 2) / d; // rem·2^16 < 2^57
-        Angle(((hi << 16) + lo) as u32)
+        BinaryAngle(((hi << 16) + lo) as u32)
     }
 
     /// Half of the angle taken in `[0, 1 turn)` (e.g. half a field of view).
-    pub const fn half(self) -> Angle {
-        Angle(self.0 >> 1)
+    pub const fn half(self) -> BinaryAngle {
+        BinaryAngle(self.0 >> 1)
     }
 
     /// Sine of the angle.
@@ -87,34 +90,34 @@ impl Angle {
     /// 1/1024 degree first so that whole and common fractional degrees are exact (60.0 gives
     /// the same angle as `from_degrees(60)`); non-finite input gives zero.
     #[cfg(feature = "float-setup")]
-    pub fn from_degrees_f32(deg: f32) -> Angle {
+    pub fn from_degrees_f32(deg: f32) -> BinaryAngle {
         use micromath::F32Ext;
         if !deg.is_finite() {
-            return Angle(0);
+            return BinaryAngle(0);
         }
         let d = deg % 360.0; // exact in f32
-        Angle::from_degrees_ratio(F32Ext::round(d * 1024.0) as i64, 1024)
+        BinaryAngle::from_degrees_ratio(F32Ext::round(d * 1024.0) as i64, 1024)
     }
 }
 
-impl core::ops::Add for Angle {
-    type Output = Angle;
-    fn add(self, o: Angle) -> Angle {
-        Angle(self.0.wrapping_add(o.0))
+impl core::ops::Add for BinaryAngle {
+    type Output = BinaryAngle;
+    fn add(self, o: BinaryAngle) -> BinaryAngle {
+        BinaryAngle(self.0.wrapping_add(o.0))
     }
 }
 
-impl core::ops::Sub for Angle {
-    type Output = Angle;
-    fn sub(self, o: Angle) -> Angle {
-        Angle(self.0.wrapping_sub(o.0))
+impl core::ops::Sub for BinaryAngle {
+    type Output = BinaryAngle;
+    fn sub(self, o: BinaryAngle) -> BinaryAngle {
+        BinaryAngle(self.0.wrapping_sub(o.0))
     }
 }
 
-impl core::ops::Neg for Angle {
-    type Output = Angle;
-    fn neg(self) -> Angle {
-        Angle(self.0.wrapping_neg())
+impl core::ops::Neg for BinaryAngle {
+    type Output = BinaryAngle;
+    fn neg(self) -> BinaryAngle {
+        BinaryAngle(self.0.wrapping_neg())
     }
 }
 
@@ -146,23 +149,23 @@ fn octant_q60(r: u32) -> (u128, u128) {
 }
 
 /// Sine and cosine (I2F30) of `a`, each within 1 unit of 2^-30 of the exact value.
-pub fn sin_cos(a: Angle) -> (Unit, Unit) {
+pub fn sin_cos(a: BinaryAngle) -> (Unit, Unit) {
     let (s, c) = sin_cos_bits(a);
     (Unit::from_bits(s), Unit::from_bits(c))
 }
 
 /// Sine of `a` (I2F30).
-pub fn sin(a: Angle) -> Unit {
+pub fn sin(a: BinaryAngle) -> Unit {
     sin_cos(a).0
 }
 
 /// Cosine of `a` (I2F30).
-pub fn cos(a: Angle) -> Unit {
+pub fn cos(a: BinaryAngle) -> Unit {
     sin_cos(a).1
 }
 
 /// Sine and cosine of `a` as raw I2F30 integers (`1.0 = 2^30`), in `[-2^30, 2^30]`.
-pub fn sin_cos_bits(a: Angle) -> (i32, i32) {
+pub fn sin_cos_bits(a: BinaryAngle) -> (i32, i32) {
     let quadrant = a.0 >> 30;
     let r = a.0 & ((1 << 30) - 1);
     let (s0, c0) = if r <= 1 << 29 {
@@ -188,7 +191,7 @@ mod tests {
     use super::*;
 
     fn err_at(a: u32) -> (f64, f64) {
-        let (s, c) = sin_cos_bits(Angle(a));
+        let (s, c) = sin_cos_bits(BinaryAngle(a));
         let t = a as f64 * core::f64::consts::TAU / 4_294_967_296.0;
         let scale = (1u64 << 30) as f64;
         (
@@ -224,26 +227,32 @@ mod tests {
 
     #[test]
     fn exact_at_quarters() {
-        assert_eq!(sin_cos_bits(Angle(0)), (0, 1 << 30));
-        assert_eq!(sin_cos_bits(Angle::QUARTER_TURN), (1 << 30, 0));
-        assert_eq!(sin_cos_bits(Angle::HALF_TURN), (0, -(1 << 30)));
-        assert_eq!(sin_cos_bits(Angle(3 << 30)), (-(1 << 30), 0));
+        assert_eq!(sin_cos_bits(BinaryAngle(0)), (0, 1 << 30));
+        assert_eq!(sin_cos_bits(BinaryAngle::QUARTER_TURN), (1 << 30, 0));
+        assert_eq!(sin_cos_bits(BinaryAngle::HALF_TURN), (0, -(1 << 30)));
+        assert_eq!(sin_cos_bits(BinaryAngle(3 << 30)), (-(1 << 30), 0));
     }
 
     #[test]
     fn angle_constructors() {
-        assert_eq!(Angle::from_degrees(90), Angle::QUARTER_TURN);
-        assert_eq!(Angle::from_degrees(-90), Angle(3 << 30));
-        assert_eq!(Angle::from_degrees(360), Angle(0));
-        assert_eq!(Angle::from_degrees(180), Angle::HALF_TURN);
-        assert_eq!(Angle::from_turns(1, 3), Angle(1_431_655_765));
-        assert_eq!(Angle::from_turns(5, 0), Angle(0));
-        assert_eq!(Angle::from_degrees_ratio(900, 10), Angle::QUARTER_TURN);
+        assert_eq!(BinaryAngle::from_degrees(90), BinaryAngle::QUARTER_TURN);
+        assert_eq!(BinaryAngle::from_degrees(-90), BinaryAngle(3 << 30));
+        assert_eq!(BinaryAngle::from_degrees(360), BinaryAngle(0));
+        assert_eq!(BinaryAngle::from_degrees(180), BinaryAngle::HALF_TURN);
+        assert_eq!(BinaryAngle::from_turns(1, 3), BinaryAngle(1_431_655_765));
+        assert_eq!(BinaryAngle::from_turns(5, 0), BinaryAngle(0));
         assert_eq!(
-            Angle::from_degrees_ratio(605, 10),
-            Angle::from_turns(605, 3600)
+            BinaryAngle::from_degrees_ratio(900, 10),
+            BinaryAngle::QUARTER_TURN
         );
-        assert_eq!(Angle::from_degrees(60).half(), Angle::from_degrees(30));
-        assert_eq!(Angle(5) - Angle(7), Angle(u32::MAX - 1));
+        assert_eq!(
+            BinaryAngle::from_degrees_ratio(605, 10),
+            BinaryAngle::from_turns(605, 3600)
+        );
+        assert_eq!(
+            BinaryAngle::from_degrees(60).half(),
+            BinaryAngle::from_degrees(30)
+        );
+        assert_eq!(BinaryAngle(5) - BinaryAngle(7), BinaryAngle(u32::MAX - 1));
     }
 }

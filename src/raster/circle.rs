@@ -35,8 +35,8 @@
 //!   `2^62` of opposite signs. The cost is O(1) when the circle's bounding box misses the
 //!   window and O(window width + height) otherwise, whatever the radius.
 
+use crate::output::Framebuffer;
 use crate::raster::Window;
-use crate::target::Framebuffer;
 use embedded_graphics_core::geometry::Point;
 
 /// The largest radius [`draw_circle`] accepts: `2^30`.

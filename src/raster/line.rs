@@ -64,9 +64,9 @@
 //!   `2^63`, which fits `u64`; `2ta + c ≤ 2^63 + 2^31` as well. Window bounds may be any `i32`
 //!   (they enter only through `i64` differences).
 
-use crate::clip::outcode::Outcode;
+use super::outcode::Outcode;
+use crate::output::Framebuffer;
 use crate::raster::Window;
-use crate::target::Framebuffer;
 use embedded_graphics_core::geometry::Point;
 
 /// The largest end-point coordinate magnitude accepted by clipping and drawing: `2^30`.

@@ -15,59 +15,15 @@
 //! for arbitrary polygons), [`triangle`] (the fast path with the same coverage).
 
 pub mod circle;
-pub(crate) mod edge_walker;
+pub mod convex_window;
 pub mod line;
+pub(crate) mod outcode;
 pub mod polygon;
 pub(crate) mod range;
-pub(crate) mod setup;
 pub mod triangle;
 
-pub use edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
-
-/// A half-open rectangle of pixels: `x0 ≤ x < x1`, `y0 ≤ y < y1`. Empty when `x1 ≤ x0` or `y1 ≤ y0`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct Window {
-    /// First column inside.
-    pub x0: i32,
-    /// First row inside.
-    pub y0: i32,
-    /// First column past the right side.
-    pub x1: i32,
-    /// First row past the bottom.
-    pub y1: i32,
-}
-
-impl Window {
-    /// The window `x0 ≤ x < x1`, `y0 ≤ y < y1`.
-    pub const fn new(x0: i32, y0: i32, x1: i32, y1: i32) -> Self {
-        Window { x0, y0, x1, y1 }
-    }
-
-    /// The window `0 ≤ x < width`, `0 ≤ y < height`.
-    pub const fn of_size(width: u16, height: u16) -> Self {
-        Window::new(0, 0, width as i32, height as i32)
-    }
-
-    /// True when no pixel is inside.
-    pub const fn is_empty(&self) -> bool {
-        self.x1 <= self.x0 || self.y1 <= self.y0
-    }
-
-    /// True when pixel `(x, y)` is inside.
-    pub const fn contains(&self, x: i32, y: i32) -> bool {
-        x >= self.x0 && x < self.x1 && y >= self.y0 && y < self.y1
-    }
-
-    /// The pixels inside both windows.
-    pub fn intersect(&self, other: &Window) -> Window {
-        Window::new(
-            self.x0.max(other.x0),
-            self.y0.max(other.y0),
-            self.x1.min(other.x1),
-            self.y1.min(other.y1),
-        )
-    }
-}
+pub use crate::output::Window;
+pub use triangle::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 
 /// A run of pixels on one row: `x0 ≤ x < x1` at row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -83,7 +39,7 @@ pub struct Span {
 /// A screen point in fixed point with `S` fractional bits: the pixel-unit coordinates are
 /// `x / 2^S` and `y / 2^S`. `S = 0` is TIPE's integer lattice; `S = 4` (1/16 pixel) is the default.
 ///
-/// Range: the fill accepts `|x|, |y| ≤ `[`edge_walker::MAX_COORD`] (that is `2^28 - 1` units,
+/// Range: the fill accepts `|x|, |y| ≤ `[`MAX_COORD`] (that is `2^28 - 1` units,
 /// ±16.7 M pixels at `S = 4`); see [`polygon`] for why nothing overflows in that range.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct SubpixelPoint<const S: u32> {

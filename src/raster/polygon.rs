@@ -22,10 +22,26 @@
 //! Two polygons sharing an edge therefore never both cover a pixel, and together leave no gap:
 //! meshes are watertight (tested on random tilings).
 //!
-//! Polygons may be given in either orientation. Self-intersecting polygons are filled with the
-//! **nonzero winding rule** (a pixel is covered when the edges' winding number around it is
-//! not zero; a figure-eight fills both lobes, a pentagram its centre too); on their edges the
-//! same left-in/right-out rule holds.
+//! Polygons may be given in either orientation. Self-intersecting polygons are filled by one
+//! of two rules, the caller's [`FillRule`]:
+//! - **nonzero winding** (the default, [`fill_polygon`]): a pixel is covered when the edges'
+//!   winding number around it is not zero; a figure-eight fills both lobes, a pentagram its
+//!   centre too;
+//! - **even-odd** (the course's algorithm 2.4, ch. 2: a row's intersections sorted, the spans
+//!   run from each even-numbered intersection to the next odd one, a vertex where the
+//!   boundary passes through counted twice): a pixel is covered when an odd number of edges
+//!   lie at or left of it on its row; a pentagram's centre is a hole, two overlapping
+//!   squares of one polygon leave their overlap empty.
+//!
+//! For a simple polygon (no self-intersection) both rules cover the same pixels. Under both,
+//! the guarantees above hold unchanged: a point exactly on the edge where a covered run
+//! begins is in, on the edge where it ends is out, and two polygons sharing an edge neither
+//! overlap nor leave a gap (watertight). The half-open rows of each edge (`y_low ≤ y <
+//! y_high`) are what makes the course's "vertex counted twice" exact: at a vertex where the
+//! boundary goes on downward (or upward) one edge ends and the next begins on the same row,
+//! so the row counts one crossing there; at a vertex where it turns back (a local top or
+//! bottom) both edges count or neither does, so the row counts two or none, and the parity
+//! is right either way.
 //!
 //! ## The procedure (TIPE §4.3, with readable names)
 //! 1. [`PolygonEdges::build`] is `Construire_TAG_et_TAD`: walking the vertices in order, an
@@ -40,6 +56,8 @@
 //!    winding counter (`+1` at `xG`, `−1` at `xD + 1`), which gives TIPE's pairs for simple
 //!    polygons in TIPE's orientation and stays right for the other orientation and for
 //!    self-intersections (`xG` and `xD + 1` are the same rounding, `⌈x_e⌉`). Adjacent spans merge.
+//!    The even-odd rule reads the same counter's parity: every event changes the count by
+//!    one, so the number of edges at or left of a pixel is odd exactly when the counter is.
 //!
 //! Unlike the text, rows are produced one at a time (an active edge list) instead of filling
 //! `XG[NbLig][NbCol]` tables for the whole screen: memory is `O(MAX_EDGES)`, not `O(rows)`.
@@ -50,15 +68,39 @@
 //! unclipped polygon, and polygons far outside cost only their set-up.
 //!
 //! ## Numeric contract
-//! Vertices are [`SubpixelPoint<S>`] with `|x|, |y| ≤ `[`MAX_COORD`](super::edge_walker::MAX_COORD)` = 2^28 − 1` and
-//! `S ≤ `[`MAX_SUBPIXEL_BITS`](super::edge_walker::MAX_SUBPIXEL_BITS); other input is rejected with [`FillError::CoordinateOutOfRange`].
+//! Vertices are [`SubpixelPoint<S>`] with `|x|, |y| ≤ `[`MAX_COORD`](super::MAX_COORD)` = 2^28 − 1` and
+//! `S ≤ `[`MAX_SUBPIXEL_BITS`](super::MAX_SUBPIXEL_BITS); other input is rejected with [`FillError::CoordinateOutOfRange`].
 //! See `edge_walker` for why nothing overflows in that range.
 
-use super::edge_walker::{Edge, EdgeSide, EdgeWalker, IncrementalWalker};
 use super::range::check_range;
 pub use super::range::FillError;
+use super::triangle::edge_walker::{Edge, EdgeSide, EdgeWalker, IncrementalWalker};
 use super::{Span, SubpixelPoint, Window};
 use heapless::Vec;
+
+/// Which pixels of a self-intersecting polygon are inside (see the module doc). Both rules
+/// cover the same pixels for a simple polygon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FillRule {
+    /// Covered where the winding number of the boundary around the pixel is not zero (TIPE's
+    /// pairing of `xG` and `xD`, extended to any orientation and to self-intersections).
+    #[default]
+    NonZero,
+    /// Covered where an odd number of edges lie at or left of the pixel on its row (the
+    /// course's algorithm 2.4: spans from even to odd intersections).
+    EvenOdd,
+}
+
+impl FillRule {
+    /// Whether a pixel with `winding` (the signed count of edges at or left of it) is inside.
+    #[inline(always)]
+    fn inside(self, winding: i32) -> bool {
+        match self {
+            FillRule::NonZero => winding != 0,
+            FillRule::EvenOdd => winding & 1 != 0,
+        }
+    }
+}
 
 /// TIPE's `TAG` and `TAD`: the left and right edges of a polygon, low end first.
 #[derive(Debug, Clone)]
@@ -145,11 +187,18 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
         (first, end)
     }
 
-    /// Emits the covered spans inside `window`, row by row from the top, each row left to
-    /// right, each span maximal. `W` chooses the edge stepping strategy.
-    pub fn fill_with<W: EdgeWalker, const S: u32>(
+    /// Emits the covered spans inside `window` under the nonzero winding rule, row by row
+    /// from the top, each row left to right, each span maximal. `W` chooses the edge stepping
+    /// strategy.
+    pub fn fill_with<W: EdgeWalker, const S: u32>(&self, window: &Window, emit: impl FnMut(Span)) {
+        self.fill_with_rule::<W, S>(window, FillRule::NonZero, emit);
+    }
+
+    /// [`Self::fill_with`] under the given [`FillRule`].
+    pub fn fill_with_rule<W: EdgeWalker, const S: u32>(
         &self,
         window: &Window,
+        rule: FillRule,
         mut emit: impl FnMut(Span),
     ) {
         let Some(mut pending) = self.pending::<S>(window) else {
@@ -184,7 +233,7 @@ impl<const MAX_EDGES: usize> PolygonEdges<MAX_EDGES> {
             for a in active.iter() {
                 let _ = ends.push((a.key(), a.winding()));
             }
-            emit_row(y, &ends, window, &mut emit);
+            emit_row(y, &ends, window, rule, &mut emit);
             // Step, retiring edges whose last row this was (keeping the others' order).
             active.retain_mut(|a| {
                 if a.end_row <= y + 1 {
@@ -278,21 +327,27 @@ fn sort_nearly_sorted<T>(v: &mut [T], key: impl Fn(&T) -> i32) {
     }
 }
 
-/// Sweeps sorted winding events and emits the maximal spans where the winding is not zero,
-/// clipped to the window's columns.
-fn emit_row(y: i32, ends: &[(i32, i8)], window: &Window, emit: &mut impl FnMut(Span)) {
+/// Sweeps sorted winding events and emits the maximal spans that `rule` puts inside, clipped
+/// to the window's columns.
+fn emit_row(
+    y: i32,
+    ends: &[(i32, i8)],
+    window: &Window,
+    rule: FillRule,
+    emit: &mut impl FnMut(Span),
+) {
     let mut winding = 0i32;
     let mut start = 0i32;
     let mut i = 0;
     while i < ends.len() {
         let x = ends[i].0;
-        let was_in = winding != 0;
+        let was_in = rule.inside(winding);
         // Apply every event at this position before deciding (equal ends cancel or merge).
         while i < ends.len() && ends[i].0 == x {
             winding += ends[i].1 as i32;
             i += 1;
         }
-        let is_in = winding != 0;
+        let is_in = rule.inside(winding);
         if !was_in && is_in {
             start = x;
         } else if was_in && !is_in {
@@ -314,7 +369,19 @@ pub fn fill_polygon<const S: u32, const MAX_EDGES: usize>(
     window: &Window,
     emit: impl FnMut(Span),
 ) -> Result<(), FillError> {
-    PolygonEdges::<MAX_EDGES>::build(vertices)?.fill_with::<IncrementalWalker, S>(window, emit);
+    fill_polygon_with_rule::<S, MAX_EDGES>(vertices, window, FillRule::NonZero, emit)
+}
+
+/// [`fill_polygon`] under the given [`FillRule`] (the even-odd rule for polygons whose
+/// self-intersections should leave holes). Same errors, same guarantees.
+pub fn fill_polygon_with_rule<const S: u32, const MAX_EDGES: usize>(
+    vertices: &[SubpixelPoint<S>],
+    window: &Window,
+    rule: FillRule,
+    emit: impl FnMut(Span),
+) -> Result<(), FillError> {
+    PolygonEdges::<MAX_EDGES>::build(vertices)?
+        .fill_with_rule::<IncrementalWalker, S>(window, rule, emit);
     Ok(())
 }
 
@@ -324,14 +391,14 @@ pub fn fill_polygon<const S: u32, const MAX_EDGES: usize>(
 pub(crate) fn row_range<const S: u32>(vertices: &[SubpixelPoint<S>]) -> (i32, i32) {
     let lo = vertices.iter().map(|p| p.y).min().unwrap_or(0);
     let hi = vertices.iter().map(|p| p.y).max().unwrap_or(0);
-    use super::edge_walker::ceil_shift;
+    use super::triangle::edge_walker::ceil_shift;
     (ceil_shift(lo, S), ceil_shift(hi, S))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raster::edge_walker::{DivisionWalker, MAX_COORD};
+    use crate::raster::triangle::edge_walker::{DivisionWalker, MAX_COORD};
 
     type P = SubpixelPoint<0>;
 
@@ -423,6 +490,140 @@ mod tests {
         e.fill_with::<IncrementalWalker, 4>(&w, |s| b.push(s).unwrap());
         assert!(!a.is_empty());
         assert_eq!(a, b);
+    }
+
+    /// Parity of the edges at or left of pixel `(x, y)` (S = 0), by direct exact evaluation:
+    /// an edge counts on rows `y_low ≤ y < y_high` when its crossing `x_e ≤ x`.
+    fn odd_crossings(poly: &[P], x: i32, y: i32) -> bool {
+        let mut n = 0;
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (lo, hi) = if a.y < b.y { (a, b) } else { (b, a) };
+            if lo.y == hi.y || y < lo.y || y >= hi.y {
+                continue;
+            }
+            // x_e = lo.x + (hi.x − lo.x)(y − lo.y)/(hi.y − lo.y) ≤ x, multiplied out (hi.y > lo.y).
+            let lhs =
+                (lo.x - x) as i64 * (hi.y - lo.y) as i64 + (hi.x - lo.x) as i64 * (y - lo.y) as i64;
+            if lhs <= 0 {
+                n += 1;
+            }
+        }
+        n % 2 == 1
+    }
+
+    /// `n ≤ 8` random vertices in `[−1, 23]²`.
+    fn random_polygon(rng: &mut crate::test_rng::XorShift, n: usize) -> Vec<P, 8> {
+        let mut coordinate = || (rng.next_u64() % 25) as i32 - 1;
+        (0..n).map(|_| P::new(coordinate(), coordinate())).collect()
+    }
+
+    fn covered_set(poly: &[P], rule: FillRule, w: &Window) -> Vec<(i32, i32), 1024> {
+        let mut v: Vec<(i32, i32), 1024> = Vec::new();
+        fill_polygon_with_rule::<0, 16>(poly, w, rule, |s| {
+            for x in s.x0..s.x1 {
+                v.push((x, s.y)).unwrap();
+            }
+        })
+        .unwrap();
+        v.sort_unstable();
+        v
+    }
+
+    #[test]
+    fn even_odd_leaves_the_pentagram_centre_empty() {
+        let star = [
+            P::new(10, 0),
+            P::new(16, 19),
+            P::new(0, 7),
+            P::new(20, 7),
+            P::new(4, 19),
+        ];
+        let w = Window::new(0, 0, 21, 20);
+        let nonzero = covered_set(&star, FillRule::NonZero, &w);
+        let even_odd = covered_set(&star, FillRule::EvenOdd, &w);
+        assert!(
+            nonzero.contains(&(10, 10)),
+            "the nonzero rule fills the centre"
+        );
+        assert!(
+            !even_odd.contains(&(10, 10)),
+            "the even-odd rule leaves it empty"
+        );
+        assert!(even_odd.contains(&(10, 3)), "a point of the star is in");
+        // Every pixel against the direct parity count, and no span emitted twice.
+        let mut expect: Vec<(i32, i32), 1024> = Vec::new();
+        for x in 0..21 {
+            for y in 0..20 {
+                if odd_crossings(&star, x, y) {
+                    expect.push((x, y)).unwrap();
+                }
+            }
+        }
+        expect.sort_unstable();
+        assert_eq!(even_odd, expect);
+    }
+
+    #[test]
+    fn even_odd_equals_nonzero_on_simple_polygons_and_matches_parity_on_random_ones() {
+        let mut rng = crate::test_rng::XorShift(0xE7E7_0DD0_0000_0031);
+        let w = Window::new(0, 0, 24, 24);
+        for i in 0..3000 {
+            let n = 3 + (rng.next_u64() % 6) as usize;
+            let poly = random_polygon(&mut rng, n);
+            let even_odd = covered_set(&poly, FillRule::EvenOdd, &w);
+            for x in w.x0..w.x1 {
+                for y in w.y0..w.y1 {
+                    assert_eq!(
+                        even_odd.binary_search(&(x, y)).is_ok(),
+                        odd_crossings(&poly, x, y),
+                        "case {i}: pixel ({x}, {y}) of {poly:?}"
+                    );
+                }
+            }
+            if n == 3 {
+                // A triangle is simple: both rules agree.
+                assert_eq!(
+                    even_odd,
+                    covered_set(&poly, FillRule::NonZero, &w),
+                    "case {i}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn even_odd_is_the_parity_of_the_fan_triangles() {
+        // Parity adds up: a polygon's even-odd coverage is the exclusive or of its fan
+        // triangles' coverages, which holds only if the fan's shared edges give each pixel to
+        // exactly one side (watertight, no overlap) under the left-in, right-out rule.
+        let mut rng = crate::test_rng::XorShift(0xFA11_0DD0_0000_0031);
+        let w = Window::new(0, 0, 24, 24);
+        for i in 0..2000 {
+            let n = 4 + (rng.next_u64() % 5) as usize;
+            let poly = random_polygon(&mut rng, n);
+            let mut parity = [[false; 24]; 24];
+            for k in 1..n - 1 {
+                let tri = [poly[0], poly[k], poly[k + 1]];
+                for (x, y) in covered_set(&tri, FillRule::EvenOdd, &w) {
+                    parity[y as usize][x as usize] ^= true;
+                }
+            }
+            let mut fan: Vec<(i32, i32), 1024> = Vec::new();
+            for (y, row) in parity.iter().enumerate() {
+                for (x, &odd) in row.iter().enumerate() {
+                    if odd {
+                        fan.push((x as i32, y as i32)).unwrap();
+                    }
+                }
+            }
+            fan.sort_unstable();
+            assert_eq!(
+                covered_set(&poly, FillRule::EvenOdd, &w),
+                fan,
+                "case {i}: {poly:?}"
+            );
+        }
     }
 
     /// Issue "hostile inputs" #10: the active-edge sort is a correct sort whatever the input

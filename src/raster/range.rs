@@ -5,7 +5,7 @@
 //! `S ≤ MAX_SUBPIXEL_BITS = 16` (see [`edge_walker`](super::edge_walker)); the check itself
 //! is one wrapping add and one unsigned compare per coordinate, so it cannot overflow.
 
-use super::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
+use super::triangle::edge_walker::{MAX_COORD, MAX_SUBPIXEL_BITS};
 use super::SubpixelPoint;
 
 /// Why a polygon could not be filled. Nothing is drawn when an error is returned.

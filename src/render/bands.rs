@@ -10,10 +10,10 @@ use super::polygon_rows::triangle_rows;
 use super::polygon_stage::{Path, PolygonStage, Visitor};
 use super::{
     render_scene, BandPart, CompactSizes, CompactVertex, PolygonRows, PolygonTop, PreparedVertex,
-    RenderError, RenderStats, Renderer, SceneRenderer, StatsSink,
+    RenderError, RenderStats, Renderer, SceneRenderer, StatsSink, TargetBuffer,
 };
+use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::scene::{Object, Scene};
-use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
     /// Each polygon's entry of the band table: never drawn, or the rows its projection
@@ -29,12 +29,15 @@ impl<const S: u32> Renderer<S> {
         let stats = stats.counts();
         let mesh = &object.mesh;
         let needed = mesh.vertices().len();
-        let prepared = scratch
-            .get(..needed)
-            .ok_or(RenderError::ScratchTooSmall { needed })?;
+        let prepared = scratch.get(..needed).ok_or(RenderError::ScratchTooSmall {
+            given: scratch.len(),
+            needed,
+        })?;
+        let given = out.len();
         let out = out
             .get_mut(..mesh.polygon_count())
-            .ok_or(RenderError::ScratchTooSmall {
+            .ok_or(RenderError::PolygonTableTooSmall {
+                given,
                 needed: mesh.polygon_count(),
             })?;
         let stage = PolygonStage {
@@ -107,7 +110,7 @@ pub struct BandScratch<'a, const S: u32> {
 /// for each band of `band_rows` rows (the last may be shorter) it clears and draws the band,
 /// then calls `band_done` with the finished band, mutable (draw an overlay into it there, with
 /// embedded-graphics text or shapes, since a [`Framebuffer`] is a `DrawTarget`), and flush it to
-/// the display (e.g. [`flush`](crate::target::flush)). An error returned by `band_done` stops
+/// the display (e.g. [`flush`](crate::output::flush)). An error returned by `band_done` stops
 /// the frame and is returned; `E` is the caller's error type, which a [`RenderError`] converts
 /// into (`zscan::Error`, `Box<dyn Error>`, or [`RenderError`] itself). The picture is the same
 /// as one pass (the raster stage writes exactly the rows a buffer holds), whatever the scratch
@@ -122,6 +125,41 @@ pub struct BandScratch<'a, const S: u32> {
 /// the polygon table, `polygons_in`, `rejected` and `culled` are counted once per frame;
 /// without it, once per band pass (`culled` then counts, per band, the back faces that reach
 /// the band's rows: a band skips projected polygons above or below it first).
+///
+/// A 32 × 24 picture in bands of 8 rows, each flushed to a display as it is finished:
+///
+/// ```
+/// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565};
+/// use zscan::prelude::*;
+///
+/// let lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+/// let up = Vec3::from_int(0, 1, 0);
+/// let camera = Camera::look_at(Vec3::from_int(2, 1, 3), Vec3::ZERO, up, lens, Viewport::new(32, 24))?;
+/// let objects = [Object::new(unit_cube())];
+/// let scene = Scene { camera, objects: &objects, background: 0, ambient: 255, lights: &[] };
+/// let renderer = Renderer::for_scene(&scene)?;
+/// // One band's buffers (32 × 8), reused for the picture's 3 bands.
+/// let (mut pixels, mut depths) = ([0u8; 32 * 8], [0u16; 32 * 8]);
+/// let (mut vertices, mut polygons) = ([PreparedVertex::default(); 8], [PolygonRows::NEVER; 6]);
+/// let scratch = BandScratch { vertices: &mut vertices, polygons: &mut polygons };
+/// static LUT: Lut<Rgb565> = Lut::<Rgb565>::GREY;
+/// let mut display = MockDisplay::<Rgb565>::new();
+/// let mut stats = RenderStats::default();
+/// let buffers = (&mut pixels[..], &mut depths[..]);
+/// render_in_bands(&renderer, buffers, (32, 24, 8), scratch, &mut stats,
+///     // The callback's return type names the error type `E`: from `Ok(())` alone the
+///     // compiler cannot choose it (error E0283, "type annotations needed").
+///     |band, _depth| -> Result<(), zscan::Error> {
+///         flush(band, &LUT, &mut display, None).map_err(|_| zscan::Error::Display)?;
+///         Ok(())
+///     },
+/// )?;
+/// assert!(stats.pixels_covered > 0);
+/// # Ok::<(), zscan::Error>(())
+/// ```
+///
+/// `E` may be any type a [`RenderError`] converts into: [`zscan::Error`](crate::Error),
+/// [`RenderError`], `Box<dyn std::error::Error>` or an application's own error type.
 pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
     scene_renderer: &SceneRenderer<'_, S>,
     (pixels, depths): (&mut [u8], &mut [D]),
@@ -132,7 +170,7 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
 ) -> Result<(), E> {
     let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
     let BandScratch { vertices, polygons } = scratch;
-    let band_rows = band_height(band_rows, height)?;
+    let band_rows = band_height(renderer, (width, height, band_rows))?;
     let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
     let total_polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
     let prepare_once = vertices.len() >= total;
@@ -181,8 +219,13 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
 /// The rows of each band of every banded entry (`render_in_bands`, `render_in_compact_bands`
 /// and the scan-line's `render_scan_lines`): `band_rows`, at least 1
 /// ([`RenderError::BadBandRows`] names a 0); a band taller than the picture is the whole
-/// picture in one band.
-pub(crate) fn band_height(band_rows: u16, height: u16) -> Result<u16, RenderError> {
+/// picture in one band. The `width × height` picture must hold the camera's viewport
+/// ([`RenderError::TargetSmallerThanViewport`]).
+pub(crate) fn band_height<const S: u32>(
+    renderer: &Renderer<S>,
+    (width, height, band_rows): (u16, u16, u16),
+) -> Result<u16, RenderError> {
+    renderer.check_covers(TargetBuffer::Frame, (width, height), false)?;
     if band_rows == 0 {
         return Err(RenderError::BadBandRows { band_rows });
     }
@@ -201,17 +244,40 @@ pub(super) fn each_band<D: DepthValue, E: From<RenderError>>(
     let mut top = 0u16;
     while top < height {
         let rows = band_rows.min(height - top);
-        let n = width as usize * rows as usize;
-        let too_small = RenderError::BufferTooSmall;
-        let mut frame = Framebuffer::band(pixels.get_mut(..n).ok_or(too_small)?, width, rows, top)
-            .map_err(|_| too_small)?;
-        let mut depth = DepthBuffer::band(depths.get_mut(..n).ok_or(too_small)?, width, rows, top)
-            .map_err(|_| too_small)?;
+        let (mut frame, mut depth) = band_buffers((pixels, depths), (width, rows, top))?;
         draw(&mut frame, &mut depth)?;
         band_done(&mut frame, &depth)?;
         top += rows;
     }
     Ok(())
+}
+
+/// The band of rows `top..top + rows` of a `width`-wide picture, from the front of `pixels`
+/// and `depths`: [`RenderError::BandMemoryTooSmall`] names the buffer shorter than
+/// `width × rows` and both sizes (what every banded entry draws through).
+pub(crate) fn band_buffers<'b, D: DepthValue>(
+    (pixels, depths): (&'b mut [u8], &'b mut [D]),
+    (width, rows, top): (u16, u16, u16),
+) -> Result<(Framebuffer<'b>, DepthBuffer<'b, D>), RenderError> {
+    let needed = width as usize * rows as usize;
+    let short = |part, given| RenderError::BandMemoryTooSmall {
+        part,
+        given,
+        needed,
+    };
+    let given = (pixels.len(), depths.len());
+    let pixels = pixels
+        .get_mut(..needed)
+        .ok_or(short(BandPart::Pixels, given.0))?;
+    let depths = depths
+        .get_mut(..needed)
+        .ok_or(short(BandPart::Depths, given.1))?;
+    // The slices hold `width × rows` elements: only a zero width or row count is refused.
+    let frame =
+        Framebuffer::band(pixels, width, rows, top).map_err(|_| short(BandPart::Pixels, 0))?;
+    let depth =
+        DepthBuffer::band(depths, width, rows, top).map_err(|_| short(BandPart::Depths, 0))?;
+    Ok((frame, depth))
 }
 
 /// Caller memory of [`render_in_compact_bands`] besides the band's buffers; sizes from
@@ -255,7 +321,7 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
         polygons,
     } = scratch;
     let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
-    let band_rows = band_height(band_rows, height)?;
+    let band_rows = band_height(renderer, (width, height, band_rows))?;
     let sizes = CompactSizes::of(scene);
     let band = width as usize * band_rows as usize;
     check_compact_memory(

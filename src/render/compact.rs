@@ -59,12 +59,12 @@ use super::{RenderError, RenderStats, Renderer, StatsSink};
 use crate::clip::frustum::MAX_POLYGON_VERTICES;
 use crate::geometry::mesh::PolygonSizes;
 use crate::geometry::vector::Vec3;
-use crate::raster::edge_walker::ceil_shift;
+use crate::lighting::light_polygon;
+use crate::output::{DepthBuffer, DepthValue, Framebuffer};
+use crate::raster::triangle::edge_walker::ceil_shift;
+use crate::raster::triangle::{RasterTarget, ShadeMode};
 use crate::raster::SubpixelPoint;
 use crate::scene::{Intensities, Object, Scene};
-use crate::shade::lighting::light_polygon;
-use crate::shade::span_writer::{RasterTarget, ShadeMode};
-use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// A vertex after the vertex stage, in 8 bytes: its sub-pixel screen position as `i16` and
 /// its 32-bit normalised depth (see the module doc for when a vertex has this form).

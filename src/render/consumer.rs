@@ -19,12 +19,12 @@
 
 use super::{PreparedVertex, RenderError};
 use crate::geometry::vector::Vec3;
+use crate::output::DepthValue;
+use crate::raster::triangle::Bayer4;
+use crate::raster::triangle::{draw_in_range, RasterTarget, WrittenCount};
+use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};
 use crate::raster::SubpixelPoint;
 use crate::scene::Object;
-use crate::shade::dither::Bayer4;
-use crate::shade::phong::{draw_phong_on, PhongContext, PhongVertex};
-use crate::shade::span_writer::{draw_in_range, RasterTarget, WrittenCount};
-use crate::target::DepthValue;
 
 /// One triangle corner handed to a consumer: screen position, depth, observer-frame position
 /// and `N` attributes (a level, or a normal), from the vertex stage or the clipper.

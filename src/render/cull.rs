@@ -13,9 +13,10 @@ use super::polygon_rows::triangle_rows;
 use super::polygon_stage::{Path, PolygonStage};
 use super::vertex_stage::UNPROJECTED;
 use super::{PreparedVertex, RenderError, RenderStats};
-use crate::arith::wide::mul_wide;
+use crate::clip::frustum::ClipVolume;
 use crate::clip::frustum::MAX_POLYGON_VERTICES;
 use crate::geometry::vector::Vec3;
+use crate::raster::triangle::twice_area;
 use crate::raster::SubpixelPoint;
 
 /// What [`PolygonStage::outcodes`] returns for a polygon wholly outside one plane (no real
@@ -51,7 +52,8 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             }
             return Ok(Path::Projected);
         }
-        if cull && !faces_eye_observer(poly.len(), |k| vertex(k).view) {
+        let parallel = self.renderer.frustum.screen_affine();
+        if cull && !faces_eye_observer(poly.len(), |k| vertex(k).view, parallel) {
             stats.culled += 1;
             return Ok(Path::Skip);
         }
@@ -110,14 +112,12 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
 /// twice their bounding box's, `2·(2^29)² = 2^59`. Front faces (counter-clockwise seen from
 /// outside, with `y` up) are clockwise on a `y`-down screen: negative area.
 #[inline(always)]
-pub(super) fn screen_area<const S: u32>(n: usize, p: impl Fn(usize) -> SubpixelPoint<S>) -> i64 {
+pub(crate) fn screen_area<const S: u32>(n: usize, p: impl Fn(usize) -> SubpixelPoint<S>) -> i64 {
     let o = p(0);
     let mut sum = 0i64;
     for k in 1..n - 1 {
         let (b, c) = (p(k), p(k + 1));
-        let (bx, by) = (b.x.wrapping_sub(o.x), b.y.wrapping_sub(o.y));
-        let (cx, cy) = (c.x.wrapping_sub(o.x), c.y.wrapping_sub(o.y));
-        sum = sum.wrapping_add(bx as i64 * cy as i64 - by as i64 * cx as i64);
+        sum = sum.wrapping_add(twice_area(o, b, c));
     }
     sum
 }
@@ -132,15 +132,15 @@ pub(super) fn front_triangle<const S: u32>(
     b: SubpixelPoint<S>,
     c: SubpixelPoint<S>,
 ) -> bool {
-    let (bx, by) = (b.x.wrapping_sub(a.x), b.y.wrapping_sub(a.y));
-    let (cx, cy) = (c.x.wrapping_sub(a.x), c.y.wrapping_sub(a.y));
-    mul_wide(bx, cy).wrapping_add(mul_wide(by, cx.wrapping_neg())) < 0
+    twice_area(a, b, c) < 0
 }
 
 /// Back-face test in the observer frame (eye at the origin): the face is front-facing when
 /// `(0 − P0)·N > 0` with `N` the outward normal. The observer frame is left-handed (x right,
 /// y up, z forward), so the winding cross product there is `−N`: front ⇔ `P0·Σ cross > 0`.
-pub(super) fn faces_eye_observer(n: usize, p: impl Fn(usize) -> Vec3) -> bool {
+/// Under a parallel projection (`parallel`) the direction toward the eye is `−z` everywhere:
+/// front ⇔ `−N_z > 0` ⇔ `(Σ cross)_z > 0`.
+pub(super) fn faces_eye_observer(n: usize, p: impl Fn(usize) -> Vec3, parallel: bool) -> bool {
     let w = |v: Vec3| v.bits().map(|c| c as i128);
     let o = w(p(0));
     let mut nrm = [0i128; 3];
@@ -151,6 +151,9 @@ pub(super) fn faces_eye_observer(n: usize, p: impl Fn(usize) -> Vec3) -> bool {
         nrm[0] += e1[1] * e2[2] - e1[2] * e2[1];
         nrm[1] += e1[2] * e2[0] - e1[0] * e2[2];
         nrm[2] += e1[0] * e2[1] - e1[1] * e2[0];
+    }
+    if parallel {
+        return nrm[2] > 0;
     }
     // |o| < 2^31, |nrm| < 2^66·n: the dot stays below 2^102.
     o[0] * nrm[0] + o[1] * nrm[1] + o[2] * nrm[2] > 0

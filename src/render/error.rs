@@ -2,20 +2,48 @@
 
 use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
 use crate::geometry::matrix::MatrixError;
+use crate::lighting::LightingError;
 use crate::project::ProjectError;
-use crate::shade::lighting::LightingError;
-use crate::shade::span_writer::DrawError;
+use crate::raster::triangle::DrawError;
 
 /// Why a frame or object could not be rendered.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RenderError {
-    /// The scratch slice is shorter than the mesh's vertex table.
+    /// The vertex scratch is shorter than the mesh's vertex table.
     ScratchTooSmall {
+        /// Vertices the scratch holds.
+        given: usize,
         /// Vertices in the mesh.
         needed: usize,
     },
-    /// An intensity table is shorter than the vertex or polygon table it describes.
-    IntensitiesTooShort,
+    /// The polygon table ([`PolygonRows`](super::PolygonRows)) is shorter than the mesh's
+    /// polygon count.
+    PolygonTableTooSmall {
+        /// Entries the table holds.
+        given: usize,
+        /// Polygons in the mesh.
+        needed: usize,
+    },
+    /// An object's intensity table is shorter than the vertex or polygon table it describes.
+    IntensitiesTooShort {
+        /// Which table.
+        table: IntensityTable,
+        /// Entries it holds.
+        given: usize,
+        /// Entries the mesh needs (its vertices or its polygons).
+        needed: usize,
+    },
+    /// A framebuffer or depth buffer does not hold the camera's viewport: it is narrower, or,
+    /// made whole (`new`, not `band`), shorter. Drawing would crop the picture, so nothing is
+    /// drawn. A band (`Framebuffer::band`) holds some rows by design and needs only the width.
+    TargetSmallerThanViewport {
+        /// Which buffer.
+        buffer: TargetBuffer,
+        /// Its width and height in pixels.
+        size: (u16, u16),
+        /// The camera's viewport, width and height in pixels.
+        viewport: (u16, u16),
+    },
     /// A polygon has more than [`MAX_POLYGON_VERTICES`] vertices.
     PolygonTooLarge,
     /// Composing the object and view transforms overflowed.
@@ -26,8 +54,6 @@ pub enum RenderError {
     Clip(ClipError),
     /// A triangle was rejected by the raster stage (range or size limits).
     Draw(DrawError),
-    /// The band buffers hold fewer than `width × band_rows` elements (or the size is zero).
-    BufferTooSmall,
     /// The lights could not be set up (too many, a zero direction).
     Lighting(LightingError),
     /// A visibility method that stores triangles before drawing them (painter, scan-line,
@@ -41,15 +67,9 @@ pub enum RenderError {
         /// Splits the caller's budget allows.
         budget: usize,
     },
-    /// A piece of the painter's would need more than [`MAX_CUTS`](crate::visibility::MAX_CUTS)
-    /// cuts.
-    PieceCutTooOften {
-        /// Cuts a piece may carry.
-        cuts: usize,
-    },
-    /// The painter's tests could not order a group of triangles that no split separates
-    /// (its tests judge a piece by its whole triangle, so some cycles of pieces stay): the
-    /// frame is refused rather than drawn in a wrong order.
+    /// The painter's tests could not order a group of pieces that no further split separates
+    /// (each already cut by the others' planes; the tests judge a piece by an outline a sliver
+    /// larger than it): the frame is refused rather than drawn in a wrong order.
     PainterCycle,
     /// Warnock's subdivision needed more windows on its stack than the caller's memory holds.
     SubdivisionStackFull {
@@ -70,6 +90,15 @@ pub enum RenderError {
     /// The visibility methods that store triangles keep a level per corner; a Phong object
     /// carries normals (draw it with the z-buffer or back-face only).
     PhongUnsupported,
+    /// The painter would split a triangle of a fast Gouraud object, or Warnock's subdivision
+    /// was given one: both draw parts of triangles (a piece row by row, a window), where the
+    /// 16.16 luminance steps start at the part's first pixel instead of the whole span's, so
+    /// some pixels would differ by a level from the z-buffer's (draw the object with exact
+    /// Gouraud, or the frame with the scan-line or the z-buffer).
+    FastGouraudInParts {
+        /// The object's index in the scene.
+        object: usize,
+    },
     /// A scene with more objects than a stored triangle can name (256).
     TooManyObjects,
     /// A drawing order names an object the scene does not have.
@@ -85,9 +114,10 @@ pub enum RenderError {
         /// The rows asked for.
         band_rows: u16,
     },
-    /// A part of a compact banded frame's caller memory
-    /// ([`render_in_compact_bands`](super::render_in_compact_bands)) holds fewer elements
-    /// than the scene needs.
+    /// A part of a banded frame's caller memory holds fewer elements than the frame needs:
+    /// the band's pixels or depth samples (`width × band_rows` each) of any banded entry, or
+    /// a part of [`render_in_compact_bands`](super::render_in_compact_bands)'s or
+    /// [`draw_plan`](crate::visibility::draw_plan)'s memory.
     BandMemoryTooSmall {
         /// Which part.
         part: BandPart,
@@ -105,9 +135,19 @@ pub enum RenderError {
         /// The vertex's index in its mesh.
         vertex: usize,
     },
+    /// [`draw_plan`](crate::visibility::draw_plan) was given a plan whose method and depth
+    /// width the planner never makes together (a `Plan` built by hand).
+    NotPlanned {
+        /// The plan's method, by its name (`Visibility::name`).
+        method: &'static str,
+        /// The plan's bytes of depth per sample.
+        depth_bytes: usize,
+    },
 }
 
-/// A part of a compact banded frame's caller memory ([`RenderError::BandMemoryTooSmall`]).
+/// A part of a banded frame's caller memory ([`RenderError::BandMemoryTooSmall`]).
+/// `Pixels` and `Depths` are every banded entry's band buffers; the others are
+/// [`render_in_compact_bands`](super::render_in_compact_bands)'s.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BandPart {
     /// The band's pixels (`width × band_rows`).
@@ -120,6 +160,11 @@ pub enum BandPart {
     Levels,
     /// The polygon table (every object's polygons).
     Polygons,
+    /// The prepared vertices of [`render_in_bands`](super::render_in_bands) (a plan's vertex
+    /// scratch).
+    PreparedVertices,
+    /// The polygon rows of [`render_in_bands`](super::render_in_bands) (a plan's polygon table).
+    PolygonRows,
 }
 
 impl core::fmt::Display for BandPart {
@@ -130,6 +175,59 @@ impl core::fmt::Display for BandPart {
             BandPart::Vertices => "compact vertices",
             BandPart::Levels => "vertex levels",
             BandPart::Polygons => "polygon table entries",
+            BandPart::PreparedVertices => "prepared vertices",
+            BandPart::PolygonRows => "polygon rows",
+        })
+    }
+}
+
+/// An object's intensity table ([`RenderError::IntensitiesTooShort`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntensityTable {
+    /// [`Intensities::PerVertex`](crate::scene::Intensities::PerVertex): a level per vertex.
+    PerVertex,
+    /// [`Intensities::PerPolygon`](crate::scene::Intensities::PerPolygon): a level per polygon.
+    PerPolygon,
+    /// The vertex normals of [`Intensities::Lit`](crate::scene::Intensities::Lit) (Gouraud and
+    /// Phong objects).
+    Normals,
+}
+
+impl core::fmt::Display for IntensityTable {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            IntensityTable::PerVertex => "per-vertex intensity table",
+            IntensityTable::PerPolygon => "per-polygon intensity table",
+            IntensityTable::Normals => "vertex normal table",
+        })
+    }
+}
+
+impl IntensityTable {
+    /// What one entry of the table describes, plural.
+    fn entries(self) -> &'static str {
+        match self {
+            IntensityTable::PerPolygon => "polygons",
+            _ => "vertices",
+        }
+    }
+}
+
+/// A caller buffer that must hold the camera's viewport
+/// ([`RenderError::TargetSmallerThanViewport`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TargetBuffer {
+    /// The framebuffer (or the frame size given to a banded entry).
+    Frame,
+    /// The depth buffer.
+    Depth,
+}
+
+impl core::fmt::Display for TargetBuffer {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            TargetBuffer::Frame => "framebuffer",
+            TargetBuffer::Depth => "depth buffer",
         })
     }
 }
@@ -137,12 +235,34 @@ impl core::fmt::Display for BandPart {
 impl core::fmt::Display for RenderError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            RenderError::ScratchTooSmall { needed } => {
-                write!(f, "scratch holds fewer than the mesh's {needed} vertices")
-            }
-            RenderError::IntensitiesTooShort => {
-                write!(f, "intensity table shorter than its mesh table")
-            }
+            RenderError::ScratchTooSmall { given, needed } => write!(
+                f,
+                "the vertex scratch holds {given} vertices, the mesh has {needed}"
+            ),
+            RenderError::PolygonTableTooSmall { given, needed } => write!(
+                f,
+                "the polygon table holds {given} entries, the mesh has {needed} polygons"
+            ),
+            RenderError::IntensitiesTooShort {
+                table,
+                given,
+                needed,
+            } => write!(
+                f,
+                "the object's {table} holds {given} entries, its mesh has {needed} {}",
+                table.entries()
+            ),
+            RenderError::TargetSmallerThanViewport {
+                buffer,
+                size,
+                viewport,
+            } => write!(
+                f,
+                "the {buffer} is {} × {} pixels, smaller than the camera's {} × {} viewport: \
+                 the picture would be cropped (a whole frame needs the viewport's size, a band \
+                 its width)",
+                size.0, size.1, viewport.0, viewport.1
+            ),
             RenderError::PolygonTooLarge => {
                 write!(f, "polygon with more than {MAX_POLYGON_VERTICES} vertices")
             }
@@ -150,7 +270,6 @@ impl core::fmt::Display for RenderError {
             RenderError::Projection(e) => write!(f, "projection: {e}"),
             RenderError::Clip(e) => write!(f, "clipping: {e}"),
             RenderError::Draw(e) => write!(f, "raster: {e}"),
-            RenderError::BufferTooSmall => write!(f, "band buffers smaller than width × rows"),
             RenderError::Lighting(e) => write!(f, "lighting: {e}"),
             RenderError::TriangleStoreFull { capacity } => write!(
                 f,
@@ -160,9 +279,6 @@ impl core::fmt::Display for RenderError {
                 f,
                 "the painter's overlaps need more than its budget of {budget} splits"
             ),
-            RenderError::PieceCutTooOften { cuts } => {
-                write!(f, "a painter's piece would need more than {cuts} cuts")
-            }
             RenderError::PainterCycle => write!(
                 f,
                 "the painter's tests cannot order a cycle of pieces (use the scan-line or z-buffer)"
@@ -183,6 +299,12 @@ impl core::fmt::Display for RenderError {
                 f,
                 "a Phong object cannot be stored by this visibility method (use the z-buffer)"
             ),
+            RenderError::FastGouraudInParts { object } => write!(
+                f,
+                "object {object} is fast Gouraud, whose 16.16 shading steps differ from the \
+                 z-buffer's when a triangle is drawn in parts (the painter's pieces, Warnock's \
+                 windows): use exact Gouraud, the scan-line or the z-buffer"
+            ),
             RenderError::TooManyObjects => write!(f, "more than 256 objects in the scene"),
             RenderError::NoSuchObject { index, objects } => write!(
                 f,
@@ -202,6 +324,15 @@ impl core::fmt::Display for RenderError {
                 "vertex {vertex} of object {object} needs clipping or leaves the 16-bit screen \
                  range: compact bands need every vertex inside the guard band \
                  (use render_in_bands)"
+            ),
+            RenderError::NotPlanned {
+                method,
+                depth_bytes,
+            } => write!(
+                f,
+                "a plan of method {method} with {depth_bytes} bytes of depth per sample is not \
+                 one the planner makes: draw_plan draws back faces with no depth and the z-buffer \
+                 with 16- or 32-bit depth"
             ),
         }
     }

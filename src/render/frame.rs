@@ -2,8 +2,8 @@
 //! [`render_scene`] (clear, then every object of a [`SceneRenderer`]'s scene).
 
 use super::{PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
+use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::scene::Object;
-use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
     /// Both stages for one object.
@@ -26,7 +26,9 @@ impl<const S: u32> Renderer<S> {
 /// [`StatsWithoutWritten`](super::StatsWithoutWritten) everything but the written pixels, whose
 /// per-pixel add the span loops then leave out (the faster choice when the count is not read;
 /// see its doc).
-/// `scratch` must hold at least as many vertices as the largest mesh.
+/// `scratch` must hold at least as many vertices as the largest mesh. `frame` and `depth` hold
+/// the camera's whole viewport, or, made as bands, its width
+/// ([`RenderError::TargetSmallerThanViewport`] otherwise: nothing is drawn).
 pub fn render_scene<D: DepthValue, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
@@ -35,6 +37,7 @@ pub fn render_scene<D: DepthValue, const S: u32>(
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
     let (scene, renderer) = (renderer.scene(), renderer.renderer());
+    renderer.check_targets(frame, depth)?;
     frame.clear(scene.background);
     depth.clear();
     for object in scene.objects {

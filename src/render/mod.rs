@@ -17,16 +17,18 @@
 //! 3. **The seam** (`consumer.rs`): each culled, clipped, projected triangle goes to a
 //!    `TriangleConsumer`. Today's consumers draw through the depth buffer at once
 //!    (`LevelWriter` into `draw_triangle_on`,
-//!    `PhongWriter` into [`draw_triangle_phong`](crate::shade::phong::draw_triangle_phong));
+//!    `PhongWriter` into [`draw_triangle_phong`](crate::raster::triangle::draw_triangle_phong));
 //!    other visibility methods plug in here.
 //!
 //! `frame.rs` holds the entries ([`Renderer::draw_object`], [`render_scene`]), `bands.rs` the
 //! banded frames ([`render_in_bands`], [`render_in_compact_bands`]) with their polygon tables
-//! (`polygon_rows.rs`, `compact.rs`), `stats.rs` the counts, `error.rs` the error.
+//! (`polygon_rows.rs`, `compact.rs`), `double_bands.rs` the double-buffered output of
+//! `render_in_bands` ([`DoubleBands`]: band `n + 1` drawn while band `n` is sent, through a
+//! [`BandSink`] a DMA driver implements), `stats.rs` the counts, `error.rs` the error.
 //!
 //! ## Bands
 //! Frame and depth buffer may be a band of rows
-//! ([`Framebuffer::band`](crate::target::Framebuffer::band)): the raster stage writes only the
+//! ([`Framebuffer::band`](crate::output::Framebuffer::band)): the raster stage writes only the
 //! rows the buffers hold, so drawing a picture band by band, flushing each band to the display
 //! before the next, gives the same pixels as one pass (tested). [`render_in_bands`] runs the
 //! vertex stage once per frame when its scratch holds every object's vertices, and with a
@@ -47,7 +49,7 @@
 //! raster's `±(2^28 − 1)` sub-pixel range), and every triangle of that range is drawn with the
 //! exact planes, whatever its size: those too large for the 32-bit stepping plane (`2·area ≥
 //! 2^30` sub-pixel units², a quad filling a 512×512 view and up) take the wide plane
-//! (`shade::attributes::WidePlane`), out of line. So any viewport the
+//! (`raster::triangle::wide_plane::WidePlane`), out of line. So any viewport the
 //! [`Viewport`](crate::geometry::camera::Viewport) holds (sides up to 65 535 pixels) and any
 //! principal point render. Intensities are `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
 
@@ -55,23 +57,25 @@ mod bands;
 pub(crate) mod compact;
 pub(crate) mod consumer;
 mod cull;
+pub(crate) use cull::screen_area;
+mod double_bands;
 mod error;
 mod frame;
 mod object;
 mod polygon_rows;
 mod polygon_stage;
 mod renderer;
-mod stats;
 mod vertex_stage;
 
 pub use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
 pub use crate::project::ProjectError;
-pub(crate) use bands::band_height;
+pub use crate::stats::{RenderStats, StatsSink, StatsWithoutWritten};
+pub(crate) use bands::{band_buffers, band_height};
 pub use bands::{render_in_bands, render_in_compact_bands, BandScratch, CompactBandScratch};
 pub use compact::{CompactSizes, CompactVertex, PolygonTop};
-pub use error::{BandPart, RenderError};
+pub use double_bands::{BandSink, DisplaySink, DoubleBandError, DoubleBands};
+pub use error::{BandPart, IntensityTable, RenderError, TargetBuffer};
 pub use frame::render_scene;
 pub use polygon_rows::PolygonRows;
 pub use renderer::{Renderer, SceneRenderer};
-pub use stats::{MethodCounts, RenderStats, StatsSink, StatsWithoutWritten};
 pub use vertex_stage::PreparedVertex;

@@ -5,13 +5,15 @@ use core::cell::Cell;
 
 use super::consumer::{LevelWriter, PhongWriter, TriangleConsumer};
 use super::polygon_stage::PolygonStage;
-use super::{PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink};
+use super::{
+    IntensityTable, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
+};
 use crate::geometry::vector::Vec3;
+use crate::lighting::light_polygon;
+use crate::output::{DepthBuffer, DepthValue, Framebuffer};
+use crate::raster::triangle::PhongContext;
+use crate::raster::triangle::{RasterTarget, ShadeMode};
 use crate::scene::{Intensities, Object};
-use crate::shade::lighting::light_polygon;
-use crate::shade::phong::PhongContext;
-use crate::shade::span_writer::{RasterTarget, ShadeMode};
-use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 impl<const S: u32> Renderer<S> {
     /// The polygon stage and raster for `object`, whose vertices `prepare` put in `scratch`.
@@ -19,7 +21,7 @@ impl<const S: u32> Renderer<S> {
     /// Lit objects ([`Intensities::Lit`]) get their levels here: flat ones per polygon
     /// (`light_polygon`), Gouraud ones from the vertex stage; Phong ones carry their
     /// observer-frame normals through clipping as three attributes and are lit per pixel
-    /// ([`draw_triangle_phong`](crate::shade::phong::draw_triangle_phong)).
+    /// ([`draw_triangle_phong`](crate::raster::triangle::draw_triangle_phong)).
     pub fn rasterize<D: DepthValue, T: StatsSink>(
         &self,
         object: &Object<'_>,
@@ -45,7 +47,8 @@ impl<const S: u32> Renderer<S> {
         stats: &mut T,
     ) -> Result<(), RenderError> {
         if rows.len() < object.mesh.polygon_count() {
-            return Err(RenderError::ScratchTooSmall {
+            return Err(RenderError::PolygonTableTooSmall {
+                given: rows.len(),
                 needed: object.mesh.polygon_count(),
             });
         }
@@ -65,6 +68,7 @@ impl<const S: u32> Renderer<S> {
         stats: &mut T,
     ) -> Result<(), RenderError> {
         let stats = stats.counts();
+        self.check_targets(frame, depth)?;
         let prepared = checked_scratch(object, scratch)?;
         let rows = (frame.top().max(depth.top()), {
             let f = frame.top() + frame.height() as i32;
@@ -193,19 +197,27 @@ fn checked_scratch<'s, const S: u32>(
     let prepared = scratch
         .get(..mesh.vertices().len())
         .ok_or(RenderError::ScratchTooSmall {
+            given: scratch.len(),
             needed: mesh.vertices().len(),
         })?;
+    let short = |table, given, needed| {
+        Err(RenderError::IntensitiesTooShort {
+            table,
+            given,
+            needed,
+        })
+    };
     match object.intensities {
         Intensities::PerVertex(t) if t.len() < prepared.len() => {
-            Err(RenderError::IntensitiesTooShort)
+            short(IntensityTable::PerVertex, t.len(), prepared.len())
         }
         Intensities::PerPolygon(t) if t.len() < mesh.polygon_count() => {
-            Err(RenderError::IntensitiesTooShort)
+            short(IntensityTable::PerPolygon, t.len(), mesh.polygon_count())
         }
         Intensities::Lit { normals, .. }
             if object.shade != ShadeMode::Flat && normals.len() < prepared.len() =>
         {
-            Err(RenderError::IntensitiesTooShort)
+            short(IntensityTable::Normals, normals.len(), prepared.len())
         }
         _ => Ok(prepared),
     }

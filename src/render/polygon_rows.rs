@@ -14,7 +14,7 @@
 //! 65535 (`CLIPPED_FROM_ROW_0`, read as 0): at most one band more than the exact rows is visited.
 
 use super::PreparedVertex;
-use crate::raster::edge_walker::ceil_shift;
+use crate::raster::triangle::edge_walker::ceil_shift;
 
 /// A polygon's fate in a frame drawn in bands, decided once by
 /// [`Renderer::polygon_rows`](super::Renderer::polygon_rows):
@@ -37,6 +37,9 @@ impl core::fmt::Debug for PolygonRows {
 }
 
 impl PolygonRows {
+    /// The zeroed entry ([`Default`]), for a polygon table built at compile time: a `static`
+    /// of them is zero-initialised memory (`.bss`). The renderer writes every entry it reads.
+    pub const ZERO: PolygonRows = PolygonRows::pack(0, 0);
     /// Rejected or culled: no band draws it.
     pub const NEVER: PolygonRows = PolygonRows::pack(u16::MAX, 0);
     /// Crosses a frustum plane, rows unknown: every band runs the clipper (and the raster's
@@ -110,4 +113,19 @@ pub(super) fn triangle_rows<const S: u32>(v: [&PreparedVertex<S>; 3]) -> Polygon
     let (y0, y1, y2) = (v[0].screen.y, v[1].screen.y, v[2].screen.y);
     let (lo, hi) = (y0.min(y1).min(y2), y0.max(y1).max(y2));
     PolygonRows::rows(ceil_shift(lo, S), ceil_shift(hi, S))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The compile-time entry is the derived default (zero bits, `.bss` in a static) and, not
+    /// yet written by the renderer, reaches no band.
+    #[test]
+    fn zero_entry_is_default_and_meets_no_band() {
+        assert_eq!(PolygonRows::ZERO, PolygonRows::default());
+        for band in [(0, 16), (16, 32), (224, 240), (0, 65_536)] {
+            assert!(!PolygonRows::ZERO.meets(band), "{band:?}");
+        }
+    }
 }

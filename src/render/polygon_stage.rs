@@ -29,7 +29,7 @@ use crate::clip::fan::clip_project_fan;
 use crate::clip::frustum::{ClipVertex, CLIP_CAPACITY};
 use crate::geometry::mesh::PolygonSizes;
 use crate::geometry::vector::Vec3;
-use crate::raster::edge_walker::ceil_shift;
+use crate::raster::triangle::edge_walker::ceil_shift;
 use crate::scene::Object;
 
 /// What the polygon stage does with one polygon (decided in `cull.rs`).

@@ -15,13 +15,13 @@
 //! saturation and with a 32-bit outcode, equal within the bound (tested against the general
 //! loop). Levels are `0..=255`.
 
-use super::RenderError;
 use super::Renderer;
+use super::{IntensityTable, RenderError};
 use crate::geometry::matrix::Affine3;
 use crate::geometry::vector::Vec3;
+use crate::raster::triangle::ShadeMode;
 use crate::raster::SubpixelPoint;
 use crate::scene::{Intensities, Object};
-use crate::shade::span_writer::ShadeMode;
 
 /// Outcode bit marking a vertex that could not be projected (forces the clipping path).
 pub(super) const UNPROJECTED: u8 = 0x80;
@@ -44,15 +44,22 @@ pub struct PreparedVertex<const S: u32 = 4> {
     pub level: u8,
 }
 
+impl<const S: u32> PreparedVertex<S> {
+    /// The zeroed vertex ([`Default`]), for scratch built at compile time: a `static` of them
+    /// (`[PreparedVertex::ZERO; N]`) is zero-initialised memory (`.bss`), built in place
+    /// rather than on the stack. The vertex stage overwrites every vertex it uses.
+    pub const ZERO: Self = PreparedVertex {
+        view: Vec3::ZERO,
+        screen: SubpixelPoint::new(0, 0),
+        depth: 0,
+        outcode: 0,
+        level: 0,
+    };
+}
+
 impl<const S: u32> Default for PreparedVertex<S> {
     fn default() -> Self {
-        PreparedVertex {
-            view: Vec3::ZERO,
-            screen: SubpixelPoint::new(0, 0),
-            depth: 0,
-            outcode: 0,
-            level: 0,
-        }
+        Self::ZERO
     }
 }
 
@@ -63,10 +70,10 @@ impl<const S: u32> Renderer<S> {
         object: &Object<'_>,
         scratch: &mut [PreparedVertex<S>],
     ) -> Result<(), RenderError> {
-        let needed = object.mesh.vertices().len();
+        let (given, needed) = (scratch.len(), object.mesh.vertices().len());
         let scratch = scratch
             .get_mut(..needed)
-            .ok_or(RenderError::ScratchTooSmall { needed })?;
+            .ok_or(RenderError::ScratchTooSmall { given, needed })?;
         self.prepare_with(object, scratch, &mut |_, out, p| *out = p)
     }
 
@@ -89,7 +96,11 @@ impl<const S: u32> Renderer<S> {
                 if !matches!(object.shade, ShadeMode::Flat | ShadeMode::Phong) =>
             {
                 if normals.len() < vertices.len() {
-                    return Err(RenderError::IntensitiesTooShort);
+                    return Err(RenderError::IntensitiesTooShort {
+                        table: IntensityTable::Normals,
+                        given: normals.len(),
+                        needed: vertices.len(),
+                    });
                 }
                 Some((material, normals))
             }
@@ -200,6 +211,14 @@ mod tests {
         assert_eq!(core::mem::size_of::<PreparedVertex<4>>(), 28);
     }
 
+    /// The compile-time vertex is the origin, projected nowhere, unlit.
+    #[test]
+    fn zero_vertex_is_all_zero_fields() {
+        let z = PreparedVertex::<4>::ZERO;
+        assert_eq!((z.view, z.screen.x, z.screen.y), (Vec3::ZERO, 0, 0));
+        assert_eq!((z.depth, z.outcode, z.level), (0, 0, 0));
+    }
+
     /// The vertex loop without saturation and with the 32-bit outcode gives the same prepared
     /// vertices as the general one, for objects whose bound lets `prepare` choose it.
     #[test]
@@ -207,10 +226,10 @@ mod tests {
         use crate::geometry::camera::{FovAxis, Lens, Viewport};
         use crate::geometry::fixed::Coord;
         use crate::geometry::mesh::{Mesh, MAX_MESH_COORD_BITS};
-        use crate::geometry::trig::Angle;
+        use crate::geometry::trig::BinaryAngle;
         let c = |x: f64| Coord::from_num(x);
         let lens = Lens {
-            fov: Angle::from_degrees(60),
+            fov: BinaryAngle::from_degrees(60),
             axis: FovAxis::Vertical,
             near: c(0.5),
             far: c(10.0),
@@ -242,7 +261,7 @@ mod tests {
             let s = [0.01, 0.3, 1.0, 4.0, 60.0][n % 5];
             let rot = Affine3::rotation_axis(
                 Vec3::new(c(1.0), c(2.0), c(-0.5)),
-                Angle::from_degrees(n as i32 * 37),
+                BinaryAngle::from_degrees(n as i32 * 37),
             )
             .unwrap();
             let t = Affine3::translation(Vec3::new(c(0.5), c(-0.25), c((n % 7) as f64)));

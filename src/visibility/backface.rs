@@ -10,9 +10,9 @@
 //! Memory: none beside the frame and the vertex scratch; the span loops run with the
 //! zero-sized [`NoDepth`] sample, which compiles away the depth interpolant, test and store.
 
-use crate::render::{PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
+use crate::output::{DepthBuffer, Framebuffer, NoDepth};
+use crate::render::{BandPart, PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
 use crate::scene::Scene;
-use crate::target::{DepthBuffer, Framebuffer, NoDepth};
 
 /// Clears `frame` to the scene's background and draws every object of the renderer's scene in
 /// order, back faces
@@ -67,6 +67,7 @@ pub(super) fn draw_objects<const S: u32>(
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
+    renderer.check_frame(frame)?;
     frame.clear(scene.background);
     without_depth(frame, |frame, depth| {
         let objects = order
@@ -93,7 +94,13 @@ pub(super) fn without_depth<R>(
     // Zero bytes at any length (a frame has at most 2^24 pixels).
     let mut samples = [NoDepth; 1 << 24];
     let n = width as usize * height as usize;
-    let mut depth = DepthBuffer::band(&mut samples[..n], width, height, frame.top() as u16)
-        .map_err(|_| RenderError::BufferTooSmall)?;
+    let short = RenderError::BandMemoryTooSmall {
+        part: BandPart::Depths,
+        given: samples.len(),
+        needed: n,
+    };
+    let samples = samples.get_mut(..n).ok_or(short)?;
+    let mut depth =
+        DepthBuffer::band(samples, width, height, frame.top() as u16).map_err(|_| short)?;
     draw(frame, &mut depth)
 }

@@ -1,124 +1,150 @@
-//! What the planner knows of a mesh before any frame: its bounding box and its convexity
-//! certificate, computed once ([`MeshFacts::of`]) and storable in flash beside the mesh (every
-//! field is public and `const`-constructible).
+//! What the planner knows of a mesh before any frame: its bounding box and its edge table,
+//! computed once ([`MeshFacts::of`], `O(corners · log corners)`) and storable in flash beside
+//! the mesh (every field is public and `const`-constructible); and the per-view check that
+//! decides, on the screen positions the renderer actually draws, whether back faces alone
+//! draw a mesh as the z-buffer does ([`front_faces_apart`]).
 //!
-//! ## Convexity, and the creases of rounded meshes
-//! [`Convexity::Convex`]: every vertex on or behind every face plane
-//! ([`Mesh::is_convex`], exact). Then no two front faces overlap on screen and back-face
-//! culling alone gives the z-buffer's picture.
+//! ## The per-view check: the silhouette decides
+//! The renderer draws a polygon whose vertices are all inside the frustum (outcode 0) as the
+//! fan of triangles `(P_0, P_k, P_{k+1})` of its rounded screen vertices, when the fan's signed
+//! area is negative (culling, `render/cull.rs`); each fan triangle is filled whatever its
+//! orientation, by the half-open rule of `raster/edge_walker.rs` (a sample on a left edge or a
+//! top edge is in, on a right or bottom edge out). That rule is the exact point-in-triangle
+//! test for the sample moved by `(ε, ε²)` (`ε → 0⁺`, `y` down): a sample `s` is covered by a
+//! triangle of non-zero area exactly when its boundary winds once around `s⁺`, and a triangle
+//! of zero area covers nothing, as its boundary winds zero times around `s⁺`.
 //!
-//! Meshes that are convex as designed but whose vertices were turned and rounded to I16F16
-//! (SCENES.md's cube and sphere) fail that test by a rounding step (about `2·10^-5` of their
-//! size). [`Convexity::Creased`] keeps for them the exact facts that decide, per view, whether
-//! any two front faces can overlap. The argument, for a closed, consistently oriented triangle
-//! mesh seen from an eye `E` outside it:
+//! Let `D` be the drawn polygons of one object. When **every fan triangle of every drawn
+//! polygon has signed area `≤ 0`** (all wind the same way, `−1`, around what they cover), the
+//! number of drawn triangles covering a sample is `c(s) = −Σ_t w(∂t, s⁺) = −w(B, s⁺)`, where
+//! `B = Σ_{t} ∂t` is the boundary of the drawn fans as a chain of directed screen segments
+//! (winding numbers add over chains). A fan's inner diagonals cancel in `B`, and so does an
+//! edge of a drawn polygon against the same edge, reversed, of another drawn polygon: `B` is
+//! the **silhouette** of the drawn faces (each remaining directed edge of a drawn polygon).
+//! Only the pairing of edges with their reverse is taken from the mesh ([`Convexity::Convex`]'s
+//! `twins`, checked per use: a wrong table only keeps edges in `B`).
 //!
-//! 1. If front faces `A` and `B` overlap at a screen point, with `A` nearer (`a` on `A`, `b` on
-//!    `B`, `a` between `E` and `b` on the ray), then `a` is strictly in front of `B`'s plane
-//!    (`E` is, `b` is on it), so **some vertex of `A` is strictly in front of `B`'s plane**.
-//!    Faces that share an edge (traversed in opposite directions) never overlap when both are
-//!    front: their third vertices project on opposite sides of the shared edge. So `A` is in
-//!    `B`'s list of *occluders* ([`Creases::occluders`]: not sharing an edge with `B`, with a
-//!    vertex strictly in front of its plane).
-//! 2. The ray enters the solid at `a` and again at `b` (front faces), so it leaves it in
-//!    between, at `c` on a face `C` that is not front. `c` lies between `E` and `b`: strictly
-//!    in front of `B`'s plane. `E` is behind (or on) `C`'s plane and `c` on it, so `b`, beyond
-//!    `c`, is strictly in front of it. **`B` and `C` each have a vertex strictly in front of the
-//!    other's plane** ([`Creases::mutual`]), and in this view one is front and the other not.
+//! The check then asks that `B` be **star-shaped** around the centroid `c` of its edges' start
+//! points: every edge of `B` turns strictly the same way around `c` (exact orientation tests,
+//! `c` kept as a fraction), and `B` winds exactly once around `c` (crossings of the ray from `c`
+//! towards `+x`). Then every ray from `c` crosses `B` exactly once (the crossings all have one
+//! sign and add up to the winding at `c`), so for any point `p` the ray from `p` away from `c`
+//! crosses `B` once or never: `w(B, p) ∈ {0, ±1}` everywhere off `B`, and `c(s) ≤ 1` at every
+//! sample (`c(s) ≥ 0`, being a count). An empty `B` gives `c ≡ 0`. **No sample is covered by
+//! two drawn triangles of the object**: back faces alone draw at each sample the one triangle
+//! the z-buffer draws there, with the same spans and shading. The argument uses nothing but the
+//! rounded screen positions of this view: coplanar or overlapping faces, self-intersecting
+//! polygons, faces of zero area in the mesh, thin or tiny objects and mirroring transforms are
+//! all decided as drawn (a fold makes `c(s) = 2` somewhere, which the check cannot pass).
 //!
-//! So for each view, [`Creases::hold`] looks only at the mutual pairs whose faces straddle the
-//! silhouette, and for the front one, `B`, at its occluders `A` that are front too: if the two
-//! projected triangles, as the renderer draws them, are separated by a line through an edge of
-//! either (exact `i64` orientation tests), they share no pixel (the fill rule's top-left
-//! convention draws a sample on a shared line for one side only). If every such pair is
-//! separated, no two front faces overlap and back faces alone give the z-buffer's picture.
-//! An exactly convex mesh has no mutual pair; the rounded standard cube has 6 (the diagonals of
-//! its faces, creased a rounding step in or out, and 2 more), the sphere 296.
+//! A polygon with a vertex outside the frustum (clipped, or rejected) makes the check refuse
+//! ([`Refusal::LeavesFrustum`]): the clipper's new vertices are not looked at.
 //!
-//! The planner does not use a certificate under a mirroring transform (negative determinant):
-//! it turns the mesh inside out, and step 2's solid would hold the eye.
+//! ## The edge table and the convexity hint
+//! [`MeshFacts::of`] pairs every corner `h` of a mesh of one polygon size (the directed edge
+//! from its vertex to the next corner's) with the corner whose edge is its reverse, when exactly
+//! one edge joins the two vertices each way (sorting the edges: `O(corners · log corners)`,
+//! [`MeshFacts::words_needed`] words of caller memory). The check reads it in `O(corners)` per
+//! view with no memory of its own.
 //!
-//! ## Rounding
-//! What the argument takes as given (as [`Mesh::is_convex`] does): the mesh as its vertex
-//! table places it, mapped by the object's transform and projected exactly. The renderer rounds
-//! the observer-frame positions to I16F16 and the screen positions to `2^-S` pixel; the pairs
-//! decided here are tested on those rounded screen positions, the others are argued on the
-//! mesh. Where the rounding is comparable with the triangles (an object a few pixels across or
-//! less), triangles that share only a vertex can fold onto each other: a 51-vertex sphere under
-//! a pixel across drew 1 pixel wrong by back faces alone. So the planner trusts the certificate
-//! only under a **rounding guard**: the rounding, taken back to the mesh's frame, must move each
-//! vertex by at most [`MeshFacts::tolerance`], the mesh's shortest edge over [`FOLD_GUARD`]
-//! (`plan.rs` bounds the move per view). This is a guard, not a proof: the divisor is set with
-//! a margin of 2 over the smallest that keeps the picture on the tests' 9,000 random small and
-//! far objects (`host-tests/tests/plan.rs`); the tests compare with the z-buffer pixel by pixel.
+//! The table is kept only for meshes that may pass the check: [`Convexity::NotConvex`] when an
+//! edge is met twice the same way or when two paired polygons fold inward by more than about
+//! a degree (a vertex of one in front of the other's plane by more than `1/64` of the plane
+//! normal's `‖·‖₁` times its offset's `‖·‖∞`), or when polygon sizes vary or exceed 16
+//! corners. This is a **hint**
+//! that spares the per-view check on meshes that would fail it (a torus, the bunny); it is
+//! not part of the argument, which holds whatever the table says.
 //!
-//! Numeric contract: mesh coordinates `|c| ≤ 2^26` raw, so a point–plane side
-//! `(v − p_0)·n` is below `2^27·2^63·3 < 2^92` (`i128`); projected positions are within
-//! `±(2^28 − 1)` sub-pixel units, so a screen orientation is below `2^59` (`i64`). Face
-//! indices are `u32`.
+//! Numeric contract: mesh coordinates `|c| ≤ 2^26` raw, so a point–plane side `(v − p_0)·n`
+//! is below `2^92` (`i128`); projected positions are within `±(2^28 − 1)` sub-pixel units and
+//! `B` has fewer than `2^32` edges, so a position scaled by their count is below `2^61` and an
+//! orientation below `2^123` (`i128`). Corners are numbered in `u32` ([`NO_TWIN`] is the
+//! largest value); a mesh of `u32::MAX` corners or more is [`Convexity::NotConvex`].
 
 use crate::clip::frustum::Frustum;
 use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::{Mesh, PolygonSizes};
 use crate::project::Projector;
 use crate::raster::SubpixelPoint;
-use crate::render::PreparedVertex;
+use crate::render::{screen_area, PreparedVertex};
 
-/// A mesh's convexity certificate (the module doc of `visibility/facts.rs` gives the
-/// argument).
+/// A mesh's convexity hint and edge table (the module doc of `visibility/facts.rs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Convexity<'a> {
-    /// Every vertex on or behind every face plane: back faces alone draw it right from any
-    /// view.
-    Convex,
-    /// A closed triangle mesh convex but for creases: back faces alone draw it right in the
-    /// views where its creases hold (checked per frame by the planner).
-    Creased(Creases<'a>),
-    /// Neither (or the certificate did not fit its buffer, or the mesh is not a closed,
-    /// consistently oriented triangle mesh): front faces may overlap.
+    /// Polygons of one size, no edge met twice the same way, no paired polygons folding inward
+    /// beyond the hint's margin: back faces alone may draw it, as each view's check decides.
+    Convex {
+        /// Per corner `h` (index into the mesh's index table), the corner whose edge is the
+        /// reverse of `h`'s, or [`NO_TWIN`].
+        twins: &'a [u32],
+    },
+    /// Not a candidate for back faces alone: the planner keeps a depth buffer for it.
     NotConvex,
 }
 
-/// The face pairs that decide, per view, whether a creased mesh's front faces overlap.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Creases<'a> {
-    /// `[b, c]`: faces each with a vertex strictly in front of the other's plane.
-    pub mutual: &'a [[u32; 2]],
-    /// `[b, a]`, sorted by `b`: face `a` shares no edge with face `b` and has a vertex strictly
-    /// in front of `b`'s plane.
-    pub occluders: &'a [[u32; 2]],
-}
+/// [`Convexity::Convex`]'s mark of a corner whose edge has no reverse (or more than one).
+pub const NO_TWIN: u32 = u32::MAX;
 
 /// What the planner knows of a mesh, computed once ([`MeshFacts::of`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MeshFacts<'a> {
-    /// The convexity certificate.
+    /// The convexity hint, with the edge table the per-view check reads.
     pub convexity: Convexity<'a>,
     /// Smallest and largest raw coordinate per axis, over all vertices (zeros when empty).
     pub bounds: [[i32; 3]; 2],
-    /// The rounding guard: the most (raw mesh units, per coordinate) the renderer's rounding
-    /// may move a vertex, taken back to the mesh's frame, for the planner to trust the
-    /// certificate: the mesh's shortest edge (`‖·‖∞`) over 4 (`FOLD_GUARD`, module doc,
-    /// "Rounding").
-    pub tolerance: i32,
 }
 
-/// The rounding guard's divisor: the renderer's rounding must move each vertex by at most
-/// this fraction of the mesh's shortest edge (module doc, "Rounding").
-pub(crate) const FOLD_GUARD: i32 = 4;
+/// Why [`MeshFacts::of`] made no facts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FactsError {
+    /// The buffer is shorter than [`MeshFacts::words_needed`].
+    BufferTooSmall {
+        /// Words needed.
+        needed: usize,
+        /// Words given.
+        given: usize,
+    },
+}
 
-/// The shortest edge of `mesh`'s polygons, `‖·‖∞` raw (`i32::MAX` without an edge).
-fn shortest_edge(mesh: &Mesh<'_>) -> i32 {
-    let vertex = |i: u16| mesh.vertices().get(i as usize).map_or([0; 3], |v| v.bits());
-    let mut shortest = i32::MAX as i64;
-    for poly in mesh.polygons() {
-        for (k, &i) in poly.iter().enumerate() {
-            let (u, v) = (vertex(i), vertex(poly[(k + 1) % poly.len()]));
-            let d = (0..3).map(|a| (u[a] as i64 - v[a] as i64).abs()).max();
-            shortest = shortest.min(d.unwrap_or(0));
+impl core::fmt::Display for FactsError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            FactsError::BufferTooSmall { needed, given } => write!(
+                f,
+                "the mesh's facts need {needed} words (u32) of buffer, {given} given \
+                 (MeshFacts::words_needed)"
+            ),
         }
     }
-    shortest.min(i32::MAX as i64) as i32
+}
+
+impl core::error::Error for FactsError {}
+
+/// The hint's margin: paired polygons fold inward by at most `1/2^FOLD_HINT_BITS` (module
+/// doc).
+const FOLD_HINT_BITS: u32 = 6;
+
+/// The polygon size of a mesh the check can read, with its corner count (`None`: polygon sizes
+/// vary or exceed [`MAX_CORNERS`], or too many corners to number in `u32`).
+fn uniform(mesh: &Mesh<'_>) -> Option<(usize, usize)> {
+    let n = mesh.indices().len();
+    match mesh.sizes() {
+        PolygonSizes::Uniform(k)
+            if (3..=MAX_CORNERS).contains(&(k as usize)) && n < NO_TWIN as usize =>
+        {
+            Some((k as usize, n))
+        }
+        _ => None,
+    }
+}
+
+/// The corner after `h` in its polygon (polygons of `k` corners).
+fn next(h: usize, k: usize) -> usize {
+    if h % k == k - 1 {
+        h + 1 - k
+    } else {
+        h + 1
+    }
 }
 
 /// `(v − p0)·n`, exact (module doc's bound).
@@ -128,18 +154,26 @@ fn side(v: [i32; 3], p0: [i32; 3], n: [i64; 3]) -> i128 {
         .sum()
 }
 
-/// True when triangles `a` and `b` share an edge traversed in opposite directions.
-fn share_edge(a: &[u16], b: &[u16]) -> bool {
-    (0..3).any(|i| (0..3).any(|j| a[i] == b[(j + 1) % 3] && a[(i + 1) % 3] == b[j]))
-}
-
 impl<'a> MeshFacts<'a> {
-    /// The facts of `mesh`: its bounds and its convexity, with a creased mesh's face pairs
-    /// written into `pairs` (two `u32` per pair; a certificate longer than `pairs` makes the
-    /// mesh [`Convexity::NotConvex`], which is conservative). Cost: [`Mesh::is_convex`], then
-    /// for a mesh that fails it `O(faces²)` point–plane tests; compute it once and keep it
-    /// (`MeshFacts` is plain data: a `static` beside the mesh's tables).
-    pub fn of(mesh: &Mesh<'_>, pairs: &'a mut [[u32; 2]]) -> MeshFacts<'a> {
+    /// The `u32` words [`of`](Self::of) needs for `mesh`: twice its corners (the first half
+    /// keeps the edge table, the second is sorting scratch) for a mesh of one polygon size,
+    /// none otherwise (such a mesh is [`Convexity::NotConvex`]).
+    pub fn words_needed(mesh: &Mesh<'_>) -> usize {
+        uniform(mesh).map_or(0, |(_, n)| 2 * n)
+    }
+
+    /// The facts of `mesh`: its bounds, its convexity hint and edge table (module doc), the
+    /// table written into `words` (at least [`words_needed`](Self::words_needed) long, else
+    /// [`FactsError::BufferTooSmall`]). Cost `O(corners · log corners)`; compute it once and
+    /// keep it (`MeshFacts` is plain data: a `static` beside the mesh's tables).
+    pub fn of(mesh: &Mesh<'_>, words: &'a mut [u32]) -> Result<MeshFacts<'a>, FactsError> {
+        let needed = Self::words_needed(mesh);
+        if words.len() < needed {
+            return Err(FactsError::BufferTooSmall {
+                needed,
+                given: words.len(),
+            });
+        }
         let mut bounds = [[i32::MAX; 3], [i32::MIN; 3]];
         for v in mesh.vertices() {
             for (k, &c) in v.bits().iter().enumerate() {
@@ -150,157 +184,263 @@ impl<'a> MeshFacts<'a> {
         if mesh.vertices().is_empty() {
             bounds = [[0; 3]; 2];
         }
-        let convexity = if mesh.is_convex() {
-            Convexity::Convex
-        } else {
-            creases(mesh, pairs).map_or(Convexity::NotConvex, Convexity::Creased)
+        let convexity = match uniform(mesh) {
+            Some((k, n)) => {
+                let (twins, scratch) = words[..2 * n].split_at_mut(n);
+                if pair_edges(mesh, k, twins, scratch) && !folds_inward(mesh, k, twins) {
+                    Convexity::Convex { twins }
+                } else {
+                    Convexity::NotConvex
+                }
+            }
+            None => Convexity::NotConvex,
         };
-        let tolerance = shortest_edge(mesh) / FOLD_GUARD;
-        MeshFacts {
-            convexity,
-            bounds,
-            tolerance,
-        }
+        Ok(MeshFacts { convexity, bounds })
     }
 }
 
-/// The creases of a closed, consistently oriented triangle mesh, or `None` (not such a mesh,
-/// or `pairs` too short).
-fn creases<'a>(mesh: &Mesh<'_>, pairs: &'a mut [[u32; 2]]) -> Option<Creases<'a>> {
-    if mesh.sizes() != PolygonSizes::Uniform(3) {
-        return None;
+/// Writes each corner's twin into `twins` (module doc; `scratch` as long), sorting the corners
+/// by their edge's two vertices. False when an edge is met twice the same way.
+fn pair_edges(mesh: &Mesh<'_>, k: usize, twins: &mut [u32], scratch: &mut [u32]) -> bool {
+    let idx = mesh.indices();
+    // `twins[h]` holds the vertex `h`'s edge ends at until `h`'s group is paired.
+    for (h, t) in twins.iter_mut().enumerate() {
+        *t = idx[next(h, k)] as u32;
     }
-    let faces = mesh.indices();
-    let vertex = |i: u16| mesh.vertices().get(i as usize).map_or([0; 3], |v| v.bits());
-    let plane = |f: &[u16]| (mesh.face_normal_wide(f), vertex(f[0]));
-    let ahead = |f: &[u16], (n, p0): ([i64; 3], [i32; 3])| {
-        n != [0; 3] && f.iter().any(|&i| side(vertex(i), p0, n) > 0)
+    for (h, s) in scratch.iter_mut().enumerate() {
+        *s = h as u32;
+    }
+    // The undirected edge, then its direction (`a > b` last).
+    let key = |twins: &[u32], h: u32| {
+        let (a, b) = (idx[h as usize] as u32, twins[h as usize]);
+        ((a.min(b) as u64) << 17) | ((a.max(b) as u64) << 1) | (a > b) as u64
     };
-    let (mut occluders, mut mutual) = (0usize, 0usize);
-    for (bi, b) in faces.chunks_exact(3).enumerate() {
-        let pb = plane(b);
-        // Closed and consistently oriented: each directed edge of `b` is met reversed exactly
-        // once, and never in the same direction, by the other faces.
-        let mut reversed = [0u32; 3];
-        for (ci, c) in faces.chunks_exact(3).enumerate() {
-            if ci == bi {
-                continue;
-            }
-            for k in 0..3 {
-                let (u, v) = (b[k], b[(k + 1) % 3]);
-                for j in 0..3 {
-                    let (x, y) = (c[j], c[(j + 1) % 3]);
-                    if (x, y) == (u, v) {
-                        return None;
-                    }
-                    reversed[k] += ((x, y) == (v, u)) as u32;
-                }
-            }
-            if !ahead(c, pb) {
-                continue;
-            }
-            if !share_edge(b, c) {
-                *pairs.get_mut(occluders)? = [bi as u32, ci as u32];
-                occluders += 1;
-            }
-            if ci > bi && ahead(b, plane(c)) {
-                mutual += 1;
-                let at = pairs.len().checked_sub(mutual)?;
-                if at < occluders {
-                    return None;
-                }
-                pairs[at] = [bi as u32, ci as u32];
-            }
-            if occluders + mutual > pairs.len() {
-                return None;
-            }
+    scratch.sort_unstable_by_key(|&h| key(twins, h));
+    let mut start = 0;
+    while start < scratch.len() {
+        let edge = key(twins, scratch[start]) >> 1;
+        let mut end = start + 1;
+        while end < scratch.len() && key(twins, scratch[end]) >> 1 == edge {
+            end += 1;
         }
-        if reversed != [1; 3] {
-            return None;
+        let group = &scratch[start..end];
+        let keys = (
+            key(twins, group[0]) & 1,
+            group.get(1).map(|&h| key(twins, h) & 1),
+        );
+        if group.len() >= 2 && (keys.1 == Some(keys.0) || group.get(2).is_some()) {
+            return false; // an edge met twice the same way
         }
+        match *group {
+            [a, b] => {
+                twins[a as usize] = b;
+                twins[b as usize] = a;
+            }
+            [a] => twins[a as usize] = NO_TWIN,
+            _ => {}
+        }
+        start = end;
     }
-    let pairs: &'a [[u32; 2]] = pairs;
-    let at = pairs.len() - mutual;
-    Some(Creases {
-        mutual: &pairs[at..],
-        occluders: &pairs[..occluders],
+    true
+}
+
+/// True when two paired polygons fold inward beyond the hint's margin (module doc).
+fn folds_inward(mesh: &Mesh<'_>, k: usize, twins: &[u32]) -> bool {
+    let idx = mesh.indices();
+    let vertex = |i: u16| mesh.vertices().get(i as usize).map_or([0; 3], |v| v.bits());
+    twins.iter().enumerate().any(|(h, &t)| {
+        if t == NO_TWIN {
+            return false;
+        }
+        let (p, q) = (h / k * k, t as usize / k * k);
+        let n = mesh.face_normal_wide(&idx[p..p + k]);
+        let p0 = vertex(idx[p]);
+        let norm: i128 = n.iter().map(|&c| (c as i128).abs()).sum();
+        idx[q..q + k].iter().any(|&i| {
+            let v = vertex(i);
+            let reach = (0..3)
+                .map(|a| (v[a] as i64 - p0[a] as i64).abs())
+                .max()
+                .unwrap_or(0) as i128;
+            side(v, p0, n) << FOLD_HINT_BITS > norm * reach
+        })
     })
 }
 
-/// How [`Creases::hold`] places a mesh's vertices on screen when no vertex stage ran for it:
-/// the renderer's own transform, frustum and projector.
+/// Why the per-view check refuses back faces alone for a mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Refusal {
+    /// A polygon has a vertex outside the frustum (it would be clipped or rejected).
+    LeavesFrustum,
+    /// Two drawn triangles may cover one sample (module doc).
+    FrontFacesMayOverlap,
+}
+
+/// Back faces alone draw `mesh` as the z-buffer does in this view (module doc): `at(i)` is
+/// vertex `i` on screen as the vertex stage places it, `None` outside the frustum; `twins` is
+/// the mesh's edge table. `O(corners)` calls of `at` and orientation tests; 256 bytes of
+/// stack.
+pub(crate) fn front_faces_apart<const S: u32>(
+    mesh: &Mesh<'_>,
+    twins: &[u32],
+    at: &mut impl FnMut(u16) -> Option<SubpixelPoint<S>>,
+) -> Result<(), Refusal> {
+    let Some((k, n)) = uniform(mesh) else {
+        return Err(Refusal::FrontFacesMayOverlap);
+    };
+    let mut check = Check {
+        idx: mesh.indices(),
+        k,
+        n,
+        twins,
+        at,
+    };
+    let (mut sum, mut m) = ([0i128; 2], 0i128);
+    check.silhouette(&mut |a, _| {
+        sum[0] += a.x as i128;
+        sum[1] += a.y as i128;
+        m += 1;
+        true
+    })?;
+    if m == 0 {
+        return Ok(());
+    }
+    // Positions relative to the centroid, scaled by `m`.
+    let rel = |p: SubpixelPoint<S>| [p.x as i128 * m - sum[0], p.y as i128 * m - sum[1]];
+    let (mut turn, mut winding) = (0i128, 0i32);
+    check.silhouette(&mut |a, b| {
+        let (a, b) = (rel(a), rel(b));
+        let cross = a[0] * b[1] - a[1] * b[0];
+        if cross == 0 || cross.signum() * turn < 0 {
+            return false;
+        }
+        turn = cross.signum();
+        if a[1] <= 0 && b[1] > 0 && cross > 0 {
+            winding += 1;
+        } else if a[1] > 0 && b[1] <= 0 && cross < 0 {
+            winding -= 1;
+        }
+        true
+    })?;
+    if winding.abs() == 1 {
+        Ok(())
+    } else {
+        Err(Refusal::FrontFacesMayOverlap)
+    }
+}
+
+/// The largest polygon the per-view check reads (meshes of larger polygons are
+/// [`Convexity::NotConvex`]).
+const MAX_CORNERS: usize = 16;
+
+/// One run of [`front_faces_apart`].
+struct Check<'c, F> {
+    idx: &'c [u16],
+    /// Corners per polygon, and in all.
+    k: usize,
+    n: usize,
+    twins: &'c [u32],
+    at: &'c mut F,
+}
+
+impl<F> Check<'_, F> {
+    /// Places the corners of the polygon whose first corner is `p` into `out`: `Ok(true)` when
+    /// it is drawn (every fan triangle checked to turn the drawn way), `Ok(false)` when culled.
+    fn drawn<const S: u32>(
+        &mut self,
+        p: usize,
+        out: &mut [SubpixelPoint<S>; MAX_CORNERS],
+    ) -> Result<bool, Refusal>
+    where
+        F: FnMut(u16) -> Option<SubpixelPoint<S>>,
+    {
+        let k = self.k;
+        for (c, &i) in out.iter_mut().zip(&self.idx[p..p + k]) {
+            *c = (self.at)(i).ok_or(Refusal::LeavesFrustum)?;
+        }
+        if screen_area(k, |j| out[j]) >= 0 {
+            return Ok(false);
+        }
+        if (1..k - 1).any(|j| orient(out[0], out[j], out[j + 1]) > 0) {
+            return Err(Refusal::FrontFacesMayOverlap);
+        }
+        Ok(true)
+    }
+
+    /// Hands each silhouette edge's screen ends to `edge` (module doc); an edge it refuses
+    /// (`false`) ends the run.
+    fn silhouette<const S: u32>(
+        &mut self,
+        edge: &mut impl FnMut(SubpixelPoint<S>, SubpixelPoint<S>) -> bool,
+    ) -> Result<(), Refusal>
+    where
+        F: FnMut(u16) -> Option<SubpixelPoint<S>>,
+    {
+        let (k, n) = (self.k, self.n);
+        let origin = SubpixelPoint::<S>::new(0, 0);
+        let (mut c, mut other) = ([origin; MAX_CORNERS], [origin; MAX_CORNERS]);
+        for p in (0..n).step_by(k) {
+            if !self.drawn(p, &mut c)? {
+                continue;
+            }
+            for j in 0..k {
+                let h = p + j;
+                let t = self.twins.get(h).map_or(NO_TWIN, |&t| t) as usize;
+                let paired = t < n
+                    && self.twins.get(t) == Some(&(h as u32))
+                    && self.idx[t] == self.idx[next(h, k)]
+                    && self.idx[next(t, k)] == self.idx[h];
+                if paired && self.drawn(t / k * k, &mut other)? {
+                    continue;
+                }
+                if !edge(c[j], c[(j + 1) % k]) {
+                    return Err(Refusal::FrontFacesMayOverlap);
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How [`front_faces_apart`] places a mesh's vertices on screen when no vertex stage ran for
+/// it: the renderer's own transform, frustum and projector.
 pub(crate) struct View<'v, const S: u32> {
     pub(crate) model_view: &'v Affine3,
     pub(crate) frustum: &'v Frustum,
     pub(crate) projector: &'v Projector<S>,
 }
 
-impl Creases<'_> {
-    /// True when no two front faces of `mesh` overlap on screen (module doc): every mutual
-    /// pair straddling the silhouette has its front face separated on screen from each of that
-    /// face's front occluders. `at(i)` is vertex `i` on screen as the vertex stage places it,
-    /// `None` outside the frustum (or unprojected); a face with such a vertex (clipped) makes
-    /// the answer `false`.
-    pub(crate) fn hold<const S: u32>(
-        &self,
-        mesh: &Mesh<'_>,
-        at: &mut impl FnMut(u16) -> Option<SubpixelPoint<S>>,
-    ) -> bool {
-        let mut face = |f: u32| -> Option<[SubpixelPoint<S>; 3]> {
-            let k = f as usize * 3;
-            let idx = mesh.indices().get(k..k + 3)?;
-            Some([at(idx[0])?, at(idx[1])?, at(idx[2])?])
-        };
-        for &[b, c] in self.mutual {
-            let (Some(tb), Some(tc)) = (face(b), face(c)) else {
-                return false;
-            };
-            let (fb, fc) = (twice_area(&tb) < 0, twice_area(&tc) < 0);
-            if fb == fc {
-                continue;
-            }
-            let (front, t) = if fb { (b, tb) } else { (c, tc) };
-            let from = self.occluders.partition_point(|p| p[0] < front);
-            for &[_, a] in self.occluders[from..].iter().take_while(|p| p[0] == front) {
-                let Some(ta) = face(a) else {
-                    return false;
-                };
-                if twice_area(&ta) < 0 && !separated(&t, &ta) {
-                    return false;
-                }
-            }
-        }
-        true
-    }
+/// [`front_faces_apart`] with `mesh`'s vertices placed in `view` as the check needs them
+/// (each at most once per slot of a 2 KB cache).
+pub(crate) fn apart_in<const S: u32>(
+    mesh: &Mesh<'_>,
+    twins: &[u32],
+    view: &View<'_, S>,
+) -> Result<(), Refusal> {
+    let mut cache = Placed::<S>::new();
+    front_faces_apart(mesh, twins, &mut |i| cache.vertex(mesh, i, view))
+}
 
-    /// [`hold`](Self::hold) with `mesh`'s vertices placed in `view` as the check needs them
-    /// (each at most once per slot of a 2 KB cache).
-    pub(crate) fn hold_in<const S: u32>(&self, mesh: &Mesh<'_>, view: &View<'_, S>) -> bool {
-        let mut cache = Placed::<S>::new();
-        self.hold(mesh, &mut |i| cache.vertex(mesh, i, view))
-    }
-
-    /// [`hold`](Self::hold) with `mesh`'s vertices as the vertex stage left them in
-    /// `prepared` (as long as its vertex table).
-    pub(crate) fn hold_prepared<const S: u32>(
-        &self,
-        mesh: &Mesh<'_>,
-        prepared: &[PreparedVertex<S>],
-    ) -> bool {
-        let mut at = |i: u16| {
-            let p = prepared.get(i as usize)?;
-            (p.outcode == 0).then_some(p.screen)
-        };
-        self.hold(mesh, &mut at)
-    }
+/// [`front_faces_apart`] with `mesh`'s vertices as the vertex stage left them in `prepared`
+/// (as long as its vertex table).
+pub(crate) fn apart_prepared<const S: u32>(
+    mesh: &Mesh<'_>,
+    twins: &[u32],
+    prepared: &[PreparedVertex<S>],
+) -> Result<(), Refusal> {
+    let mut at = |i: u16| {
+        let p = prepared.get(i as usize)?;
+        (p.outcode == 0).then_some(p.screen)
+    };
+    front_faces_apart(mesh, twins, &mut at)
 }
 
 /// Entries of [`Placed`]: a power of two.
 const PLACED: usize = 128;
 
-/// The screen positions [`Creases::hold_in`] has placed, direct-mapped by vertex index (2 KB
-/// on the stack): neighbouring face pairs share vertices, so most are placed once, not once
-/// per face (measured on the standard sphere: `plan_sphere` in `docs/BENCHMARKS.md`).
+/// The screen positions [`apart_in`] has placed, direct-mapped by vertex index (2 KB on the
+/// stack): neighbouring polygons share vertices, so most are placed once, not once per
+/// polygon.
 struct Placed<const S: u32> {
     /// Vertex index + 1 (0: empty), and its position (`None`: outside the frustum).
     slots: [(u32, Option<SubpixelPoint<S>>); PLACED],
@@ -314,7 +454,7 @@ impl<const S: u32> Placed<S> {
     }
 
     /// Vertex `i` on screen, as the vertex stage places it, or `None` when it is outside the
-    /// frustum (the polygon stage would clip its faces).
+    /// frustum (the polygon stage would clip its polygons).
     fn vertex(&mut self, mesh: &Mesh<'_>, i: u16, view: &View<'_, S>) -> Option<SubpixelPoint<S>> {
         let slot = &mut self.slots[i as usize % PLACED];
         if slot.0 != i as u32 + 1 {
@@ -339,26 +479,7 @@ fn place_vertex<const S: u32>(
     Some(view.projector.project_point(p).ok()?.0)
 }
 
-/// `(q − p) × (r − p)` on screen (`< 2^59`, module doc).
+/// `(q − p) × (r − p)` on screen (`< 2^59`, module doc): the raster's one orientation.
 fn orient<const S: u32>(p: SubpixelPoint<S>, q: SubpixelPoint<S>, r: SubpixelPoint<S>) -> i64 {
-    (q.x as i64 - p.x as i64) * (r.y as i64 - p.y as i64)
-        - (q.y as i64 - p.y as i64) * (r.x as i64 - p.x as i64)
-}
-
-/// Twice the signed screen area: negative for a front face (the renderer's culling rule).
-fn twice_area<const S: u32>(t: &[SubpixelPoint<S>; 3]) -> i64 {
-    orient(t[0], t[1], t[2])
-}
-
-/// True when a line through an edge of one triangle has the other on its far side (or on it):
-/// their interiors are disjoint, and the fill rule draws no sample for both.
-fn separated<const S: u32>(t: &[SubpixelPoint<S>; 3], u: &[SubpixelPoint<S>; 3]) -> bool {
-    let by_edge_of = |t: &[SubpixelPoint<S>; 3], u: &[SubpixelPoint<S>; 3]| {
-        (0..3).any(|k| {
-            let (p, q, r) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-            let own = orient(p, q, r).signum();
-            own != 0 && u.iter().all(|&x| orient(p, q, x).signum() * own <= 0)
-        })
-    };
-    by_edge_of(t, u) || by_edge_of(u, t)
+    crate::raster::triangle::twice_area(p, q, r)
 }

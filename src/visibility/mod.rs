@@ -13,33 +13,53 @@
 //! |---|---|---|
 //! | [`BackFace`](Visibility::BackFace) (`backface.rs`) | none | one closed convex mesh; objects drawn back to front that a plane separates |
 //! | [`Painter`](Visibility::Painter) (`painter.rs`) | a stored triangle and an index per front triangle, plus pieces | any scene (Newell's tests, splitting where they fail) |
-//! | [`ScanLine`](Visibility::ScanLine) (`scanline.rs`) | a stored triangle and an index per front triangle, a band of rows and its depth | any scene (exact depth per row) |
+//! | [`ScanLine`](Visibility::ScanLine) (`scanline.rs`) | a stored triangle and an index per front triangle, a band of rows and its depth | any scene (the z-buffer's picture at the depth width of its band) |
 //! | [`Warnock`](Visibility::Warnock) (`warnock.rs`) | a stored triangle per front triangle, stacks of candidate indices and of windows | any scene (the 32-bit z-buffer's depths and tie rule, decided per window) |
 //! | [`ZBuffer`](Visibility::ZBuffer) (`render/`) | a depth sample per pixel (or per band pixel) | any scene |
 //!
 //! Where each breaks: back faces alone draws the last of two overlapping front faces (the
 //! bunny: 279 wrong pixels); the painter without test 6 draws a cycle or interpenetration in
 //! the wrong order (101 and 514 wrong pixels in `tests/visibility.rs`), and with it judges each
-//! piece by its own outline and draws them right (the bunny: 2 splits), refusing a frame whose
-//! pieces its tests still cannot order ([`RenderError::PainterCycle`](crate::render::RenderError):
-//! 25 of 200 dense random soups) or whose split budget is short (an error naming the budget);
-//! the scan-line and Warnock's subdivision never differ from the 32-bit z-buffer.
-//! The painter orders exact planes, so where the 32-bit z-buffer ties two surfaces it paints the
-//! nearer one; a 16-bit z-buffer ties (z-fights) far more often, growing with far/near (counted
-//! in `tests/visibility.rs`: two surfaces 0.5 units apart 40 units away, 42 wrong pixels of
-//! 3,530 at far/near = 1000, 3,390 at 10,000; none for the 32-bit methods). Every capacity
-//! exhausted (store, split budget, active table, Warnock's stacks) is an error, never a
-//! picture.
+//! piece by its own outline and draws them right (the bunny: 2 splits; a piece may be cut as
+//! often as the store holds pieces: every one of 200 dense random soups and two interpenetrating
+//! cubes from any view), refusing a frame whose pieces its tests still cannot order
+//! ([`RenderError::PainterCycle`](crate::render::RenderError)) or whose split budget or store
+//! is short (an error naming the budget or the capacity); the scan-line never differs from the
+//! z-buffer of its depth width, Warnock's subdivision never from the 32-bit z-buffer.
+//! Ties follow the z-buffer's rule in every method that claims its picture: at an equal depth
+//! the surface drawn first (stored first, in scene order) is kept; the painter orders exact
+//! planes, so it keeps the rule where the exact depths tie and where they differ by a depth unit
+//! or more, and paints the exactly nearer surface where two differ by less (at 32-bit depth,
+//! within `2^-32` of the depth range). A 16-bit z-buffer ties (z-fights) far more often, growing
+//! with far/near (counted in `tests/visibility.rs`: two surfaces 0.5 units apart 40 units away,
+//! 42 wrong pixels of 3,530 at far/near = 1000, 3,390 at 10,000, against the 32-bit picture;
+//! none for the 32-bit methods, and the scan-line at 16 bits draws the 16-bit picture). Every
+//! capacity exhausted (store, split budget, active table, Warnock's stacks) is an error, never
+//! a picture.
+//!
+//! Objects the storing methods refuse, in words: the painter, the scan-line and Warnock keep a
+//! level per corner, so a core-lit Phong object (normals per corner, lit per pixel) is
+//! [`RenderError::PhongUnsupported`](crate::render::RenderError::PhongUnsupported): draw it
+//! with the z-buffer (or back faces alone, which draws at once); a scene holding one, such as
+//! `host-tests/scenes/example.toml` and `demo.toml`, is drawn by those two only. Warnock's
+//! subdivision and the painter's pieces draw parts of triangles, where fast Gouraud's 16.16
+//! luminance steps would start at the part's first column instead of the whole span's: Warnock
+//! refuses a fast Gouraud object and the painter a split of one
+//! ([`RenderError::FastGouraudInParts`](crate::render::RenderError::FastGouraudInParts)); the
+//! scan-line's bands cut rows only and draw it as the z-buffer does.
 //!
 //! [`plan`] picks the cheapest method a scene allows within a RAM budget, from what is cheap
-//! to know (`plan.rs`): each mesh's [`MeshFacts`] (bounds and convexity certificate, computed
-//! once, `facts.rs`), the objects' depth ranges and screen boxes. Convex (or creased, in views
-//! where the creases hold), culled, separable objects need no depth buffer
+//! to know (`plan.rs`): each mesh's [`MeshFacts`] (bounds, convexity hint and edge table,
+//! computed once, `facts.rs`), the objects' depth ranges and screen boxes. Culled, separable
+//! objects whose drawn faces cover each pixel at most once in this view (an exact check on
+//! the rounded screen positions, `facts.rs`) need no depth buffer
 //! ([`render_back_faces_in_order`], far to near); other scenes take the z-buffer, whole or in
 //! bands, 32-bit unless only 16-bit fits. [`plan_frame`] plans and draws as one entry
-//! (`planned.rs`): the view check of a creased mesh runs the renderer's vertex stage into the
+//! (`planned.rs`): the per-view check of a mesh runs the renderer's vertex stage into the
 //! caller's scratch, and a plan of back faces alone comes back as a [`BackFaceFrame`] that draws
-//! from those prepared vertices instead of running the vertex stage again.
+//! from those prepared vertices instead of running the vertex stage again. Any plan draws
+//! through one entry, [`draw_plan`] (`draw_plan.rs`), from caller memory the plan sizes
+//! ([`PlanSizes`], [`PlanMemory`]), each finished band handed to the caller's callback.
 //!
 //! Every method's own counts (Newell's tests by number, splits; the active table's peak;
 //! Warnock's windows by verdict and stack peaks) go to [`RenderStats::method`](crate::render::RenderStats),
@@ -48,15 +68,16 @@
 //! Shared conventions: triangles are collected in scene order; a stored triangle keeps its
 //! corners exactly as the polygon stage handed them (sub-pixel position, 32-bit depth, level),
 //! so drawing it later writes the pixels it would have written at once. The z-buffer keeps the
-//! first of two surfaces at equal stored depth; the painter draws the nearer one last, so the
-//! two agree wherever the exact depths differ (at 32-bit depth: everywhere but samples where two
-//! surfaces are within one unit of `2^-32` of the depth range).
+//! first of two surfaces at equal stored depth, and so does every method here (above).
 //!
 //! Numeric contract: positions within the projector's `±(2^28 − 1)` sub-pixel range, depths
 //! `u32`, levels `0..=255`; the painter's plane tests use `i64` normals and `i128` (or exact
 //! 192-bit) products, bounded in `painter.rs`.
 
 mod backface;
+mod draw_plan;
+#[cfg(test)]
+mod entry_tests;
 mod facts;
 mod outline;
 mod painter;
@@ -67,17 +88,19 @@ mod scanline;
 mod store;
 mod warnock;
 
+pub use crate::stats::{MethodCounts, WindowCounts};
 pub use backface::{render_back_faces, render_back_faces_in_order};
-pub use facts::{Convexity, Creases, MeshFacts};
-pub use painter::{render_painter, Normal, PainterMemory, SplitPolicy, MAX_CUTS};
+pub use draw_plan::{draw_plan, PlanMemory, PlanSizes};
+pub use facts::{Convexity, FactsError, MeshFacts, NO_TWIN};
+pub use painter::{render_painter, Normal, PainterMemory, SplitPolicy};
 pub use plan::{
-    plan, Buffers, DepthReason, DepthWidth, LayoutReason, MethodReason, Plan, PlanError,
-    DEPTH_MARGIN, SCREEN_MARGIN,
+    plan, Buffers, CompactBlock, DepthReason, DepthWidth, LayoutReason, MethodReason, Plan,
+    PlanError, DEPTH_MARGIN, SCREEN_MARGIN,
 };
 pub use planned::{plan_frame, BackFaceFrame, PlannedFrame};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
-pub use warnock::{render_warnock, Area, WarnockMemory, WindowCounts};
+pub use warnock::{render_warnock, Area, WarnockMemory};
 
 /// A hidden-surface method ([module doc](self)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

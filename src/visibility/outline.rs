@@ -1,6 +1,10 @@
 //! A painter's piece judged by its own polygon: the outline of a stored triangle cut by the
 //! planes of others (Newell's test 6), for tests 1–4 of `painter.rs`.
 //!
+//! A piece may carry any number of cuts (as many as the store holds pieces); its outline is
+//! clipped by the latest [`OUTLINE_CUTS`] of them. Dropping a cut only enlarges the polygon, so
+//! the outline is still a superset of the piece, which is all the tests need (below).
+//!
 //! A piece of triangle `P` is the part of `P` on one side of each of its cut planes. In `P`'s
 //! plane a cut plane `Q` is a line, and the side of `Q` is an affine function of the point
 //! that takes, at `P`'s corners, the exact `i128` values `q_k` (its oriented side there,
@@ -31,16 +35,20 @@
 //! that `|f'|·max μ·3 < 2^126`. All `i128`.
 
 use super::plane::{Plane, Store};
-use super::store::{StoredTriangle, CUT_FRONT, NO_CUT};
+use super::store::{cuts, StoredTriangle, CUT_FRONT};
 
 /// Bits of a relaxed cut's coefficients on a piece of one or two cuts.
 const CUT_BITS_TWO: u32 = 24;
 /// Bits of a relaxed cut's coefficients on a piece of three cuts.
 const CUT_BITS_THREE: u32 = 10;
 
-/// Vertices an outline may have: a triangle clipped by [`MAX_CUTS`](super::MAX_CUTS) lines,
-/// each clip adding at most one vertex (so `clip` never drops one).
-const MAX_VERTICES: usize = 3 + super::MAX_CUTS;
+/// The cuts an outline is clipped by (a piece's latest; module doc): the bound of the vertex
+/// weights below holds for three.
+const OUTLINE_CUTS: usize = 3;
+
+/// Vertices an outline may have: a triangle clipped by [`OUTLINE_CUTS`] lines, each clip
+/// adding at most one vertex (so `clip` never drops one).
+const MAX_VERTICES: usize = 3 + OUTLINE_CUTS;
 
 /// A piece's outline (module doc): homogeneous barycentric vertices over its base triangle.
 #[derive(Debug, Clone, Copy)]
@@ -55,7 +63,8 @@ fn bits(x: i128) -> u32 {
 }
 
 impl Outline {
-    /// The outline of stored triangle `t` (the whole triangle when it has no cut).
+    /// The outline of stored triangle `t` (the whole triangle when it has no cut), clipped by
+    /// its latest [`OUTLINE_CUTS`] cuts.
     pub(super) fn of<const S: u32>(all: Store<'_, S>, t: &StoredTriangle<S>) -> Outline {
         let mut o = Outline {
             v: [[0; 3]; MAX_VERTICES],
@@ -64,13 +73,13 @@ impl Outline {
         o.v[0] = [1, 0, 0];
         o.v[1] = [0, 1, 0];
         o.v[2] = [0, 0, 1];
-        let cuts = t.cuts.iter().filter(|&&c| c != NO_CUT);
+        let cuts = cuts(all.0, t).take(OUTLINE_CUTS);
         let b = if cuts.clone().count() <= 2 {
             CUT_BITS_TWO
         } else {
             CUT_BITS_THREE
         };
-        for &cut in cuts {
+        for cut in cuts {
             let q = Plane::stored(all, cut & !CUT_FRONT).oriented(t);
             let c = if cut & CUT_FRONT == 0 {
                 q
@@ -176,6 +185,7 @@ mod tests {
     use super::*;
     use crate::raster::SubpixelPoint;
     use crate::test_rng::XorShift;
+    use crate::visibility::plane::Normal;
 
     fn triangle(rng: &mut XorShift, base: u32) -> StoredTriangle<4> {
         let mut t = StoredTriangle::<4>::DEFAULT;
@@ -188,23 +198,37 @@ mod tests {
 
     /// Every sample a piece draws (the painter's exact per-sample side of each cut) lies in its
     /// outline's screen box, at a depth within its depth bounds, and on the side of every
-    /// other plane the outline's side bounds claim; an empty outline has no such sample.
+    /// other plane the outline's side bounds claim; an empty outline has no such sample. The
+    /// pieces take one to five cuts (the outline clips by the latest three).
     #[test]
     fn outlines_contain_their_pieces_samples() {
         let mut rng = XorShift::new(0x0017_0011);
         let mut checked = 0;
         for _ in 0..400 {
-            let ts: [StoredTriangle<4>; 4] = [0, 1, 2, 3].map(|b| triangle(&mut rng, b));
-            if ts.iter().any(|t| t.twice_area() == 0) {
+            let mut ts = [StoredTriangle::<4>::DEFAULT; 4 + 5];
+            for (b, t) in ts.iter_mut().take(4).enumerate() {
+                *t = triangle(&mut rng, b as u32);
+            }
+            if ts[..4].iter().any(|t| t.twice_area() == 0) {
                 continue;
             }
-            let normals = ts.map(|t| Plane::of(&t).normal());
-            let all = (&ts[..], &normals[..]);
-            let mut piece = ts[0];
-            let cuts = 1 + rng.below(3) as usize;
-            for (slot, cut) in (1..=cuts as u32).enumerate() {
-                piece.cuts[slot] = cut | if rng.chance(50) { CUT_FRONT } else { 0 };
+            let mut normals = [Normal::DEFAULT; 4 + 5];
+            for (n, t) in normals.iter_mut().zip(&ts[..4]) {
+                *n = Plane::of(t).normal();
             }
+            // The piece of triangle 0 cut `n` times (stored at 4.., each cut from the last),
+            // by the planes of triangles 1 and 2 in turn (a plane may cut it more than once).
+            let n = 1 + rng.below(5) as usize;
+            let mut parent = 0;
+            for k in 0..n {
+                let mut piece = ts[0];
+                piece.cut = (1 + (k % 2) as u32) | if rng.chance(50) { CUT_FRONT } else { 0 };
+                piece.parent = parent;
+                ts[4 + k] = piece;
+                parent = (4 + k) as u32;
+            }
+            let piece = ts[parent as usize];
+            let all = (&ts[..], &normals[..]);
             let outline = Outline::of(all, &piece);
             let own = Plane::stored(all, 0);
             let other = Plane::stored(all, 3);
@@ -225,7 +249,7 @@ mod tests {
                     if (0..3).any(|k| e(k) * orient < 0) {
                         continue;
                     }
-                    let kept = piece.cuts.iter().filter(|&&c| c != NO_CUT).all(|&c| {
+                    let kept = cuts(all.0, &piece).all(|c| {
                         let plane = Plane::stored(all, c & !CUT_FRONT);
                         plane.sample_behind(&own, x, y) == (c & CUT_FRONT == 0)
                     });

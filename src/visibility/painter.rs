@@ -18,29 +18,56 @@
 //!    outside: their interiors are disjoint, and the fill rule draws no sample for both, so
 //!    mesh neighbours sharing an edge or a corner pass; `separated`).
 //!
+//! **Ties** follow the z-buffer's rule: where two surfaces are at exactly the same depth, the
+//! z-buffer keeps the one it drew first, the triangle stored first (scene order). So "or on"
+//! in tests 1, 3 and 4 holds only when `Q` was stored before `P` (painting `Q` last keeps it);
+//! when `P` was stored first, `P` must lie strictly behind `Q`. A sample of `P` exactly on a
+//! cut plane goes with the piece behind it when the cutting triangle was stored first, else
+//! with the piece in front, and a triangle touching another's plane (an edge on it) counts as
+//! crossing it on the side the rule gives the touching points, so such pairs are split too.
+//! Exact ties are those of the exact planes through the stored corners: coplanar surfaces
+//! whose projected depth is the same plane (a face seen head-on, two triangles sharing their
+//! corners' depths). Where two planes differ by less than one depth unit at a sample, the
+//! z-buffer's rounded depths may tie where the exact ones do not; there the painter paints
+//! the exactly nearer one (at 32-bit depth, within `2^-32` of the depth range).
+//!
 //! When every test fails, `Q` is moved before `P` and marked; a marked `Q` failing again is a
 //! cycle (or interpenetration), and test 6 **splits** `P` by `Q`'s plane into the piece behind
 //! it and the piece in front (when each is cut by the other's plane already, one entry of the
 //! cycle of moved entries is split by the plane of another that it crosses). A piece keeps
-//! `P`'s corners (so its pixels get `P`'s exact depth and level) and a list of cuts; drawn row
-//! by row, each row restricted to the columns whose samples lie on its side of the cut planes,
+//! `P`'s corners (so its pixels get `P`'s exact depth and level) and its cuts, a chain through
+//! the store (its last cut and the piece it was cut from, whose cuts it inherits), so a piece
+//! may be cut as often as the store holds pieces and the split budget allows; drawn row by row, each row restricted to the columns whose samples lie on its side of the cut planes,
 //! so the pieces of `P` write exactly `P`'s pixels. The tests judge a piece by its own
 //! polygon: tests 1–4 by its **outline** (`outline.rs`: the triangle clipped by its cuts, a
-//! superset of the piece with exact integer vertices, so what holds for the outline holds for
-//! the piece, and an empty outline is a piece with no sample), by its cuts (a piece behind
+//! superset of the piece with exact integer vertices, clipped by its latest three cuts, so what
+//! holds for the outline holds for the piece, and an empty outline is a piece with no sample),
+//! by its cuts (a piece behind
 //! `Q`'s plane passes test 3 against `Q`; a plane that cut both, one behind and one in front,
 //! separates them), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
 //! `P` in the tests' order instead: the painter without test 6, whose wrong pixels
 //! `tests/visibility.rs` counts.
 //!
+//! Refused in words (an error, never a picture): a store too small for the front triangles
+//! and pieces ([`RenderError::TriangleStoreFull`], naming its capacity), a split budget too
+//! small ([`RenderError::SplitBudgetExhausted`], naming it: the frame's
+//! [`MethodCounts::painter_splits`](crate::render::MethodCounts) is what it needs), a group of
+//! pieces the tests still cannot order ([`RenderError::PainterCycle`]), a core-lit Phong object
+//! (its corners carry normals, not levels: [`RenderError::PhongUnsupported`]; draw it with the
+//! z-buffer or back faces alone), and a split of a fast Gouraud triangle
+//! ([`RenderError::FastGouraudInParts`]: a piece is drawn row by row from its own first column,
+//! where the 16.16 luminance steps start differently from the whole span's; whole fast Gouraud
+//! triangles are drawn as the z-buffer draws them).
+//!
 //! Numeric contract: corners within `±(2^28 − 1)` sub-pixel units, depths `u32`. A plane's
 //! normal `(n_x, n_y, n_d)` has `|n_x|, |n_y| < 2^62` (products of a `< 2^29` and a `< 2^32`
 //! difference, two of them) and `n_d` = twice the screen area, `|n_d| < 2^59`: `i64`. A point's
 //! side of a plane is `n·(p − p0) < 2^62·2^29·2 + 2^59·2^32 < 2^93`: `i128`. A sample's side of
-//! a cut plane is exact in `i128` too (`sample_side`). Memory: a stored triangle (56 bytes)
-//! and a `u32` of order per front triangle and per piece, and a plane normal (24 bytes) per
-//! front triangle, computed once after the store is filled (the tests read it instead of
-//! recomputing the plane per pair); a piece has at most [`MAX_CUTS`] cuts.
+//! a cut plane is exact in `i128` too (`sample_side`). Memory: a stored triangle (52 bytes)
+//! and a `u32` of order per front triangle and per piece (two pieces per split), and a plane
+//! normal (24 bytes) per front triangle, computed once after the store is filled (the tests
+//! read it instead of recomputing the plane per pair). A piece's cuts cost nothing more: each
+//! piece holds its last one.
 
 use core::cmp::Reverse;
 
@@ -48,15 +75,12 @@ use super::backface::without_depth;
 use super::outline::Outline;
 pub use super::plane::Normal;
 use super::plane::{Plane, Store};
-use super::store::{collect, sort_order, StoredTriangle, CUT_FRONT, NO_CUT};
+use super::store::{collect, cuts, sort_order, StoredTriangle, CUT_FRONT};
+use crate::output::{Framebuffer, NoDepth};
+use crate::raster::triangle::{RasterTarget, ShadeMode};
 use crate::raster::Window;
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
-use crate::shade::span_writer::RasterTarget;
-use crate::target::{Framebuffer, NoDepth};
-
-/// Cuts a piece may carry (a piece cut more often is an error).
-pub const MAX_CUTS: usize = 3;
 
 /// The order entry's mark: the triangle was moved before another once (Newell's loop).
 const MOVED: u32 = 1 << 31;
@@ -84,8 +108,15 @@ pub struct PainterMemory<'a, const S: u32 = 4> {
     pub normals: &'a mut [Normal],
 }
 
-/// Clears `frame`, stores the front triangles of every object of the renderer's scene, orders them by Newell's tests
-/// (module doc) and paints them back to front with no depth buffer.
+/// Clears `frame`, stores the front triangles of every object of the renderer's scene, orders
+/// them by Newell's tests (module doc) and paints them back to front with no depth buffer: the
+/// 32-bit z-buffer's picture, ties included, where exact depths tie or differ by a unit or more.
+///
+/// Errors (module doc): [`RenderError::TriangleStoreFull`] (front triangles and pieces beyond
+/// `memory`), [`RenderError::SplitBudgetExhausted`], [`RenderError::PainterCycle`],
+/// [`RenderError::PhongUnsupported`] (a core-lit Phong object: draw it with the z-buffer),
+/// [`RenderError::FastGouraudInParts`] (a fast Gouraud triangle that would be split), and the
+/// renderer's own.
 pub fn render_painter<T: StatsSink, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
@@ -95,6 +126,7 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     stats: &mut T,
 ) -> Result<(), RenderError> {
     let scene = renderer.scene();
+    renderer.renderer().check_frame(frame)?;
     let counts = stats.counts();
     let PainterMemory {
         triangles,
@@ -118,6 +150,7 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     without_depth(frame, |frame, depth| {
         let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
         let mut painter = Painter {
+            scene,
             triangles,
             normals,
             order,
@@ -144,6 +177,8 @@ pub fn render_painter<T: StatsSink, const S: u32>(
 
 /// Newell's ordering loop over the stored triangles.
 struct Painter<'m, const S: u32> {
+    /// The scene (its objects' shading: a fast Gouraud triangle is not split).
+    scene: &'m Scene<'m>,
     triangles: &'m mut [StoredTriangle<S>],
     /// The front triangles' plane normals (by base index).
     normals: &'m [Normal],
@@ -251,7 +286,8 @@ impl<const S: u32> Painter<'_, S> {
         }
         for k in self.moved.max(1)..self.count {
             let q = (self.order[k] & !MOVED) as usize;
-            if self.triangles[q].depth_range().1 <= p_near {
+            // Test 1 for the rest (at an equal depth the tie rule decides: `deciding_test`).
+            if self.triangles[q].depth_range().1 < p_near {
                 self.tests[0] += 1;
                 return None;
             }
@@ -307,13 +343,16 @@ impl<const S: u32> Painter<'_, S> {
         let p = (self.order[at] & !MOVED) as usize;
         let plane = self.triangles[q].base;
         let whole = self.triangles[p];
-        let free = whole.cuts.iter().position(|&c| c == NO_CUT);
-        let Some(slot) = free else {
-            return Err(RenderError::PieceCutTooOften { cuts: MAX_CUTS });
-        };
+        let object = whole.object as usize;
+        let fast = self.scene.objects.get(object).map(|o| o.shade);
+        if fast == Some(ShadeMode::GouraudFast) {
+            return Err(RenderError::FastGouraudInParts { object });
+        }
         let (mut behind, mut front) = (whole, whole);
-        behind.cuts[slot] = plane;
-        front.cuts[slot] = plane | CUT_FRONT;
+        behind.cut = plane;
+        front.cut = plane | CUT_FRONT;
+        behind.parent = p as u32;
+        front.parent = p as u32;
         let (b, f) = (self.stored, self.stored + 1);
         self.triangles[b] = behind;
         self.triangles[f] = front;
@@ -336,16 +375,22 @@ impl<const S: u32> Painter<'_, S> {
 /// Which of tests 1–5 (module doc) shows that painting `a` before `b` is right wherever they
 /// overlap (0 for test 1), if one does. Whole triangles are judged by their corners, pieces by
 /// their outlines (`outline.rs`).
+///
+/// The tie rule: where `a` and `b` are at exactly the same depth the z-buffer keeps the one
+/// it drew first, the earlier stored base triangle. When that is `b`, painting `b` last keeps
+/// it, so "behind or at the same depth" suffices; when it is `a`, `a` must lie strictly
+/// behind `b` wherever they overlap (`margin` 1 below: a strict inequality of integers).
 fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<usize> {
     let t = all.0;
     let (ta, tb) = (&t[a], &t[b]);
-    if ta.cuts[0] != NO_CUT || tb.cuts[0] != NO_CUT {
+    if ta.is_piece() || tb.is_piece() {
         return deciding_test_pieces(all, ta, tb);
     }
+    let margin = tie_margin(ta, tb);
     let (a_near, _) = ta.depth_range();
     let (_, b_far) = tb.depth_range();
     // 1. Depth ranges.
-    if a_near >= b_far {
+    if a_near as i64 >= b_far as i64 + margin as i64 {
         return Some(0);
     }
     // 2. Screen boxes, x then y.
@@ -356,22 +401,28 @@ fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<
     }
     // 3. A behind B's plane.
     let b_plane = Plane::stored(all, tb.base);
-    if (0..3).all(|k| b_plane.behind(ta, k) >= 0) {
+    if (0..3).all(|k| b_plane.behind(ta, k) >= margin) {
         return Some(2);
     }
     // 4. B in front of A's plane.
     let a_plane = Plane::stored(all, ta.base);
-    if (0..3).all(|k| a_plane.behind(tb, k) <= 0) {
+    if (0..3).all(|k| a_plane.behind(tb, k) <= -margin) {
         return Some(3);
     }
     // 5. Projections disjoint.
     (separated(ta, tb) || separated(tb, ta)).then_some(4)
 }
 
+/// 1 when `a` was stored (so drawn by the z-buffer) before `b`, which then keeps `a` where
+/// both are at one depth: painting `a` before `b` needs `a` strictly behind. 0 otherwise.
+fn tie_margin<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> i128 {
+    (a.base < b.base) as i128
+}
+
 /// [`deciding_test`] when `ta` or `tb` is a piece: tests 1–4 on the outlines (supersets of
 /// the pieces, `outline.rs`) and on the cuts (a piece cut by the other's plane lies on its
-/// side), test 5 on the base triangles. An empty piece (no sample) may go anywhere: counted
-/// as test 2.
+/// side, samples at an equal depth on the side the tie rule gives them: `draw_piece`), test 5
+/// on the base triangles. An empty piece (no sample) may go anywhere: counted as test 2.
 fn deciding_test_pieces<const S: u32>(
     all: Store<'_, S>,
     ta: &StoredTriangle<S>,
@@ -381,11 +432,12 @@ fn deciding_test_pieces<const S: u32>(
     if oa.is_empty() || ob.is_empty() {
         return Some(1);
     }
+    let margin = tie_margin(ta, tb);
     let depths = |t: &StoredTriangle<S>| t.depth.map(|d| d as i64);
     let (a_near, _) = oa.range(depths(ta));
     let (_, b_far) = ob.range(depths(tb));
     // 1. Depth ranges.
-    if a_near >= b_far {
+    if a_near >= b_far + margin as i64 {
         return Some(0);
     }
     // 2. Screen boxes, x then y.
@@ -397,38 +449,51 @@ fn deciding_test_pieces<const S: u32>(
         return Some(1);
     }
     // 3. A behind B's plane (its outline, or a cut that says so), or behind a plane that B
-    // is in front of (both cut by it: the plane separates them).
+    // is in front of (both cut by it: the plane separates them). A cut keeps the samples at
+    // the plane's depth on the side the tie rule gives them, so a piece behind B's plane
+    // shows behind B at every sample, ties included, and so does a separated pair.
+    let (cuts_a, cuts_b) = (cuts(all.0, ta), cuts(all.0, tb));
     let b_plane = Plane::stored(all, tb.base);
-    let separating = ta
-        .cuts
-        .iter()
-        .any(|&c| c != NO_CUT && c & CUT_FRONT == 0 && tb.cuts.contains(&(c | CUT_FRONT)));
-    if ta.cuts.contains(&tb.base) || separating || oa.side_bounds(b_plane.oriented(ta)).0 >= 0 {
+    let separating = cuts_a
+        .clone()
+        .any(|c| c & CUT_FRONT == 0 && cuts_b.clone().any(|d| d == c | CUT_FRONT));
+    if cuts_a.clone().any(|c| c == tb.base)
+        || separating
+        || oa.side_bounds(b_plane.oriented(ta)).0 >= margin
+    {
         return Some(2);
     }
     // 4. B in front of A's plane.
     let a_plane = Plane::stored(all, ta.base);
-    if tb.cuts.contains(&(ta.base | CUT_FRONT)) || ob.side_bounds(a_plane.oriented(tb)).1 <= 0 {
+    if cuts_b.clone().any(|c| c == ta.base | CUT_FRONT)
+        || ob.side_bounds(a_plane.oriented(tb)).1 <= -margin
+    {
         return Some(3);
     }
     // 5. Projections disjoint (the base triangles'; a piece lies within its base).
     (separated(ta, tb) || separated(tb, ta)).then_some(4)
 }
 
-/// Whether `a` (its outline, for a piece) has points strictly on both sides of `b`'s plane,
-/// and `a` is not cut by it already. The outline's bounds may say so of a piece wholly on one
+/// Whether `a` (its outline, for a piece) has points on both sides of `b`'s plane, and `a`
+/// is not cut by it already. A point on the plane counts on the side the tie rule gives it:
+/// in front when `a` was stored first (the z-buffer keeps `a` there), else behind; so a
+/// triangle that touches the other's plane along an edge, where both may draw a sample at
+/// one depth, is split there too. The outline's bounds may say so of a piece wholly on one
 /// side: a split then makes an empty piece, which draws nothing.
 fn straddles<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> bool {
     let (ta, tb) = (&all.0[a], &all.0[b]);
-    if ta.cuts.iter().any(|&c| c & !CUT_FRONT == tb.base) {
+    if cuts(all.0, ta).any(|c| c & !CUT_FRONT == tb.base) {
         return false;
     }
     let plane = Plane::stored(all, tb.base);
-    if ta.cuts[0] != NO_CUT {
+    let first = tie_margin(ta, tb);
+    if ta.is_piece() {
         let (lo, hi) = Outline::of(all, ta).side_bounds(plane.oriented(ta));
-        return lo < 0 && hi > 0;
+        return lo < first && hi >= first;
     }
     let sides = [0, 1, 2].map(|k| plane.behind(ta, k));
+    let tied = if first == 1 { -1 } else { 1 };
+    let sides = sides.map(|s| if s == 0 { tied } else { s });
     sides.contains(&1) && sides.contains(&-1)
 }
 
@@ -469,14 +534,14 @@ fn separated<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> bool
 
 /// Paints `t` (a whole triangle at once; a piece row by row, each row's columns restricted to
 /// the samples on its side of every cut, found by bisection: the side is affine along a row).
-fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
+fn draw_piece<const S: u32, C: crate::raster::triangle::WrittenCount>(
     scene: &Scene<'_>,
     t: &StoredTriangle<S>,
     all: Store<'_, S>,
     target: &mut RasterTarget<'_, NoDepth, C>,
     stats: &mut RenderStats,
 ) -> Result<(), RenderError> {
-    if t.cuts[0] == NO_CUT {
+    if !t.is_piece() {
         stats.add_triangle(t.draw(scene, target)?);
         return Ok(());
     }
@@ -488,11 +553,17 @@ fn draw_piece<const S: u32, C: crate::shade::span_writer::WrittenCount>(
     let mut sum = (0, 0);
     for y in row_lo.max(full.y0)..=row_hi.min(full.y1 - 1) {
         let (mut a, mut b) = (cols.0, cols.1 + 1);
-        for &cut in t.cuts.iter().filter(|&&c| c != NO_CUT) {
-            let plane = Plane::stored(all, cut & !CUT_FRONT);
+        for cut in cuts(all.0, t) {
+            let by = cut & !CUT_FRONT;
+            let plane = Plane::stored(all, by);
             let keep_behind = cut & CUT_FRONT == 0;
-            let keep =
-                |x: i32| plane.sample_behind(&own, (x as i64) << S, (y as i64) << S) == keep_behind;
+            // A sample at the cutting plane's depth is hidden by it (goes with the samples
+            // behind) when the cutting triangle was stored first: the z-buffer keeps it there.
+            let hidden_on_plane = by < t.base;
+            let keep = |x: i32| {
+                let side = plane.sample_side(&own, (x as i64) << S, (y as i64) << S);
+                (side > 0 || (side == 0 && hidden_on_plane)) == keep_behind
+            };
             (a, b) = kept_columns(a, b, keep);
         }
         if a < b {

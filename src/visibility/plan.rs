@@ -4,10 +4,11 @@
 //! and the reason for each choice. No heap: the drawing order goes to a caller slice.
 //!
 //! ## What is cheap to know, per frame
-//! - Each mesh's convexity certificate ([`Convexity`], stored with the mesh), and for a creased
-//!   mesh whether its creases hold in this view ([`Creases`]: a few face pairs on screen, their
-//!   vertices placed as the vertex stage places them; by [`plan_frame`](super::plan_frame), the
-//!   vertex stage itself, run into the caller's scratch and reused by the frame).
+//! - Each mesh's convexity hint and edge table ([`Convexity`], stored with the mesh), and for a
+//!   candidate mesh whether its drawn faces cover each pixel at most once in this view (the
+//!   per-view check of `facts.rs`: `O(corners)` exact tests on the screen positions the vertex
+//!   stage places; by [`plan_frame`](super::plan_frame), the vertex stage itself, run into the
+//!   caller's scratch and reused by the frame).
 //! - Each object's bounding box (stored with the mesh), its 8 corners taken to the observer
 //!   frame by the object's own model-view transform: the vertex stage rounds every vertex to
 //!   nearest, which is monotone, so every vertex the renderer places lies within the box of the
@@ -20,12 +21,11 @@
 //!
 //! ## The rules, and why each keeps the picture
 //! 1. **Back faces alone** ([`Visibility::BackFace`], no depth buffer) when every object culls
-//!    its back faces, its mesh is [`Convexity::Convex`] or creased with creases holding in this
-//!    view, and within the rounding guard (`facts.rs`, "Rounding": the renderer's rounding,
-//!    taken back to the mesh's frame, moves no vertex by more than [`MeshFacts::tolerance`]),
-//!    and the objects are **separable**: any two whose screen boxes overlap have depth
+//!    its back faces, its mesh is [`Convexity::Convex`] and passes the per-view check (`facts.rs`:
+//!    on the rounded screen positions this frame draws, every polygon inside the frustum and no
+//!    sample covered by two of its drawn triangles), and the objects are **separable**: any two whose screen boxes overlap have depth
 //!    ranges that do not (Schumacker's clusters). Objects are drawn far to near (`order`).
-//!    Within an object no two front faces overlap (`facts.rs`), so each pixel an object draws
+//!    Within an object no two drawn triangles cover one sample (`facts.rs`), so each pixel an object draws
 //!    is the one surface it shows there. Two objects that both draw a pixel overlap on screen,
 //!    so their depth ranges are disjoint: the nearer one's stored depth is below the farther
 //!    one's (a triangle's depth at a pixel lies between its corners' depths), the z-buffer
@@ -48,8 +48,8 @@
 //! 4. No layout fits: [`PlanError::OverBudget`] with the bytes of the smallest plan.
 //!
 //! Rule 1's checks run cheapest first, and the reason names the first that fails: each
-//! object's culling, convexity kind and rounding guard (in scene order), then the objects'
-//! separation, then each creased mesh's view check (the costliest: in reverse drawing order, so
+//! object's culling and convexity hint (in scene order), then the objects' separation, then
+//! each mesh's per-view check (the costliest: in reverse drawing order, so
 //! that the vertices [`plan_frame`](super::plan_frame) keeps are those of the object drawn
 //! first).
 //!
@@ -57,16 +57,27 @@
 //! the z-buffer and their frames more instructions (`docs/BENCHMARKS.md`, "Visibility
 //! methods").
 //!
-//! Numeric contract: sizes in bytes as `usize` (saturating: a size that does not fit a
-//! `usize` is over any budget); observer-frame bounds are I16F16 (saturating, as the vertex
-//! stage); depths `u32`; screen boxes in `i64` sub-pixel units.
+//! ## Memory beside the budget
+//! The budget counts the buffers a plan draws with ([`Buffers`]). The planner's own memory is
+//! stated here instead, as it does not change with the plan: each mesh's facts keep 4 bytes
+//! per corner (the edge table, beside the mesh, in flash when precomputed; 8 bytes per corner
+//! while [`MeshFacts::of`] computes it), the order slice 2 bytes per object, and the per-view
+//! check takes under 3 KB of stack ([`plan`]: a 2 KB cache of placed vertices and two
+//! polygons' corners; [`plan_frame`](super::plan_frame), when its scratch holds the mesh's
+//! vertex table, reads the vertices the frame then uses and needs no cache). Planning time: the facts `O(corners · log corners)`
+//! once; per frame `O(objects²)` for the separation and `O(corners)` per candidate mesh.
+//!
+//! Numeric contract: sizes in bytes as `usize` (products saturating: a size that does not fit
+//! a `usize`, as a 65,535 × 65,535 frame's depth on a 32-bit target, is over any budget);
+//! observer-frame bounds are I16F16 (saturating, as the vertex stage); depths `u32`; screen
+//! boxes in `i64` sub-pixel units.
 
-use super::facts::{Convexity, MeshFacts, View};
+use super::facts::{apart_in, apart_prepared, Convexity, MeshFacts, Refusal, View};
 use super::Visibility;
 use crate::clip::frustum::Frustum;
-use crate::geometry::fixed::{Coord, LINEAR_FRAC};
+use crate::geometry::fixed::Coord;
 use crate::geometry::vector::Vec3;
-use crate::project::Projector;
+use crate::project::{require_perspective, Projector};
 use crate::render::compact::compact_draws;
 use crate::render::{CompactSizes, PolygonRows, PreparedVertex, RenderError, Renderer};
 use crate::scene::{Object, Scene};
@@ -130,8 +141,8 @@ impl Buffers {
 pub enum MethodReason {
     /// No object.
     Empty,
-    /// Every object convex (or creased, creases holding in this view) and culled, and the
-    /// objects separable: back faces alone, far to near.
+    /// Every object culled, its front faces covering each pixel at most once in this view,
+    /// and the objects separable: back faces alone, far to near.
     ConvexAndSeparable,
     /// This object draws its back faces.
     BackFacesDrawn {
@@ -143,8 +154,14 @@ pub enum MethodReason {
         /// Its index.
         object: usize,
     },
-    /// This object's mesh is creased and two of its front faces may overlap in this view.
-    CreasesOverlap {
+    /// Two drawn triangles of this object's mesh may cover one pixel in this view (the
+    /// per-view check of `facts.rs` finds its silhouette not star-shaped).
+    FrontFacesMayOverlap {
+        /// Its index.
+        object: usize,
+    },
+    /// A polygon of this object has a vertex outside the frustum: clipped, it is not checked.
+    LeavesFrustum {
         /// Its index.
         object: usize,
     },
@@ -155,18 +172,41 @@ pub enum MethodReason {
         /// The other.
         b: usize,
     },
-    /// This object's mesh is convex (or creased) as stored, but the renderer's rounding to
-    /// `2^-S` pixel may move its vertices, in the mesh's frame, by more than its
-    /// certificate's tolerance (an object small on screen): its triangles may fold.
-    RoundingMayFold {
-        /// Its index.
-        object: usize,
-    },
     /// Back faces alone would do but need a whole frame: these bytes, over the budget.
     WholeFrameOverBudget {
         /// Bytes back faces alone need.
         needed: usize,
     },
+}
+
+/// What rules out compact bands ([`LayoutReason::CompactBands`]) for a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CompactBlock {
+    /// This object is lit Phong: compact vertices hold no normals.
+    LitPhong {
+        /// Its index.
+        object: usize,
+    },
+    /// This object's bounding box leaves the frustum or the 16-bit sub-pixel range.
+    OutsideRange {
+        /// Its index.
+        object: usize,
+    },
+}
+
+impl core::fmt::Display for CompactBlock {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            CompactBlock::LitPhong { object } => write!(
+                f,
+                "object {object} is lit Phong (compact vertices hold no normals)"
+            ),
+            CompactBlock::OutsideRange { object } => write!(
+                f,
+                "object {object}'s bounding box leaves the frustum or the 16-bit sub-pixel range"
+            ),
+        }
+    }
 }
 
 /// Why the plan took its depth width.
@@ -242,6 +282,11 @@ pub enum PlanError {
         needed: usize,
         /// The budget.
         budget: usize,
+        /// What rules out back faces alone (no depth buffer; a whole frame of pixels).
+        back_faces: MethodReason,
+        /// What rules out compact bands, when something does (`None`: they were tried and
+        /// are among the layouts sized).
+        compact: Option<CompactBlock>,
     },
     /// The order slice is shorter than the scene's objects (or a fact is missing for one).
     TooFewSlots {
@@ -255,11 +300,22 @@ pub enum PlanError {
 impl core::fmt::Display for PlanError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            PlanError::OverBudget { needed, budget } => write!(
-                f,
-                "the smallest plan needs {needed} bytes of caller memory, over the budget of \
-                 {budget} bytes"
-            ),
+            PlanError::OverBudget {
+                needed,
+                budget,
+                back_faces,
+                compact,
+            } => {
+                write!(
+                    f,
+                    "the smallest plan needs {needed} bytes of caller memory, over the budget \
+                     of {budget} bytes; back faces alone: {back_faces}"
+                )?;
+                match compact {
+                    Some(block) => write!(f, "; compact bands: {block}"),
+                    None => write!(f, "; compact bands were sized"),
+                }
+            }
             PlanError::TooFewSlots { objects } => write!(
                 f,
                 "the scene has {objects} objects: the order slice and the facts need one entry \
@@ -278,32 +334,26 @@ impl core::fmt::Display for MethodReason {
             MethodReason::Empty => write!(f, "no object"),
             MethodReason::ConvexAndSeparable => write!(
                 f,
-                "every object is convex and culled, and objects that overlap on screen are \
-                 apart in depth: no two front faces overlap"
+                "every object is culled and its front faces cover each pixel once in this view, \
+                 and objects that overlap on screen are apart in depth"
             ),
             MethodReason::BackFacesDrawn { object } => {
-                write!(f, "object {} draws its back faces", object + 1)
+                write!(f, "object {object} draws its back faces")
             }
             MethodReason::NotConvex { object } => {
-                write!(f, "object {}'s mesh is not convex", object + 1)
+                write!(f, "object {object}'s mesh is not convex")
             }
-            MethodReason::CreasesOverlap { object } => write!(
+            MethodReason::FrontFacesMayOverlap { object } => write!(
                 f,
-                "object {}'s creased mesh may show two front faces at one pixel in this view",
-                object + 1
+                "two front faces of object {object} may cover one pixel in this view"
             ),
-            MethodReason::ObjectsOverlap { a, b } => write!(
+            MethodReason::LeavesFrustum { object } => write!(
                 f,
-                "objects {} and {} overlap on screen and in depth",
-                a + 1,
-                b + 1
+                "object {object} leaves the frustum (its clipped polygons are not checked)"
             ),
-            MethodReason::RoundingMayFold { object } => write!(
-                f,
-                "object {} is too small on screen for its convexity certificate: the rounding \
-                 to the sub-pixel grid may fold its triangles",
-                object + 1
-            ),
+            MethodReason::ObjectsOverlap { a, b } => {
+                write!(f, "objects {a} and {b} overlap on screen and in depth")
+            }
             MethodReason::WholeFrameOverBudget { needed } => write!(
                 f,
                 "back faces alone would do but need a whole frame ({needed} bytes)"
@@ -379,8 +429,8 @@ struct Placed {
 
 /// The plan of `scene` at `S` sub-pixel bits within `budget` bytes, given `facts[i]` for
 /// object `i`'s mesh; `order[..objects]` receives the drawing order (far to near for back
-/// faces alone, the scene's order otherwise). It draws nothing and needs no scratch: the view
-/// check of a creased mesh places the vertices it looks at itself. To draw the plan,
+/// faces alone, the scene's order otherwise). It draws nothing and needs no scratch: the
+/// per-view check of a mesh places the vertices it looks at itself. To draw the plan,
 /// [`plan_frame`](super::plan_frame) makes the same plan and keeps the vertex stage it ran for
 /// that check for the frame.
 pub fn plan<const S: u32>(
@@ -407,8 +457,8 @@ pub(super) struct Placing<'p, const S: u32> {
     pub(super) frustum: &'p Frustum,
 }
 
-/// The vertex scratch [`plan_frame`](super::plan_frame) lends the planner: the view check of
-/// a creased mesh runs the renderer's vertex stage there and reads the screen positions it
+/// The vertex scratch [`plan_frame`](super::plan_frame) lends the planner: the per-view check
+/// of a mesh runs the renderer's vertex stage there and reads the screen positions it
 /// left; `holds` names the object whose vertices the scratch holds (the last one prepared).
 pub(super) struct Lent<'s, const S: u32> {
     pub(super) renderer: &'s Renderer<S>,
@@ -428,8 +478,8 @@ impl<const S: u32> Lent<'_, S> {
     }
 }
 
-/// [`plan`] with the scene placed by `view`, and the vertex scratch `lent` for the view
-/// check of creased meshes (module doc, rule 1), when [`plan_frame`](super::plan_frame) lends
+/// [`plan`] with the scene placed by `view`, and the vertex scratch `lent` for the per-view
+/// check of the meshes (module doc, rule 1), when [`plan_frame`](super::plan_frame) lends
 /// one. The plan is the same with or without it.
 pub(super) fn plan_with<const S: u32>(
     scene: &Scene<'_>,
@@ -439,6 +489,9 @@ pub(super) fn plan_with<const S: u32>(
     view: &Placing<'_, S>,
     lent: Option<&mut Lent<'_, S>>,
 ) -> Result<Plan, PlanError> {
+    // The rounding guard bounds the projection's error through the focal length and `z`.
+    require_perspective(&scene.camera, "the planner")
+        .map_err(|e| PlanError::Camera(RenderError::Projection(e)))?;
     let n = scene.objects.len();
     if order.len() < n || facts.len() < n || n > u16::MAX as usize + 1 {
         return Err(PlanError::TooFewSlots { objects: n });
@@ -465,7 +518,7 @@ pub(super) fn plan_with<const S: u32>(
     let method_reason = match reason {
         Ok(r) => {
             let buffers = Buffers {
-                frame: w * h,
+                frame: w.saturating_mul(h),
                 vertices: largest.saturating_mul(vertex_bytes),
                 ..Buffers::default()
             };
@@ -491,7 +544,8 @@ pub(super) fn plan_with<const S: u32>(
         *o = i; // the z-buffer draws in scene order
     }
     // Compact bands' sizes, when the scene can be drawn so (known only for the z-buffer).
-    let compact = compact_fits(scene, facts, view).then(|| {
+    let compact_block = compact_fits(scene, facts, view).err();
+    let compact = compact_block.is_none().then(|| {
         let sizes = CompactSizes::of(scene);
         let vertices = sizes.bytes(0, 0, 0).saturating_sub(sizes.polygons);
         (vertices, sizes.polygons)
@@ -509,18 +563,25 @@ pub(super) fn plan_with<const S: u32>(
         let far = placed.filter_map(|(o, f)| place(o, f, scene, view.projector).map(|p| p.far_z));
         far.max().unwrap_or(0)
     };
-    zbuffer_plan(&counts, camera, far_z, method_reason, budget)
+    zbuffer_plan(&counts, camera, far_z, method_reason, budget).map_err(|needed| {
+        PlanError::OverBudget {
+            needed,
+            budget,
+            back_faces: method_reason,
+            compact: compact_block,
+        }
+    })
 }
 
 /// The z-buffer's plan (rules 2 to 4 of the module doc): the first layout that fits `budget`,
-/// `u32` layouts first; else the bytes of the smallest.
+/// `u32` layouts first; else (`Err`) the bytes of the smallest.
 fn zbuffer_plan(
     counts: &Counts,
     camera: &crate::geometry::camera::Camera,
     far_z: impl Fn() -> i32,
     method_reason: MethodReason,
     budget: usize,
-) -> Result<Plan, PlanError> {
+) -> Result<Plan, usize> {
     let mut smallest = usize::MAX;
     for depth in [DepthWidth::U32, DepthWidth::U16] {
         for (band_rows, buffers, layout_reason) in
@@ -548,10 +609,7 @@ fn zbuffer_plan(
             });
         }
     }
-    Err(PlanError::OverBudget {
-        needed: smallest,
-        budget,
-    })
+    Err(smallest)
 }
 
 /// Sizes the layouts are made of.
@@ -578,15 +636,15 @@ fn zbuffer_layouts(
     budget: usize,
 ) -> [Option<(u16, Buffers, LayoutReason)>; 4] {
     let at = |rows: usize, vertices: usize, polygons: usize| Buffers {
-        frame: c.w * rows,
-        depth: c.w * rows * depth.bytes(),
+        frame: c.w.saturating_mul(rows),
+        depth: c.w.saturating_mul(rows).saturating_mul(depth.bytes()),
         vertices,
         polygons,
         tables: 0,
     };
     // The tallest band whose rows fit beside `fixed` bytes of scratch.
     let rows = |fixed: usize| {
-        let per_row = (c.w * (1 + depth.bytes())).max(1);
+        let per_row = c.w.saturating_mul(1 + depth.bytes()).max(1);
         (budget.saturating_sub(fixed) / per_row).clamp(1, c.h.max(1))
     };
     let once = rows(c.all.saturating_add(c.table));
@@ -611,17 +669,18 @@ fn zbuffer_layouts(
     ]
 }
 
-/// True when compact bands draw `scene` (their module doc): no object is lit Phong, and every
+/// `Ok` when compact bands draw `scene` (their module doc): no object is lit Phong, and every
 /// object's bounding box, as the planner places it (module doc), lies inside the frustum (the
 /// frustum is convex, so its 8 corners do) and projects within `±32767` sub-pixel units: then
-/// every vertex the vertex stage places has a compact form.
+/// every vertex the vertex stage places has a compact form. Else the first object that
+/// blocks them, and why.
 fn compact_fits<const S: u32>(
     scene: &Scene<'_>,
     facts: &[MeshFacts<'_>],
     view: &Placing<'_, S>,
-) -> bool {
+) -> Result<(), CompactBlock> {
     let (projector, frustum) = (view.projector, view.frustum);
-    scene.objects.iter().zip(facts).all(|(object, fact)| {
+    for (i, (object, fact)) in scene.objects.iter().zip(facts).enumerate() {
         let inside = observer_box(object, fact, scene).is_some_and(|b| {
             (0..8).all(|k| {
                 let pick = |axis: usize| b[k >> axis & 1][axis];
@@ -636,13 +695,19 @@ fn compact_fits<const S: u32>(
                     && s[2] <= i16::MAX as i64
                     && s[3] <= i16::MAX as i64
             });
-        compact_draws(object) && inside && on_screen
-    })
+        if !compact_draws(object) {
+            return Err(CompactBlock::LitPhong { object: i });
+        }
+        if !(inside && on_screen) {
+            return Err(CompactBlock::OutsideRange { object: i });
+        }
+    }
+    Ok(())
 }
 
 /// Back faces alone for `scene` (rule 1), with `order` sorted far to near; else the reason.
-/// The checks run cheapest first: each object's culling, convexity kind and rounding guard
-/// (in scene order), then the objects' separation, then the view check of each creased mesh,
+/// The checks run cheapest first: each object's culling and convexity hint (in scene order),
+/// then the objects' separation, then the per-view check of each mesh,
 /// in reverse drawing order (with `lent`, its vertex stage: the object drawn first is the one
 /// whose vertices the scratch keeps).
 fn back_faces_allowed<const S: u32>(
@@ -660,36 +725,34 @@ fn back_faces_allowed<const S: u32>(
         if matches!(fact.convexity, Convexity::NotConvex) {
             return Err(MethodReason::NotConvex { object: i });
         }
-        if !rounding_within(object, fact, scene, projector) {
-            return Err(MethodReason::RoundingMayFold { object: i });
-        }
     }
     separate(scene, facts, projector, order)?;
     for &k in order.iter().rev() {
         let (i, object) = (k as usize, &scene.objects[k as usize]);
-        let Convexity::Creased(creases) = facts[i].convexity else {
+        let Convexity::Convex { twins } = facts[i].convexity else {
             continue;
         };
-        // The certificate's argument takes the solid outside the eye: a mirroring transform
-        // turns the mesh inside out, so it is not used there.
-        let mirrored = determinant(object.transform.linear_bits()) < 0;
-        let model_view = model_view(object, scene);
-        let holds = !mirrored
-            && model_view.is_some_and(|mv| {
-                match lent.as_deref_mut().and_then(|l| l.prepare(i, object)) {
-                    Some(prepared) => creases.hold_prepared(&object.mesh, prepared),
-                    None => creases.hold_in(
-                        &object.mesh,
-                        &View {
-                            model_view: &mv,
-                            frustum: view.frustum,
-                            projector,
-                        },
-                    ),
-                }
-            });
-        if !holds {
-            return Err(MethodReason::CreasesOverlap { object: i });
+        let Some(mv) = model_view(object, scene) else {
+            return Err(MethodReason::LeavesFrustum { object: i });
+        };
+        let checked = match lent.as_deref_mut().and_then(|l| l.prepare(i, object)) {
+            Some(prepared) => apart_prepared(&object.mesh, twins, prepared),
+            None => apart_in(
+                &object.mesh,
+                twins,
+                &View {
+                    model_view: &mv,
+                    frustum: view.frustum,
+                    projector,
+                },
+            ),
+        };
+        match checked {
+            Ok(()) => {}
+            Err(Refusal::LeavesFrustum) => return Err(MethodReason::LeavesFrustum { object: i }),
+            Err(Refusal::FrontFacesMayOverlap) => {
+                return Err(MethodReason::FrontFacesMayOverlap { object: i })
+            }
         }
     }
     Ok(MethodReason::ConvexAndSeparable)
@@ -727,61 +790,6 @@ fn separate<const S: u32>(
         }
     }
     Ok(())
-}
-
-/// The sign-exact determinant of a linear part (raw entries `|e| < 2^31`: each product of
-/// three below `2^93`, `i128`).
-fn determinant(m: [[i32; 3]; 3]) -> i128 {
-    let e = |r: usize, c: usize| m[r][c] as i128;
-    e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1))
-        - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))
-        + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0))
-}
-
-/// True when the renderer's rounding moves `object`'s vertices, taken back to its mesh's
-/// frame, by at most the certificate's tolerance (module doc, rule 1): each observer-frame
-/// coordinate by 1 raw unit (the transform rounds to nearest) plus the projection's rounding
-/// (under 0.51 sub-pixel unit, `project.rs`) seen at the object's farthest `z`,
-/// `z/(f·2^S)` for the smaller focal length `f` in pixels; then into the mesh's frame by the
-/// inverse of the linear part, whose row sums are the adjugate's over the determinant.
-fn rounding_within<const S: u32>(
-    object: &Object<'_>,
-    fact: &MeshFacts<'_>,
-    scene: &Scene<'_>,
-    projector: &Projector<S>,
-) -> bool {
-    let (Some(mv), Some(placed)) = (
-        model_view(object, scene),
-        place(object, fact, scene, projector),
-    ) else {
-        return false;
-    };
-    let m = mv.linear_bits();
-    // The view turns the right-handed model frame into the z-forward observer frame: the
-    // sign is the view's, only the magnitude scales distances here.
-    let det = determinant(m).abs();
-    if det == 0 {
-        return false;
-    }
-    let camera = &scene.camera;
-    let focal = camera
-        .focal_x()
-        .to_bits()
-        .min(camera.focal_y().to_bits())
-        .max(1) as i128;
-    let z = placed.far_z.max(0) as i128;
-    // Observer-frame raw units: the transform's rounding and the projection's at `z`.
-    let moved = 1 + ((z << 16) + (focal << S) - 1) / (focal << S);
-    // ‖L⁻¹‖∞ = (largest row sum of |adj L|)·2^LINEAR_FRAC / det (raw entries are Q24).
-    let e = |r: usize, c: usize| m[r % 3][c % 3] as i128;
-    let cofactor =
-        |r: usize, c: usize| e(r + 1, c + 1) * e(r + 2, c + 2) - e(r + 1, c + 2) * e(r + 2, c + 1);
-    let row_sum = (0..3)
-        .map(|i| (0..3).map(|j| cofactor(j, i).abs()).sum::<i128>())
-        .max()
-        .unwrap_or(0);
-    // Below 2^66·2^24·2^33 and 2^26·2^96: no overflow.
-    row_sum * (1 << LINEAR_FRAC) * moved <= fact.tolerance.max(0) as i128 * det
 }
 
 /// True when two screen boxes are disjoint.

@@ -94,7 +94,14 @@ impl Plane {
     /// `B + n_d'·r/|n_d|` with `B` an integer, decided by `B` alone when `|B| ≥ |n_d'|` and
     /// otherwise by `B·|n_d| + n_d'·r` (both `< 2^118`). The sample lies within `on`'s
     /// bounding box, where `|q| < 2^35`, so `B < 2^95`.
+    #[cfg(test)]
     pub(super) fn sample_behind(&self, on: &Plane, x: i64, y: i64) -> bool {
+        self.sample_side(on, x, y) > 0
+    }
+
+    /// The side of this plane of the sample at pixel `(x, y)` of plane `on`, exactly (as
+    /// [`Self::sample_behind`]): 1 behind, 0 on it (the same depth), −1 in front.
+    pub(super) fn sample_side(&self, on: &Plane, x: i64, y: i64) -> i128 {
         let [ox, oy, od] = on.origin;
         let (dx, dy) = (x - ox, y - oy);
         // D_on = od − (n_x dx + n_y dy)/n_d.
@@ -112,6 +119,6 @@ impl Plane {
         } else {
             (b * den + nd * r).signum()
         };
-        side * self.facing > 0
+        side * self.facing
     }
 }

@@ -2,13 +2,13 @@
 //! entry, [`plan_frame`], so that what the planner computed for its check is not computed
 //! again by the frame.
 //!
-//! The view check of a creased mesh (`facts.rs`, [`Creases`](super::Creases)) needs the mesh's
+//! The per-view check of a mesh (`facts.rs`) needs the mesh's
 //! vertices on screen exactly as the vertex stage places them; back faces alone then run that
 //! same vertex stage again. [`plan_frame`] runs the renderer's own vertex stage
 //! ([`Renderer::prepare`](crate::render::Renderer::prepare)) into the caller's vertex scratch
 //! for the check, and when the plan is back faces alone hands back a [`BackFaceFrame`] whose
 //! [`render`](BackFaceFrame::render) rasterizes the object drawn first from those prepared
-//! vertices. The creased objects are checked in reverse drawing order, so the one whose
+//! vertices. The objects are checked in reverse drawing order, so the one whose
 //! vertices the scratch keeps is the one drawn first (for a single object, always it).
 //!
 //! Safety of the reuse: a [`BackFaceFrame`] borrows the [`SceneRenderer`] it was planned for
@@ -26,8 +26,8 @@ use super::backface::draw_objects;
 use super::facts::MeshFacts;
 use super::plan::{plan_with, Lent, Placing, Plan, PlanError};
 use super::Visibility;
+use crate::output::Framebuffer;
 use crate::render::{PreparedVertex, RenderError, SceneRenderer, StatsSink};
-use crate::target::Framebuffer;
 
 /// What [`plan_frame`] returns: the plan, and for back faces alone the frame ready to draw.
 #[derive(Debug)]
@@ -95,7 +95,7 @@ impl<const S: u32> BackFaceFrame<'_, '_, S> {
 }
 
 /// Plans the scene of `renderer` as [`plan`](super::plan) does (same `facts`, `budget` and
-/// `order`, same [`Plan`]), with `scratch` as vertex scratch: the view check of each creased
+/// `order`, same [`Plan`]), with `scratch` as vertex scratch: the per-view check of each
 /// mesh runs the renderer's vertex stage there when the scratch holds the mesh's vertex
 /// table (otherwise it places the vertices it needs itself), and a plan of back faces alone
 /// comes back as a [`BackFaceFrame`] that reuses them (module doc). `scratch` needs
@@ -105,12 +105,13 @@ impl<const S: u32> BackFaceFrame<'_, '_, S> {
 /// use zscan::prelude::*;
 /// use zscan::visibility::{plan_frame, MeshFacts, PlannedFrame, Visibility};
 ///
-/// let lens = Lens::new(Angle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+/// let lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
 /// let up = Vec3::from_int(0, 1, 0);
 /// let camera = Camera::look_at(Vec3::from_int(2, 1, 3), Vec3::ZERO, up, lens, Viewport::new(32, 24))?;
 /// let cube = Object::new(unit_cube());
 /// let scene = Scene { camera, objects: &[cube], background: 0, ambient: 255, lights: &[] };
-/// let facts = [MeshFacts::of(&cube.mesh, &mut [])]; // once per mesh, kept beside it
+/// let mut words = [0u32; 72]; // MeshFacts::words_needed: twice the mesh's corners
+/// let facts = [MeshFacts::of(&cube.mesh, &mut words)?]; // once per mesh, kept beside it
 /// let renderer = Renderer::for_scene(&scene)?;
 /// let (mut order, mut scratch) = ([0u16; 1], [PreparedVertex::default(); 8]);
 /// let (mut pixels, mut stats) = ([0u8; 32 * 24], RenderStats::default());

@@ -6,19 +6,24 @@
 //! instead of a frame of depth. Each band draws its active triangles through the z-buffer's
 //! writer into the band's buffers, which write exactly the rows they hold, in the order the
 //! polygon stage produced them (the active table is kept in that order), so every pixel, ties
-//! included, is the z-buffer's. A triangle's set-up runs once per band it reaches: the cost of
+//! included, is the z-buffer's at the band's depth width `D`: a band of `u16` samples quantises
+//! and compares depth as the 16-bit z-buffer does (`DepthValue::from_depth32`, the same
+//! writer), a band of `u32` as the 32-bit one. A triangle's set-up runs once per band it reaches: the cost of
 //! thin bands, measured in `docs/BENCHMARKS.md`.
 //!
-//! Memory: a stored triangle (56 bytes) and a `u32` of order per front triangle, a `u32` per
+//! Refused in words: a core-lit Phong object ([`RenderError::PhongUnsupported`]: a stored
+//! corner keeps a level, not a normal; draw it with the z-buffer).
+//!
+//! Memory: a stored triangle (52 bytes) and a `u32` of order per front triangle, a `u32` per
 //! active triangle, and the band's pixels and depth samples (`width × band_rows` each).
 
 use super::store::{collect, sort_order, StoredTriangle};
+use crate::output::{DepthBuffer, DepthValue, Framebuffer};
+use crate::raster::triangle::RasterTarget;
 use crate::render::{
-    band_height, PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink,
+    band_buffers, band_height, PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink,
 };
 use crate::scene::Scene;
-use crate::shade::span_writer::RasterTarget;
-use crate::target::{DepthBuffer, DepthValue, Framebuffer};
 
 /// Caller memory of [`render_scan_lines`].
 #[derive(Debug)]
@@ -38,8 +43,10 @@ pub struct ScanLineMemory<'a, D, const S: u32 = 4> {
 /// Draws a `width × height` picture of the renderer's scene band by band (`band_rows` rows each, the last may be
 /// shorter) from the scene's front triangles, calling `band_done` with each finished band
 /// as [`render_in_bands`](crate::render::render_in_bands) does. The pixels are the
-/// z-buffer's (module doc). `band_rows` is at least 1 ([`RenderError::BadBandRows`] names a
-/// 0); a band taller than the picture draws the picture in one band.
+/// z-buffer's at the depth width `D` of `memory.depths` (module doc): `u16` samples give the
+/// 16-bit z-buffer's picture, `u32` the 32-bit one. `band_rows` is at least 1
+/// ([`RenderError::BadBandRows`] names a 0); a band taller than the picture draws the picture
+/// in one band. A core-lit Phong object is [`RenderError::PhongUnsupported`].
 #[allow(clippy::too_many_arguments)]
 pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
@@ -50,7 +57,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
     mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
     let scene = renderer.scene();
-    let band_rows = band_height(band_rows, height)?;
+    let band_rows = band_height(renderer.renderer(), (width, height, band_rows))?;
     let ScanLineMemory {
         triangles,
         order,
@@ -85,14 +92,8 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
             live += 1;
         }
         counts.method.active_peak = counts.method.active_peak.max(live as u32);
-        let cells = width as usize * rows as usize;
-        let too_small = RenderError::BufferTooSmall;
-        let mut frame =
-            Framebuffer::band(pixels.get_mut(..cells).ok_or(too_small)?, width, rows, top)
-                .map_err(|_| too_small)?;
-        let mut depth =
-            DepthBuffer::band(depths.get_mut(..cells).ok_or(too_small)?, width, rows, top)
-                .map_err(|_| too_small)?;
+        let (mut frame, mut depth) =
+            band_buffers((&mut *pixels, &mut *depths), (width, rows, top))?;
         frame.clear(scene.background);
         depth.clear();
         {
@@ -116,7 +117,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
 }
 
 /// Draws the active triangles into the band's target, counting.
-fn draw_active<D: DepthValue, C: crate::shade::span_writer::WrittenCount, const S: u32>(
+fn draw_active<D: DepthValue, C: crate::raster::triangle::WrittenCount, const S: u32>(
     scene: &Scene<'_>,
     triangles: &[StoredTriangle<S>],
     active: &[u32],

@@ -12,12 +12,12 @@
 //! writer clamps them), objects `0..=255`.
 
 use crate::geometry::vector::Vec3;
+use crate::output::DepthValue;
+use crate::raster::triangle::{twice_area, RasterTarget, WrittenCount};
 use crate::raster::SubpixelPoint;
 use crate::render::consumer::{Corner, LevelWriter, TriangleConsumer};
 use crate::render::RenderError;
 use crate::scene::Scene;
-use crate::shade::span_writer::{RasterTarget, WrittenCount};
-use crate::target::DepthValue;
 
 /// No cut: see [`StoredTriangle::cuts`].
 pub(crate) const NO_CUT: u32 = u32::MAX;
@@ -28,7 +28,7 @@ pub(crate) const CUT_FRONT: u32 = 1 << 31;
 /// references are 31-bit.
 pub(crate) const MAX_STORED: usize = (1 << 31) - 1;
 
-/// One front triangle kept for later drawing (24 + 12 + 4 + 12 + 4 = 56 bytes at any `S`).
+/// One front triangle kept for later drawing (24 + 12 + 4 + 4 + 4 + 4 = 52 bytes at any `S`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct StoredTriangle<const S: u32 = 4> {
     /// Sub-pixel corners, as the polygon stage handed them.
@@ -39,11 +39,15 @@ pub struct StoredTriangle<const S: u32 = 4> {
     pub(crate) level: [u8; 3],
     /// Index of the object in the scene.
     pub(crate) object: u8,
-    /// The painter's pieces (Newell's test 6): the planes this piece is cut by, each the
+    /// The painter's pieces (Newell's test 6): the last plane this piece was cut by, the
     /// index of a stored triangle with [`CUT_FRONT`] set when the piece keeps the samples in
-    /// front of that plane (else those behind it), [`NO_CUT`] when unused. A whole triangle
-    /// has no cut.
-    pub(crate) cuts: [u32; super::MAX_CUTS],
+    /// front of that plane (else those behind it); [`NO_CUT`] for a whole triangle. The
+    /// piece's earlier cuts are its parent's ([`cuts`]), so a piece may take as many cuts as
+    /// the store holds pieces.
+    pub(crate) cut: u32,
+    /// The stored triangle this piece was cut from (a piece or the whole triangle; unused
+    /// when [`Self::cut`] is [`NO_CUT`]).
+    pub(crate) parent: u32,
     /// The stored triangle this is a piece of (its own index when whole): pieces share their
     /// base's corners and plane, so cuts name bases.
     pub(crate) base: u32,
@@ -63,7 +67,8 @@ impl<const S: u32> StoredTriangle<S> {
         depth: [0; 3],
         level: [0; 3],
         object: 0,
-        cuts: [NO_CUT; super::MAX_CUTS],
+        cut: NO_CUT,
+        parent: 0,
         base: 0,
     };
 }
@@ -93,9 +98,12 @@ impl<const S: u32> StoredTriangle<S> {
     /// orientation, zero for a triangle that covers no pixel.
     pub(crate) fn twice_area(&self) -> i64 {
         let [a, b, c] = self.v;
-        let (abx, aby) = (b.x as i64 - a.x as i64, b.y as i64 - a.y as i64);
-        let (acx, acy) = (c.x as i64 - a.x as i64, c.y as i64 - a.y as i64);
-        abx * acy - aby * acx
+        twice_area(a, b, c)
+    }
+
+    /// Whether this is a piece of a triangle (it has a cut), not a whole one.
+    pub(crate) fn is_piece(&self) -> bool {
+        self.cut != NO_CUT
     }
 
     /// Smallest and largest corner depth.
@@ -114,6 +122,21 @@ impl<const S: u32> StoredTriangle<S> {
     }
 }
 
+/// The cuts of stored triangle `t` (none for a whole triangle), the latest first: its own,
+/// then its parent's, back to the whole triangle. `store` holds `t`'s parents (the painter's
+/// store: a piece's parent is stored before it, so the walk ends).
+pub(crate) fn cuts<'a, const S: u32>(
+    store: &'a [StoredTriangle<S>],
+    t: &'a StoredTriangle<S>,
+) -> impl Iterator<Item = u32> + Clone + 'a {
+    let mut at = Some(t);
+    core::iter::from_fn(move || {
+        let piece = at.filter(|p| p.is_piece())?;
+        at = store.get(piece.parent as usize);
+        Some(piece.cut)
+    })
+}
+
 /// The consumer that stores each triangle of one object, in order, into `store[len..]`.
 pub(crate) struct Collector<'a, const S: u32> {
     pub(crate) store: &'a mut [StoredTriangle<S>],
@@ -129,7 +152,8 @@ impl<const S: u32> TriangleConsumer<S, 1> for Collector<'_, S> {
             depth: c.map(|c| c.depth),
             level: c.map(|c| c.attrs[0].clamp(0, 255) as u8),
             object: self.object,
-            cuts: [NO_CUT; super::MAX_CUTS],
+            cut: NO_CUT,
+            parent: self.len as u32,
             base: self.len as u32,
         };
         // A triangle of no area covers no pixel (the fill draws none): not kept.

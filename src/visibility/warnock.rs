@@ -24,14 +24,21 @@
 //! are all covered when its four corner pixels are, and none when one edge has all four corner
 //! pixels outside (or the boxes are apart). A depth is the z-buffer's stored value: vertex
 //! depths clamped to [`DepthValue::MAX_DEPTH32`] (`u32`), the affine plane rounded half up
-//! (`shade::attributes`). Rounding is monotone and the plane affine, so over a window a plane's
+//! (`raster::triangle::plane`). Rounding is monotone and the plane affine, so over a window a plane's
 //! extreme stored values are its rounded values at corner pixels (extended beyond the triangle
 //! for a candidate that covers part of the window: a bound on what it stores there). The z-buffer
 //! keeps the earlier of two equal depths, so the front triangle `T` wins against `U` when
 //! `max T < min U`, or `max T = min U` and `T` was stored first. Every pixel drawn is then the
 //! pixel the 32-bit z-buffer writes (`tests/visibility.rs` compares them).
 //!
-//! Memory (caller slices, [`WarnockMemory`]): a stored triangle (56 bytes) per front triangle;
+//! Refused in words: a core-lit Phong object ([`RenderError::PhongUnsupported`]: a stored
+//! corner keeps a level, not a normal) and a fast Gouraud object
+//! ([`RenderError::FastGouraudInParts`]: a triangle drawn window by window would start its
+//! 16.16 luminance steps at each window's first column, not at its span's, and differ from the
+//! z-buffer by a level at some pixels); draw those with exact Gouraud, the scan-line or the
+//! z-buffer.
+//!
+//! Memory (caller slices, [`WarnockMemory`]): a stored triangle (52 bytes) per front triangle;
 //! a stack of candidate lists (a `u32` per candidate, each level's list after its parent's: at
 //! most the front triangles plus the lists along one path of the subdivision); a stack of
 //! windows (at most `1 + 3·levels`, `levels = ⌈log2 max(width, height)⌉`: 28 at 320 × 240).
@@ -52,11 +59,11 @@
 
 use super::backface::without_depth;
 use super::store::{collect, StoredTriangle};
+use crate::output::{DepthValue, Framebuffer, NoDepth};
+use crate::raster::triangle::{RasterTarget, ShadeMode, WrittenCount};
 use crate::raster::Window;
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
-use crate::shade::span_writer::{RasterTarget, WrittenCount};
-use crate::target::{DepthValue, Framebuffer, NoDepth};
 
 /// The most subdivision levels (a side of `2^16` pixels halves 16 times to one pixel).
 const MAX_LEVELS: usize = 17;
@@ -96,39 +103,6 @@ pub struct WarnockMemory<'a, const S: u32 = 4> {
     pub windows: &'a mut [Area],
 }
 
-/// The windows [`render_warnock`] visited, by verdict (module doc).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct WindowCounts {
-    /// No candidate: background.
-    pub empty: u32,
-    /// One candidate, drawn.
-    pub one: u32,
-    /// A surrounding candidate in front of all others, drawn.
-    pub front: u32,
-    /// One pixel, decided by its exact depths.
-    pub pixel: u32,
-    /// Split into sub-windows.
-    pub split: u32,
-}
-
-impl core::ops::AddAssign for WindowCounts {
-    /// Sums two frames' counts.
-    fn add_assign(&mut self, o: WindowCounts) {
-        self.empty += o.empty;
-        self.one += o.one;
-        self.front += o.front;
-        self.pixel += o.pixel;
-        self.split += o.split;
-    }
-}
-
-impl WindowCounts {
-    /// Every window visited.
-    pub fn total(&self) -> u32 {
-        self.empty + self.one + self.front + self.pixel + self.split
-    }
-}
-
 /// How a triangle meets a window's pixels ([`Looker::relation`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Relation {
@@ -143,7 +117,9 @@ pub(crate) enum Relation {
 }
 
 /// Clears `frame` to the background, stores every object's front triangles and draws them by
-/// area subdivision (module doc): the 32-bit z-buffer's picture with no depth buffer.
+/// area subdivision (module doc): the 32-bit z-buffer's picture with no depth buffer. A
+/// core-lit Phong object is [`RenderError::PhongUnsupported`], a fast Gouraud object
+/// [`RenderError::FastGouraudInParts`].
 /// The windows visited are added to `windows`.
 pub fn render_warnock<T: StatsSink, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
@@ -153,12 +129,22 @@ pub fn render_warnock<T: StatsSink, const S: u32>(
     stats: &mut T,
 ) -> Result<(), RenderError> {
     let scene = renderer.scene();
+    renderer.renderer().check_frame(frame)?;
     let counts = stats.counts();
     let WarnockMemory {
         triangles,
         candidates,
         windows,
     } = memory;
+    // Every triangle may be drawn in windows, where fast Gouraud's 16.16 steps would start
+    // at the window's first column: refused (module doc).
+    let fast = scene
+        .objects
+        .iter()
+        .position(|o| o.shade == ShadeMode::GouraudFast);
+    if let Some(object) = fast {
+        return Err(RenderError::FastGouraudInParts { object });
+    }
     let capacity = triangles.len().min(candidates.len());
     let n = collect(renderer, scratch, &mut triangles[..capacity], counts)?;
     frame.clear(scene.background);
@@ -399,7 +385,7 @@ impl<const S: u32> Looker<S> {
         }
         let corners = self.corners();
         let mut inside_all = [true; 4];
-        for edge in Edge::of(t) {
+        for edge in HalfPlane::of(t) {
             let inside = corners.map(|(x, y)| edge.holds(x, y));
             if inside == [false; 4] {
                 return Relation::Disjoint;
@@ -441,21 +427,21 @@ fn max3(v: [i64; 3]) -> i64 {
 /// One edge's half-plane of the fill rule (module doc): `e(P) = n·(P − p)` with `n` the
 /// inward normal, a point inside when `e > 0`, or `e = 0` on a closed edge.
 #[derive(Debug, Clone, Copy)]
-struct Edge {
+struct HalfPlane {
     p: (i64, i64),
     n: (i64, i64),
     closed: bool,
 }
 
-impl Edge {
+impl HalfPlane {
     /// The three edges of a triangle with area (stored triangles have).
-    fn of<const S: u32>(t: &StoredTriangle<S>) -> [Edge; 3] {
+    fn of<const S: u32>(t: &StoredTriangle<S>) -> [HalfPlane; 3] {
         let s = t.twice_area().signum();
         let v = t.v.map(|p| (p.x as i64, p.y as i64));
         [0, 1, 2].map(|k| {
             let (p, q) = (v[k], v[(k + 1) % 3]);
             let n = (-s * (q.1 - p.1), s * (q.0 - p.0));
-            Edge {
+            HalfPlane {
                 p,
                 n,
                 closed: n.0 > 0 || (n.0 == 0 && n.1 > 0),
@@ -474,10 +460,10 @@ impl Edge {
 /// Whether `t` covers the lattice point `(x, y)` (sub-pixel units): the fill's rule.
 #[cfg(test)]
 fn covers<const S: u32>(t: &StoredTriangle<S>, x: i64, y: i64) -> bool {
-    Edge::of(t).iter().all(|e| e.holds(x, y))
+    HalfPlane::of(t).iter().all(|e| e.holds(x, y))
 }
 
-/// A stored triangle's depth plane as the z-buffer evaluates it (`shade::attributes`):
+/// A stored triangle's depth plane as the z-buffer evaluates it (`raster::triangle::plane`):
 /// `A(p) = A0 + M(p)/D` rounded half up, with the vertex depths clamped as the writer clamps
 /// them for a 32-bit buffer.
 #[derive(Debug, Clone, Copy)]
@@ -501,7 +487,7 @@ impl DepthPlane {
         let (x1, x2, y1, y2) = (x[1] - x[0], x[2] - x[0], y[1] - y[0], y[2] - y[0]);
         let gx = a1 * y2 - a2 * y1;
         let gy = a2 * x1 - a1 * x2;
-        let d = x1 * y2 - y1 * x2;
+        let d = t.twice_area() as i128;
         let s = if d < 0 { -1 } else { 1 };
         DepthPlane {
             origin: (t.v[0].x as i64, t.v[0].y as i64),
@@ -523,8 +509,8 @@ impl DepthPlane {
 mod tests {
     use super::*;
     use crate::raster::triangle::fill_triangle;
+    use crate::raster::triangle::plane::AttributePlane;
     use crate::raster::SubpixelPoint;
-    use crate::shade::attributes::AttributePlane;
     use crate::test_rng::XorShift;
 
     /// A random stored triangle with area, corners within ±`r` sub-pixel units of the

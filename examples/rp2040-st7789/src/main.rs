@@ -1,8 +1,11 @@
 //! zscan on a Raspberry Pi Pico (RP2040, Cortex-M0+ at 125 MHz) driving a 240 × 240 ST7789
-//! display over SPI with mipidsi: a lit torus turning around a lit sphere, drawn by
-//! `render_in_bands` in bands of 16 rows (3.75 KB of frame, 7.5 KB of depth), each band
-//! getting the text overlay (drawn into the band's palette indices) and then flushed to the
-//! display.
+//! display over SPI0: the standard bunny, compiled into flash by `zscan mesh`, turns under a
+//! directional light with a frame counter, drawn in double-buffered bands of 16 rows
+//! (`zscan_board_common::run`) while DMA channel 0 sends the previous band.
+//!
+//! This file holds only the board: clocks, pins, the display's initialisation (mipidsi, over
+//! the SPI bus borrowed for the occasion) and [`DmaSpi`], the band sink over rp2040-hal's
+//! single-buffer DMA transfer.
 //!
 //! Wiring (SPI0): SCK GP18, MOSI GP19, CS GP17, DC GP16, RST GP20, backlight GP21.
 //!
@@ -13,14 +16,12 @@
 #![no_main]
 
 use core::convert::Infallible;
-use core::fmt::Write as _;
-use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics::prelude::{DrawTarget, Point, RgbColor};
-use embedded_graphics::text::Text;
-use embedded_graphics::Drawable;
+use embedded_graphics::primitives::Rectangle;
 use embedded_hal::digital::OutputPin;
+use embedded_hal::spi::SpiBus;
 use embedded_hal_bus::spi::ExclusiveDevice;
+use hal::dma::single_buffer::{Config, Transfer};
+use hal::dma::{DMAExt, SingleChannel, WriteTarget};
 use hal::fugit::RateExtU32;
 use hal::{pac, Clock};
 use mipidsi::interface::SpiInterface;
@@ -29,8 +30,8 @@ use mipidsi::options::ColorInversion;
 use mipidsi::Builder;
 use panic_halt as _;
 use rp2040_hal as hal;
-use zscan::prelude::*;
-use zscan::target::PaletteIndex;
+use zscan::prelude::BandSink;
+use zscan_board_common::{as_bytes, as_words, open_window, run, Memory, SinkError, Spin, BAND};
 
 /// The second-stage bootloader for the Pico's W25Q080 flash.
 #[link_section = ".boot2"]
@@ -41,46 +42,14 @@ const XTAL_FREQ_HZ: u32 = 12_000_000;
 
 const W: u16 = 240;
 const H: u16 = 240;
-/// Rows per band: the frame and depth buffers hold this many rows.
-const BAND: u16 = 16;
-const BAND_LEN: usize = W as usize * BAND as usize;
-const TORUS: (usize, usize) = torus_sizes(24, 12);
-const SPHERE: (usize, usize) = uv_sphere_sizes(16, 8);
-/// Polygons of both meshes (quads of the torus, triangles of the sphere).
-const POLYGONS: usize = TORUS.1 / 4 + SPHERE.1 / 3;
-/// Shades per material in the palette.
-const LEVELS: u8 = 64;
-
-/// Everything the renderer works in, in one static (so the linker's `.bss` counts it): the
-/// meshes' tables, the band buffers and the per-frame scratch.
-struct Memory {
-    torus: ([Vec3; TORUS.0], [u16; TORUS.1], [Vec3; TORUS.0]),
-    sphere: ([Vec3; SPHERE.0], [u16; SPHERE.1], [Vec3; SPHERE.0]),
-    pixels: [u8; BAND_LEN],
-    depths: [u16; BAND_LEN],
-    vertices: [PreparedVertex<4>; TORUS.0 + SPHERE.0],
-    polygons: [PolygonRows; POLYGONS],
-}
-
-impl Memory {
-    fn new() -> Memory {
-        Memory {
-            torus: ([Vec3::ZERO; TORUS.0], [0; TORUS.1], [Vec3::ZERO; TORUS.0]),
-            sphere: (
-                [Vec3::ZERO; SPHERE.0],
-                [0; SPHERE.1],
-                [Vec3::ZERO; SPHERE.0],
-            ),
-            pixels: [0; BAND_LEN],
-            depths: [0; BAND_LEN],
-            vertices: [PreparedVertex::default(); TORUS.0 + SPHERE.0],
-            polygons: [PolygonRows::default(); POLYGONS],
-        }
-    }
-}
+/// Pixels in a band.
+const BAND_PIXELS: usize = W as usize * BAND as usize;
 
 #[hal::entry]
 fn main() -> ! {
+    // The animation's memory (about 100 KB), built in place (`.bss`); cortex-m-rt hands it
+    // over as a `&'static mut`, which the DMA channel's buffers need.
+    static mut MEMORY: Memory<BAND_PIXELS> = Memory::new();
     let mut pac = pac::Peripherals::take().unwrap();
     let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
     let clocks = hal::clocks::init_clocks_and_plls(
@@ -104,157 +73,135 @@ fn main() -> ! {
 
     let sclk = pins.gpio18.into_function::<hal::gpio::FunctionSpi>();
     let mosi = pins.gpio19.into_function::<hal::gpio::FunctionSpi>();
-    let spi = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI0, (mosi, sclk)).init(
+    let mut spi = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI0, (mosi, sclk)).init(
         &mut pac.RESETS,
         clocks.peripheral_clock.freq(),
         62_500_000u32.Hz(),
         embedded_hal::spi::MODE_0,
     );
-    let cs = pins.gpio17.into_push_pull_output();
-    let dc = pins.gpio16.into_push_pull_output();
+    let mut cs = pins.gpio17.into_push_pull_output();
+    let mut dc = pins.gpio16.into_push_pull_output();
     let rst = pins.gpio20.into_push_pull_output();
     let mut backlight = pins.gpio21.into_push_pull_output();
     backlight.set_high().unwrap();
 
-    let spi = ExclusiveDevice::new(spi, cs, timer).unwrap();
-    let mut buffer = [0u8; 512];
-    let interface = SpiInterface::new(spi, dc, &mut buffer);
-    let mut display = Builder::new(ST7789, interface)
-        .display_size(W, H)
-        .invert_colors(ColorInversion::Inverted)
-        .reset_pin(rst)
-        .init(&mut timer)
-        .unwrap();
+    // mipidsi sends the panel's initialisation over the borrowed bus and pins; the display
+    // keeps its settings (colour mode, inversion) when the driver is dropped.
+    {
+        let device = ExclusiveDevice::new(&mut spi, &mut cs, timer).unwrap();
+        let mut buffer = [0u8; 64];
+        let interface = SpiInterface::new(device, &mut dc, &mut buffer);
+        Builder::new(ST7789, interface)
+            .display_size(W, H)
+            .invert_colors(ColorInversion::Inverted)
+            .reset_pin(rst)
+            .init(&mut timer)
+            .unwrap();
+    }
 
-    let memory = cortex_m::singleton!(: Memory = Memory::new()).unwrap();
-    // Returns only on an error: show it as a red screen.
-    let _ = run(memory, &mut display);
-    let _ = display.clear(Rgb565::RED);
+    let dma = pac.DMA.split(&mut pac.RESETS);
+    let sink = DmaSpi {
+        bus: Bus::Idle(dma.ch0, spi),
+        held: None,
+        dc,
+        cs,
+    };
+    let spin = Spin {
+        width: W,
+        height: H,
+        frames_per_turn: 120,
+    };
+    // Returns only on an error (the panel then keeps its last frame).
+    let _ = run(MEMORY, spin, sink, || timer.get_counter_low(), |_, _| true);
     loop {
         cortex_m::asm::wfi();
     }
 }
 
-/// The palette: index 0 the background, then 64 shades of each material.
-fn palette() -> Result<Lut<Rgb565>, zscan::Error> {
-    let bases = [Rgb888::new(255, 150, 40), Rgb888::new(60, 170, 255)];
-    let mut lut = Lut::shaded(&bases, LEVELS, 1)?;
-    lut.set(0, Rgb565::new(2, 5, 6));
-    lut.set(TEXT, Rgb565::WHITE);
-    Ok(lut)
+/// The SPI bus between bands (with its DMA channel) or sending one.
+enum Bus<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>> {
+    Idle(CH, S),
+    Sending(Transfer<CH, &'static mut [u8], S>),
+    /// Only while `start` or `wait` moves the bus between the two.
+    Moving,
 }
 
-/// The material `m` of the palette as a luminance ramp.
-fn ramp(m: u8) -> LuminanceRamp {
-    LuminanceRamp {
-        first: 1 + m * LEVELS,
-        levels: LEVELS as u16,
+/// A DMA-driven band sink: `start` opens the band's window with blocking writes, then starts
+/// the channel on the band's bytes and returns; `wait` waits for the channel and for the SPI
+/// to shift out its last byte, then ends the transfer (chip select high).
+struct DmaSpi<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>, DC, CS> {
+    bus: Bus<CH, S>,
+    /// A buffer `start` refused, for `wait` to give back.
+    held: Option<&'static mut [u16]>,
+    dc: DC,
+    cs: CS,
+}
+
+impl<CH, S, DC, CS> BandSink<'static, u16> for DmaSpi<CH, S, DC, CS>
+where
+    CH: SingleChannel,
+    S: WriteTarget<TransmittedWord = u8> + SpiBus<u8, Error = Infallible>,
+    DC: OutputPin<Error = Infallible>,
+    CS: OutputPin<Error = Infallible>,
+{
+    type Error = SinkError<Infallible>;
+
+    fn start(&mut self, pixels: &'static mut [u16], area: Rectangle) -> Result<(), Self::Error> {
+        let band = area.size.width as usize * area.size.height as usize;
+        let (ch, mut spi) = match core::mem::replace(&mut self.bus, Bus::Moving) {
+            Bus::Idle(ch, spi) if pixels.len() == band => (ch, spi),
+            other => {
+                // Kept for `wait`, unsent: a band that is not the whole buffer, or a transfer
+                // still running (which `DoubleBands` never does).
+                let error = match other {
+                    Bus::Idle(..) => SinkError::Length {
+                        band,
+                        buffer: pixels.len(),
+                    },
+                    _ => SinkError::Busy,
+                };
+                self.bus = other;
+                self.held = Some(pixels);
+                return Err(error);
+            }
+        };
+        let (dc, cs) = (&mut self.dc, &mut self.cs);
+        // The DMA transfers leave stale bytes in the receive FIFO, so the HAL's blocking
+        // `write` (which waits for each byte's echo) may return early: `flush` waits until
+        // the bus is idle before the data/command pin changes.
+        let window = cs.set_low().and_then(|()| {
+            open_window(&area, |code, parameters| {
+                dc.set_low()?;
+                spi.write(&[code])?;
+                spi.flush()?;
+                dc.set_high()?;
+                spi.write(parameters)?;
+                spi.flush()
+            })
+        });
+        if let Err(e) = window {
+            let _ = cs.set_high();
+            self.bus = Bus::Idle(ch, spi);
+            self.held = Some(pixels);
+            return Err(SinkError::Bus(e));
+        }
+        self.bus = Bus::Sending(Config::new(ch, as_bytes(pixels), spi).start());
+        Ok(())
     }
-}
 
-/// Palette index of the overlay's text.
-const TEXT: u8 = 255;
-
-/// Draws `text` into the band (a `DrawTarget` of palette indices; it keeps the rows it holds).
-fn overlay(band: &mut Framebuffer<'_>, text: &str) -> Result<(), zscan::Error> {
-    let style = MonoTextStyle::new(&FONT_6X10, PaletteIndex(TEXT));
-    Text::new(text, Point::new(6, 14), style).draw(band)?;
-    Ok(())
-}
-
-/// Renders frames forever; returns the first error.
-fn run<D: DrawTarget<Color = Rgb565>>(
-    memory: &mut Memory,
-    display: &mut D,
-) -> Result<Infallible, zscan::Error> {
-    let Memory {
-        torus: (tv, ti, tn),
-        sphere: (sv, si, sn),
-        pixels,
-        depths,
-        vertices,
-        polygons,
-    } = memory;
-    // Meshes and their normals, generated once into the tables.
-    let torus = torus(24, 12, Coord::lit("1.25"), Coord::lit("0.35"), tv, ti)?;
-    torus.vertex_normals(tn)?;
-    let sphere = uv_sphere(16, 8, Coord::lit("0.6"), sv, si)?;
-    sphere.vertex_normals(sn)?;
-
-    let mut ring = Object::new(torus);
-    ring.intensities = Intensities::Lit {
-        material: Material::from_thousandths(150, 650, 500, 30),
-        normals: tn,
-    };
-    ring.shade = ShadeMode::GouraudExact;
-    ring.ramp = ramp(0);
-    let mut ball = Object::new(sphere);
-    ball.intensities = Intensities::Lit {
-        material: Material::from_thousandths(150, 700, 300, 12),
-        normals: sn,
-    };
-    ball.ramp = ramp(1);
-
-    let lights = [
-        Light::Point {
-            position: Vec3::from_int(-4, 5, 6),
-            intensity: 220,
-        },
-        Light::Directional {
-            toward: Vec3::from_int(2, -1, 1),
-            intensity: 50,
-        },
-    ];
-    let lens = Lens::new(Angle::from_degrees(45), Coord::lit("0.5"), Coord::lit("20"));
-    let (eye, up) = (Vec3::from_int(0, 1, 5), Vec3::from_int(0, 1, 0));
-    let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(W, H))?;
-    let base = Scene {
-        camera,
-        objects: &[],
-        background: 0,
-        ambient: 35,
-        lights: &lights,
-    };
-    // Camera and lights do not change: the renderer is set up once.
-    let renderer = Renderer::for_scene(&base)?;
-
-    let lut = palette()?;
-    let mut text = heapless::String::<48>::new();
-    let mut last = RenderStats::default();
-    for frame in 0u32.. {
-        ring.transform = Affine3::builder()
-            .rotate_y(Angle::from_turns(frame as i64, 120))
-            .rotate_x(Angle::from_degrees(65))
-            .build()?;
-        let objects = [ring, ball];
-        // This frame's objects under the renderer's camera and lights (no new set-up).
-        let frame_renderer = renderer.with_objects(&objects);
-        // The overlay shows the previous frame's counts: this frame's are being summed.
-        text.clear();
-        let _ = write!(
-            text,
-            "zscan frame {frame}: {} tris, {} px",
-            last.triangles_drawn, last.pixels_covered
-        );
-        let mut stats = RenderStats::default();
-        render_in_bands(
-            &frame_renderer,
-            (&mut pixels[..], &mut depths[..]),
-            (W, H, BAND),
-            // Vertex scratch and polygon table for all objects: the vertex stage runs once
-            // per frame and each band visits only the polygons that reach it.
-            BandScratch {
-                vertices: &mut vertices[..],
-                polygons: &mut polygons[..],
-            },
-            &mut stats,
-            |band, _depth| {
-                // The overlay goes into the band, then the band to the display.
-                overlay(band, &text)?;
-                flush(band, &lut, display, None).map_err(|_| zscan::Error::Display)
-            },
-        )?;
-        last = stats;
+    fn wait(&mut self) -> (&'static mut [u16], Result<(), Self::Error>) {
+        let transfer = match core::mem::replace(&mut self.bus, Bus::Moving) {
+            Bus::Sending(transfer) => transfer,
+            other => {
+                self.bus = other;
+                return (self.held.take().unwrap_or_default(), Ok(()));
+            }
+        };
+        let (ch, bytes, mut spi) = transfer.wait();
+        // The channel is done when the FIFO has the last byte; the bus, when it is shifted.
+        let flushed = spi.flush();
+        let raised = self.cs.set_high();
+        self.bus = Bus::Idle(ch, spi);
+        (as_words(bytes), flushed.and(raised).map_err(SinkError::Bus))
     }
-    unreachable!("the frame counter does not end")
 }

@@ -1,165 +1,163 @@
-//! zscan on the embedded-graphics simulator: a lit torus around a lit sphere, 320 × 240,
-//! rendered band by band (16 rows: 5 KB of frame and 10 KB of depth) through a shaded
-//! palette; the text overlay is drawn into each band (palette indices) before its flush.
+//! The board examples' animation on the host: `zscan_board_common::run` (the standard bunny
+//! compiled into flash by `zscan mesh`, turning, drawn in double-buffered bands of 16 rows with
+//! a frame counter) at 320 × 240, with [`Screen`] as its band sink: the boards' DMA SPI sink
+//! without the bus, drawing each band into an embedded-graphics `SimulatorDisplay` and
+//! keeping the frame's palette indices for an animated GIF.
 //!
 //! ```text
-//! cargo run --release -- out/simulator.png            # writes the PNG (no SDL needed)
-//! cargo run --release --features window               # also opens an SDL2 window
+//! cargo run --release -- out/simulator.gif [FRAMES]   # one turn in FRAMES frames (48), no SDL
+//! cargo run --release --features window               # the GIF, then an SDL2 window
 //! ```
-use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
+//!
+//! A path ending in `.png` gets the turn's last frame as a PNG instead (scaled × 2).
+use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics::prelude::{Point, RgbColor, Size};
-use embedded_graphics::text::Text;
-use embedded_graphics::Drawable;
+use embedded_graphics::prelude::DrawTarget;
+use embedded_graphics::prelude::{RgbColor, Size};
+use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
-use std::fmt::Write as _;
-use zscan::prelude::*;
-use zscan::target::PaletteIndex;
+use std::collections::HashMap;
+use std::convert::Infallible;
+use std::time::Instant;
+use zscan::prelude::BandSink;
+use zscan_board_common::{palette, run, Memory, Spin, BAND};
 
 const W: u16 = 320;
 const H: u16 = 240;
-/// Rows per band: the frame and depth buffers hold this many rows.
-const BAND: u16 = 16;
-const BAND_LEN: usize = W as usize * BAND as usize;
-const TORUS: (usize, usize) = torus_sizes(32, 16);
-const SPHERE: (usize, usize) = uv_sphere_sizes(20, 10);
-/// Shades per material in the palette.
-const LEVELS: u8 = 64;
+const BAND_PIXELS: usize = W as usize * BAND as usize;
+/// Frames in the GIF's turn when none are given.
+const FRAMES: u32 = 48;
+/// Hundredths of a second between the GIF's frames.
+const DELAY: u16 = 4;
 
-/// The palette: index 0 the background, then 64 shades of each material.
-fn palette() -> Result<Lut<Rgb565>, zscan::Error> {
-    let bases = [Rgb888::new(255, 150, 40), Rgb888::new(60, 170, 255)];
-    let mut lut = Lut::shaded(&bases, LEVELS, 1)?;
-    lut.set(0, Rgb565::new(2, 5, 6));
-    lut.set(TEXT, Rgb565::WHITE);
-    Ok(lut)
+/// The band sink: each band (Rgb565 words in the bus's byte order, as a board's DMA sends
+/// them) is drawn into the simulator's display and its palette indices kept for the GIF.
+struct Screen {
+    display: SimulatorDisplay<Rgb565>,
+    /// The palette index of every word the palette holds.
+    index_of: HashMap<u16, u8>,
+    /// The frame's palette indices, row by row.
+    indices: Vec<u8>,
+    /// The band being "sent" (at once, here), until `wait` gives it back.
+    held: Option<&'static mut [u16]>,
 }
 
-/// The material `m` of the palette as a luminance ramp.
-fn ramp(m: u8) -> LuminanceRamp {
-    LuminanceRamp {
-        first: 1 + m * LEVELS,
-        levels: LEVELS as u16,
+impl BandSink<'static, u16> for Screen {
+    type Error = Infallible;
+
+    fn start(&mut self, pixels: &'static mut [u16], area: Rectangle) -> Result<(), Infallible> {
+        let n = area.size.width as usize * area.size.height as usize;
+        let band = &pixels[..n.min(pixels.len())];
+        let first = area.top_left.y as usize * W as usize;
+        for (out, word) in self.indices[first..].iter_mut().zip(band) {
+            // Every word sent is a palette entry (the LUT wrote it).
+            *out = self.index_of[word];
+        }
+        let colours = band
+            .iter()
+            .map(|&w| Rgb565::from(RawU16::new(u16::from_be(w))));
+        self.display.fill_contiguous(&area, colours)?;
+        self.held = Some(pixels);
+        Ok(())
     }
-}
 
-/// Palette index of the overlay's text.
-const TEXT: u8 = 255;
-
-/// Draws `text` into the band (a `DrawTarget` of palette indices; it keeps the rows it holds).
-fn overlay(band: &mut Framebuffer<'_>, text: &str) -> Result<(), zscan::Error> {
-    let style = MonoTextStyle::new(&FONT_6X10, PaletteIndex(TEXT));
-    Text::new(text, Point::new(6, 14), style).draw(band)?;
-    Ok(())
+    fn wait(&mut self) -> (&'static mut [u16], Result<(), Infallible>) {
+        (self.held.take().unwrap_or_default(), Ok(()))
+    }
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let path = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "out/simulator.png".into());
-
-    // Meshes and their normals, generated once into our tables.
-    let (mut tv, mut ti, mut tn) = (
-        vec![Vec3::ZERO; TORUS.0],
-        vec![0; TORUS.1],
-        vec![Vec3::ZERO; TORUS.0],
-    );
-    let torus = torus(
-        32,
-        16,
-        Coord::lit("1.25"),
-        Coord::lit("0.35"),
-        &mut tv,
-        &mut ti,
-    )?;
-    torus.vertex_normals(&mut tn)?;
-    let (mut sv, mut si, mut sn) = (
-        vec![Vec3::ZERO; SPHERE.0],
-        vec![0; SPHERE.1],
-        vec![Vec3::ZERO; SPHERE.0],
-    );
-    let sphere = uv_sphere(20, 10, Coord::lit("0.6"), &mut sv, &mut si)?;
-    sphere.vertex_normals(&mut sn)?;
-
-    let mut ring = Object::new(torus);
-    ring.transform = Affine3::builder()
-        .rotate_x(Angle::from_degrees(70))
-        .rotate_z(Angle::from_degrees(-20))
-        .build()?;
-    ring.intensities = Intensities::Lit {
-        material: Material::from_thousandths(150, 650, 500, 30),
-        normals: &tn,
+    let mut args = std::env::args().skip(1);
+    let path = args.next().unwrap_or_else(|| "out/simulator.gif".into());
+    let frames: u32 = match args.next() {
+        Some(n) => n.parse().map_err(|e| format!("frames {n:?}: {e}"))?,
+        None => FRAMES,
     };
-    ring.shade = ShadeMode::Phong;
-    ring.ramp = ramp(0);
-    let mut ball = Object::new(sphere);
-    ball.intensities = Intensities::Lit {
-        material: Material::from_thousandths(150, 700, 300, 12),
-        normals: &sn,
-    };
-    ball.shade = ShadeMode::GouraudExact;
-    ball.ramp = ramp(1);
-
-    let lights = [
-        Light::Point {
-            position: Vec3::from_int(-4, 5, 6),
-            intensity: 220,
-        },
-        Light::Directional {
-            toward: Vec3::from_int(2, -1, 1),
-            intensity: 50,
-        },
-    ];
-    let lens = Lens::new(Angle::from_degrees(40), Coord::lit("0.5"), Coord::lit("20"));
-    let (eye, up) = (Vec3::from_int(0, 1, 5), Vec3::from_int(0, 1, 0));
-    let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(W, H))?;
-    let objects = [ring, ball];
-    let scene = Scene {
-        camera,
-        objects: &objects,
-        background: 0,
-        ambient: 35,
-        lights: &lights,
-    };
-    let renderer = Renderer::for_scene(&scene)?;
-
-    // Band-sized buffers; vertex scratch and polygon table for all objects (the vertex stage
-    // runs once per frame, each band visits only the polygons that reach it).
-    let (mut pixels, mut depths) = (vec![0u8; BAND_LEN], vec![0u16; BAND_LEN]);
-    let mut vertices = vec![PreparedVertex::default(); TORUS.0 + SPHERE.0];
-    let polygons = objects.iter().map(|o| o.mesh.polygon_count()).sum();
-    let mut table = vec![PolygonRows::default(); polygons];
-    let scratch = BandScratch {
-        vertices: &mut vertices,
-        polygons: &mut table,
-    };
-
-    let lut = palette()?;
-    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(W as u32, H as u32));
-    let mut text = String::new();
-    write!(text, "zscan {W}x{H}, bands of {BAND} rows")?;
-    let mut stats = RenderStats::default();
-    render_in_bands(
-        &renderer,
-        (&mut pixels, &mut depths),
-        (W, H, BAND),
-        scratch,
-        &mut stats,
-        |band, _depth| {
-            // The overlay goes into the band, then the band to the display.
-            overlay(band, &text)?;
-            flush(band, &lut, &mut display, None).map_err(|_| zscan::Error::Display)
-        },
-    )?;
-
-    let settings = OutputSettingsBuilder::new().scale(2).build();
+    if frames == 0 {
+        return Err("frames: at least 1".into());
+    }
     if let Some(dir) = std::path::Path::new(&path).parent() {
         std::fs::create_dir_all(dir)?;
     }
-    display.to_rgb_output_image(&settings).save_png(&path)?;
-    println!("wrote {path}: {stats:?}");
+
+    // The palette, as words (the sink's input) and as RGB (the GIF's colour table).
+    let lut = palette()?;
+    let mut index_of = HashMap::new();
+    let mut colours = Vec::with_capacity(3 * 256);
+    for i in (0..=255u8).rev() {
+        index_of.insert(lut.get(i), i); // the lowest index of a colour wins
+    }
+    for i in 0..=255u8 {
+        let c = Rgb888::from(Rgb565::from(RawU16::new(u16::from_be(lut.get(i)))));
+        colours.extend([c.r(), c.g(), c.b()]);
+    }
+    let screen = || Screen {
+        display: SimulatorDisplay::new(Size::new(W as u32, H as u32)),
+        index_of: index_of.clone(),
+        indices: vec![0; W as usize * H as usize],
+        held: None,
+    };
+    let started = Instant::now();
+    let clock_us = move || started.elapsed().as_micros() as u32;
+    let spin = Spin {
+        width: W,
+        height: H,
+        frames_per_turn: frames,
+    };
+
+    // One turn into the file. The memory is leaked: `run` takes it for the program's life, as
+    // a board's static.
+    let memory: &'static mut Memory<BAND_PIXELS> = Box::leak(Box::new(Memory::new()));
+    let png = path.ends_with(".png");
+    let mut gif = if png {
+        None
+    } else {
+        let mut encoder = gif::Encoder::new(std::fs::File::create(&path)?, W, H, &colours)?;
+        encoder.set_repeat(gif::Repeat::Infinite)?;
+        Some(encoder)
+    };
+    let mut last = None;
+    let mut written = Ok(());
+    run(memory, spin, screen(), clock_us, |frame, screen| {
+        if let Some(encoder) = gif.as_mut() {
+            let f = gif::Frame {
+                width: W,
+                height: H,
+                delay: DELAY,
+                buffer: screen.indices.as_slice().into(),
+                ..gif::Frame::default()
+            };
+            written = encoder.write_frame(&f);
+        }
+        if frame + 1 == frames {
+            last = Some(screen.display.clone());
+        }
+        written.is_ok() && frame + 1 < frames
+    })
+    .map_err(|e| e.to_string())?;
+    written?;
+    drop(gif);
+    let settings = OutputSettingsBuilder::new().scale(2).build();
+    if let (true, Some(display)) = (png, &last) {
+        display.to_rgb_output_image(&settings).save_png(&path)?;
+    }
+    println!("wrote {path}: {frames} frames of {W}x{H}");
 
     #[cfg(feature = "window")]
-    embedded_graphics_simulator::Window::new("zscan", &settings).show_static(&display);
+    {
+        // The same animation in a window, until it is closed.
+        use embedded_graphics_simulator::{SimulatorEvent, Window};
+        let mut window = Window::new("zscan", &settings);
+        let memory: &'static mut Memory<BAND_PIXELS> = Box::leak(Box::new(Memory::new()));
+        let spin = Spin {
+            frames_per_turn: 120,
+            ..spin
+        };
+        run(memory, spin, screen(), clock_us, |_, screen| {
+            window.update(&screen.display);
+            !window.events().any(|e| matches!(e, SimulatorEvent::Quit))
+        })
+        .map_err(|e| e.to_string())?;
+    }
     Ok(())
 }

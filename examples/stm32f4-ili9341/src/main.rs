@@ -1,8 +1,12 @@
 //! zscan on an STM32F411 "black pill" (Cortex-M4F at 100 MHz, 128 KB of RAM) driving a
-//! 320 × 240 ILI9341 display over SPI with mipidsi: a lit torus turning around a lit sphere,
-//! drawn by `render_in_bands` in bands of 16 rows (5 KB of frame, 10 KB of depth), each band
-//! getting the text overlay (drawn into the band's palette indices) and then flushed to the
-//! display.
+//! 320 × 240 ILI9341 display over SPI1: the standard bunny, compiled into flash by
+//! `zscan mesh`, turns under a directional light with a frame counter, drawn in
+//! double-buffered bands of 16 rows (`zscan_board_common::run`) while DMA2 stream 3 sends the
+//! previous band.
+//!
+//! This file holds only the board: clocks, pins, the display's initialisation (mipidsi, over
+//! the SPI bus borrowed for the occasion) and [`DmaSpi`], the band sink over stm32f4xx-hal's
+//! DMA streams.
 //!
 //! Wiring (SPI1): SCK PA5, MISO PA6, MOSI PA7, CS PA4, DC PA3, RST PA2, backlight PA1.
 //!
@@ -13,16 +17,17 @@
 #![no_main]
 
 use core::convert::Infallible;
-use core::fmt::Write as _;
+use cortex_m::peripheral::DWT;
 use cortex_m_rt::entry;
-use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics::prelude::{DrawTarget, Point, RgbColor};
-use embedded_graphics::text::Text;
-use embedded_graphics::Drawable;
+use embedded_graphics::primitives::Rectangle;
+use embedded_hal::digital::OutputPin;
 use embedded_hal_bus::spi::ExclusiveDevice;
-use hal::pac;
+use hal::dma::config::DmaConfig;
+use hal::dma::{MemoryToPeripheral, StreamX, StreamsTuple, Transfer};
+use hal::gpio::alt::SpiCommon;
+use hal::pac::{self, DMA2, SPI1};
 use hal::prelude::*;
+use hal::rcc::Clocks;
 use hal::spi::{Mode, Phase, Polarity, Spi};
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ILI9341Rgb565;
@@ -30,53 +35,26 @@ use mipidsi::options::{ColorOrder, Orientation, Rotation};
 use mipidsi::Builder;
 use panic_halt as _;
 use stm32f4xx_hal as hal;
-use zscan::prelude::*;
-use zscan::target::PaletteIndex;
+use zscan::prelude::BandSink;
+use zscan_board_common::{as_bytes, as_words, open_window, run, Memory, SinkError, Spin, BAND};
 
 const W: u16 = 320;
 const H: u16 = 240;
-/// Rows per band: the frame and depth buffers hold this many rows.
-const BAND: u16 = 16;
-const BAND_LEN: usize = W as usize * BAND as usize;
-const TORUS: (usize, usize) = torus_sizes(24, 12);
-const SPHERE: (usize, usize) = uv_sphere_sizes(16, 8);
-/// Polygons of both meshes (quads of the torus, triangles of the sphere).
-const POLYGONS: usize = TORUS.1 / 4 + SPHERE.1 / 3;
-/// Shades per material in the palette.
-const LEVELS: u8 = 64;
-
-/// Everything the renderer works in, in one static (so the linker's `.bss` counts it): the
-/// meshes' tables, the band buffers and the per-frame scratch.
-struct Memory {
-    torus: ([Vec3; TORUS.0], [u16; TORUS.1], [Vec3; TORUS.0]),
-    sphere: ([Vec3; SPHERE.0], [u16; SPHERE.1], [Vec3; SPHERE.0]),
-    pixels: [u8; BAND_LEN],
-    depths: [u16; BAND_LEN],
-    vertices: [PreparedVertex<4>; TORUS.0 + SPHERE.0],
-    polygons: [PolygonRows; POLYGONS],
-}
-
-impl Memory {
-    fn new() -> Memory {
-        Memory {
-            torus: ([Vec3::ZERO; TORUS.0], [0; TORUS.1], [Vec3::ZERO; TORUS.0]),
-            sphere: (
-                [Vec3::ZERO; SPHERE.0],
-                [0; SPHERE.1],
-                [Vec3::ZERO; SPHERE.0],
-            ),
-            pixels: [0; BAND_LEN],
-            depths: [0; BAND_LEN],
-            vertices: [PreparedVertex::default(); TORUS.0 + SPHERE.0],
-            polygons: [PolygonRows::default(); POLYGONS],
-        }
-    }
-}
+/// Pixels in a band.
+const BAND_PIXELS: usize = W as usize * BAND as usize;
+/// SPI mode 0.
+const MODE: Mode = Mode {
+    polarity: Polarity::IdleLow,
+    phase: Phase::CaptureOnFirstTransition,
+};
 
 #[entry]
 fn main() -> ! {
+    // The animation's memory (about 100 KB), built in place (`.bss`); cortex-m-rt hands it
+    // over as a `&'static mut`, which the DMA channel's buffers need.
+    static mut MEMORY: Memory<BAND_PIXELS> = Memory::new();
     let dp = pac::Peripherals::take().unwrap();
-    let cp = cortex_m::Peripherals::take().unwrap();
+    let mut cp = cortex_m::Peripherals::take().unwrap();
     // The black pill's 25 MHz crystal, the core at 100 MHz.
     let clocks = dp
         .RCC
@@ -88,157 +66,170 @@ fn main() -> ! {
     let mut delay = cp.SYST.delay(&clocks);
 
     let gpioa = dp.GPIOA.split();
-    let mode = Mode {
-        polarity: Polarity::IdleLow,
-        phase: Phase::CaptureOnFirstTransition,
-    };
     let (sck, miso, mosi) = (gpioa.pa5, gpioa.pa6, gpioa.pa7);
-    let spi = Spi::new(dp.SPI1, (sck, miso, mosi), mode, 25.MHz(), &clocks);
-    let cs = gpioa.pa4.into_push_pull_output();
-    let dc = gpioa.pa3.into_push_pull_output();
+    let mut spi = Spi::new(dp.SPI1, (sck, miso, mosi), MODE, 25.MHz(), &clocks);
+    let mut cs = gpioa.pa4.into_push_pull_output();
+    let mut dc = gpioa.pa3.into_push_pull_output();
     let rst = gpioa.pa2.into_push_pull_output();
     let mut backlight = gpioa.pa1.into_push_pull_output();
     backlight.set_high();
 
-    let spi = ExclusiveDevice::new_no_delay(spi, cs).unwrap();
-    let mut buffer = [0u8; 512];
-    let interface = SpiInterface::new(spi, dc, &mut buffer);
-    let mut display = Builder::new(ILI9341Rgb565, interface)
-        .color_order(ColorOrder::Bgr)
-        .orientation(Orientation::new().rotate(Rotation::Deg90).flip_horizontal())
-        .reset_pin(rst)
-        .init(&mut delay)
-        .unwrap();
+    // mipidsi sends the panel's initialisation over the borrowed bus and pins; the display
+    // keeps its settings (colour order, orientation) when the driver is dropped.
+    {
+        let device = ExclusiveDevice::new_no_delay(&mut spi, &mut cs).unwrap();
+        let mut buffer = [0u8; 64];
+        let interface = SpiInterface::new(device, &mut dc, &mut buffer);
+        Builder::new(ILI9341Rgb565, interface)
+            .color_order(ColorOrder::Bgr)
+            .orientation(Orientation::new().rotate(Rotation::Deg90).flip_horizontal())
+            .reset_pin(rst)
+            .init(&mut delay)
+            .unwrap();
+    }
 
-    let memory = cortex_m::singleton!(: Memory = Memory::new()).unwrap();
-    // Returns only on an error: show it as a red screen.
-    let _ = run(memory, &mut display);
-    let _ = display.clear(Rgb565::RED);
+    // The cycle counter, read as a microsecond clock (100 cycles a microsecond).
+    cp.DCB.enable_trace();
+    cp.DWT.enable_cycle_counter();
+    let (mut cycles, mut before) = (0u64, DWT::cycle_count());
+    let clock_us = move || {
+        let now = DWT::cycle_count();
+        cycles += now.wrapping_sub(before) as u64;
+        before = now;
+        (cycles / 100) as u32
+    };
+
+    let streams = StreamsTuple::new(dp.DMA2);
+    let sink = DmaSpi {
+        bus: Bus::Idle(spi),
+        stream: Some(streams.3),
+        held: None,
+        clocks,
+        dc,
+        cs,
+    };
+    let spin = Spin {
+        width: W,
+        height: H,
+        frames_per_turn: 120,
+    };
+    // Returns only on an error (the panel then keeps its last frame).
+    let _ = run(MEMORY, spin, sink, clock_us, |_, _| true);
     loop {
         cortex_m::asm::wfi();
     }
 }
 
-/// The palette: index 0 the background, then 64 shades of each material.
-fn palette() -> Result<Lut<Rgb565>, zscan::Error> {
-    let bases = [Rgb888::new(255, 150, 40), Rgb888::new(60, 170, 255)];
-    let mut lut = Lut::shaded(&bases, LEVELS, 1)?;
-    lut.set(0, Rgb565::new(2, 5, 6));
-    lut.set(TEXT, Rgb565::WHITE);
-    Ok(lut)
+/// SPI1's transmit stream (DMA2 stream 3, channel 3).
+type Stream = StreamX<DMA2, 3>;
+/// SPI1's pins.
+type Pins = (
+    <SPI1 as SpiCommon>::Sck,
+    <SPI1 as SpiCommon>::Miso,
+    <SPI1 as SpiCommon>::Mosi,
+);
+
+/// SPI1 between bands (the HAL's blocking bus) or sending one (the peripheral lent to the DMA
+/// stream; the HAL's bus is rebuilt when the stream is done).
+enum Bus {
+    Idle(Spi<SPI1>),
+    Sending(
+        Transfer<Stream, 3, SPI1, MemoryToPeripheral, &'static mut [u8]>,
+        Pins,
+    ),
+    /// Only while `start` or `wait` moves the bus between the two.
+    Moving,
 }
 
-/// The material `m` of the palette as a luminance ramp.
-fn ramp(m: u8) -> LuminanceRamp {
-    LuminanceRamp {
-        first: 1 + m * LEVELS,
-        levels: LEVELS as u16,
+/// A DMA-driven band sink: `start` opens the band's window with blocking writes, then lends
+/// SPI1 to the DMA stream on the band's bytes and returns; `wait` waits for the stream and
+/// for the SPI to shift out its last byte, ends the transfer (chip select high) and takes the
+/// bus back.
+struct DmaSpi<DC, CS> {
+    bus: Bus,
+    /// The stream between transfers.
+    stream: Option<Stream>,
+    /// A buffer `start` refused, for `wait` to give back.
+    held: Option<&'static mut [u16]>,
+    clocks: Clocks,
+    dc: DC,
+    cs: CS,
+}
+
+impl<DC, CS> BandSink<'static, u16> for DmaSpi<DC, CS>
+where
+    DC: OutputPin<Error = Infallible>,
+    CS: OutputPin<Error = Infallible>,
+{
+    type Error = SinkError<hal::spi::Error>;
+
+    fn start(&mut self, pixels: &'static mut [u16], area: Rectangle) -> Result<(), Self::Error> {
+        let band = area.size.width as usize * area.size.height as usize;
+        let (mut spi, stream) = match (
+            core::mem::replace(&mut self.bus, Bus::Moving),
+            self.stream.take(),
+        ) {
+            (Bus::Idle(spi), Some(stream)) if pixels.len() == band => (spi, stream),
+            (other, stream) => {
+                // Kept for `wait`, unsent: a band that is not the whole buffer, or a transfer
+                // still running (which `DoubleBands` never does).
+                let error = match other {
+                    Bus::Idle(_) => SinkError::Length {
+                        band,
+                        buffer: pixels.len(),
+                    },
+                    _ => SinkError::Busy,
+                };
+                self.bus = other;
+                self.stream = stream;
+                self.held = Some(pixels);
+                return Err(error);
+            }
+        };
+        let (dc, cs) = (&mut self.dc, &mut self.cs);
+        let _ = cs.set_low();
+        // The HAL's blocking write waits for each byte's echo: the bus is idle after it.
+        let window = open_window(&area, |code, parameters| {
+            let _ = dc.set_low();
+            spi.write(&[code])?;
+            let _ = dc.set_high();
+            spi.write(parameters)
+        });
+        if let Err(e) = window {
+            let _ = cs.set_high();
+            self.bus = Bus::Idle(spi);
+            self.stream = Some(stream);
+            self.held = Some(pixels);
+            return Err(SinkError::Bus(e));
+        }
+        let (spi1, pins) = spi.release();
+        spi1.cr2().modify(|_, w| w.txdmaen().enabled());
+        let config = DmaConfig::default().memory_increment(true);
+        let mut transfer =
+            Transfer::init_memory_to_peripheral(stream, spi1, as_bytes(pixels), None, config);
+        transfer.start(|_| {});
+        self.bus = Bus::Sending(transfer, pins);
+        Ok(())
     }
-}
 
-/// Palette index of the overlay's text.
-const TEXT: u8 = 255;
-
-/// Draws `text` into the band (a `DrawTarget` of palette indices; it keeps the rows it holds).
-fn overlay(band: &mut Framebuffer<'_>, text: &str) -> Result<(), zscan::Error> {
-    let style = MonoTextStyle::new(&FONT_6X10, PaletteIndex(TEXT));
-    Text::new(text, Point::new(6, 14), style).draw(band)?;
-    Ok(())
-}
-
-/// Renders frames forever; returns the first error.
-fn run<D: DrawTarget<Color = Rgb565>>(
-    memory: &mut Memory,
-    display: &mut D,
-) -> Result<Infallible, zscan::Error> {
-    let Memory {
-        torus: (tv, ti, tn),
-        sphere: (sv, si, sn),
-        pixels,
-        depths,
-        vertices,
-        polygons,
-    } = memory;
-    // Meshes and their normals, generated once into the tables.
-    let torus = torus(24, 12, Coord::lit("1.25"), Coord::lit("0.35"), tv, ti)?;
-    torus.vertex_normals(tn)?;
-    let sphere = uv_sphere(16, 8, Coord::lit("0.6"), sv, si)?;
-    sphere.vertex_normals(sn)?;
-
-    let mut ring = Object::new(torus);
-    ring.intensities = Intensities::Lit {
-        material: Material::from_thousandths(150, 650, 500, 30),
-        normals: tn,
-    };
-    ring.shade = ShadeMode::GouraudExact;
-    ring.ramp = ramp(0);
-    let mut ball = Object::new(sphere);
-    ball.intensities = Intensities::Lit {
-        material: Material::from_thousandths(150, 700, 300, 12),
-        normals: sn,
-    };
-    ball.ramp = ramp(1);
-
-    let lights = [
-        Light::Point {
-            position: Vec3::from_int(-4, 5, 6),
-            intensity: 220,
-        },
-        Light::Directional {
-            toward: Vec3::from_int(2, -1, 1),
-            intensity: 50,
-        },
-    ];
-    let lens = Lens::new(Angle::from_degrees(45), Coord::lit("0.5"), Coord::lit("20"));
-    let (eye, up) = (Vec3::from_int(0, 1, 5), Vec3::from_int(0, 1, 0));
-    let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(W, H))?;
-    let base = Scene {
-        camera,
-        objects: &[],
-        background: 0,
-        ambient: 35,
-        lights: &lights,
-    };
-    // Camera and lights do not change: the renderer is set up once.
-    let renderer = Renderer::for_scene(&base)?;
-
-    let lut = palette()?;
-    let mut text = heapless::String::<48>::new();
-    let mut last = RenderStats::default();
-    for frame in 0u32.. {
-        ring.transform = Affine3::builder()
-            .rotate_y(Angle::from_turns(frame as i64, 120))
-            .rotate_x(Angle::from_degrees(65))
-            .build()?;
-        let objects = [ring, ball];
-        // This frame's objects under the renderer's camera and lights (no new set-up).
-        let frame_renderer = renderer.with_objects(&objects);
-        // The overlay shows the previous frame's counts: this frame's are being summed.
-        text.clear();
-        let _ = write!(
-            text,
-            "zscan frame {frame}: {} tris, {} px",
-            last.triangles_drawn, last.pixels_covered
-        );
-        let mut stats = RenderStats::default();
-        render_in_bands(
-            &frame_renderer,
-            (&mut pixels[..], &mut depths[..]),
-            (W, H, BAND),
-            // Vertex scratch and polygon table for all objects: the vertex stage runs once
-            // per frame and each band visits only the polygons that reach it.
-            BandScratch {
-                vertices: &mut vertices[..],
-                polygons: &mut polygons[..],
-            },
-            &mut stats,
-            |band, _depth| {
-                // The overlay goes into the band, then the band to the display.
-                overlay(band, &text)?;
-                flush(band, &lut, display, None).map_err(|_| zscan::Error::Display)
-            },
-        )?;
-        last = stats;
+    fn wait(&mut self) -> (&'static mut [u16], Result<(), Self::Error>) {
+        let (transfer, pins) = match core::mem::replace(&mut self.bus, Bus::Moving) {
+            Bus::Sending(transfer, pins) => (transfer, pins),
+            other => {
+                self.bus = other;
+                return (self.held.take().unwrap_or_default(), Ok(()));
+            }
+        };
+        transfer.wait();
+        let (stream, spi1, bytes, _) = transfer.release();
+        // The stream is done when the data register has the last byte; the bus, when it is
+        // shifted out.
+        while spi1.sr().read().txe().bit_is_clear() || spi1.sr().read().bsy().bit_is_set() {}
+        let _ = self.cs.set_high();
+        // A fresh blocking bus (the HAL resets SPI1: the stream's request and the unread
+        // received bytes are cleared).
+        self.bus = Bus::Idle(Spi::new(spi1, pins, MODE, 25.MHz(), &self.clocks));
+        self.stream = Some(stream);
+        (as_words(bytes), Ok(()))
     }
-    unreachable!("the frame counter does not end")
 }

@@ -1,7 +1,16 @@
 //! `zscan bench`: instruction counts of the shared benchmark cases (`benches/cases.rs`) on the
 //! host (valgrind's callgrind) and on a Cortex-M4 (QEMU `mps2-an386` with the `qemu-icount`
 //! plugin of `tools/qemu-icount`), optionally a Cortex-M0 (QEMU `microbit`, RAM enlarged),
-//! printed side by side. Figures are *instructions*, not cycles. See docs/BENCHMARKS.md.
+//! printed side by side. Figures are *instructions*; beside each Cortex-M count stands a
+//! *cycle estimate* (the plugin's timing-table model, `tools/qemu-icount/src/cycles.rs`:
+//! Cortex-M4 for the M4 column, Cortex-M0+ for the M0 column, whose ARMv6-M code is the
+//! same), and for `frame_bunny` (one pass and in bands of 16 rows) the frames per second it
+//! implies at the clocks of two boards:
+//! an STM32F411 (Cortex-M4, 100 MHz) and an RP2040 (Cortex-M0+, 133 MHz). The estimate assumes
+//! zero-wait-state memory and no cache effects, a taken branch costing the pipeline refill
+//! (Cortex-M4: `1 + P`, `P` = 2), the M0+'s 1-cycle multiplier and 12 cycles per M4 division
+//! (the TRM's worst case; the line also gives the figure at 2 cycles, the best case). See
+//! docs/BENCHMARKS.md.
 //!
 //! Every count is the measured call minus the `empty` case (the harness overhead), so it is
 //! the case function's own work. Framebuffer checksums must agree across platforms; a
@@ -14,7 +23,7 @@ use super::CliError;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use zscan::target::Framebuffer;
+use zscan::output::Framebuffer;
 
 // The benchmark cases, the same source file the Cortex-M example includes (its own inner
 // docs describe it; an outer doc here would make rustdoc resolve their links from this module).
@@ -82,16 +91,32 @@ pub fn run_case(case: &cases::Case) -> (u32, u32) {
     (px, cases::fnv1a(&pixels))
 }
 
-/// One platform's figures: raw instruction count per case index (harness overhead included).
+/// One platform's figures: raw instruction count per case index (harness overhead included),
+/// and on Cortex-M the raw cycle estimate and divisions per case.
 #[derive(Debug, Default, Clone)]
 struct Column {
     raw: Vec<u64>,
     checksums: Vec<Option<u32>>,
+    cycles: Vec<u64>,
+    divisions: Vec<u64>,
 }
 
 impl Column {
     fn net(&self, i: usize) -> Option<u64> {
         Some(self.raw.get(i)?.saturating_sub(*self.raw.first()?))
+    }
+
+    /// The estimated cycles of case `i`, the empty case's subtracted.
+    fn net_cycles(&self, i: usize) -> Option<u64> {
+        Some(self.cycles.get(i)?.saturating_sub(*self.cycles.first()?))
+    }
+
+    fn net_divisions(&self, i: usize) -> Option<u64> {
+        Some(
+            self.divisions
+                .get(i)?
+                .saturating_sub(*self.divisions.first()?),
+        )
     }
 }
 
@@ -100,24 +125,24 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     if let Some(name) = &args.run_case {
         let case = find_case(name)?;
         let (px, sum) = run_case(case);
-        println!(
+        crate::outln!(
             "zscan-bench case {} pixels={px} checksum={sum:08x}",
             case.name
-        );
+        )?;
         return Ok(());
     }
     let host_sums: Vec<(u32, u32)> = cases::CASES.iter().map(run_case).collect();
     if args.checksums {
         for (case, (px, sum)) in cases::CASES.iter().zip(&host_sums) {
-            println!(
+            crate::outln!(
                 "zscan-bench case {} pixels={px} checksum={sum:08x}",
                 case.name
-            );
+            )?;
         }
         return Ok(());
     }
     if cfg!(debug_assertions) {
-        eprintln!(
+        crate::note!(
             "zscan bench: warning: a debug build; run with --release for meaningful host figures"
         );
     }
@@ -154,7 +179,7 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
         }
     }
 
-    print_table(&host_sums, host.as_ref(), &arm);
+    print_table(&host_sums, host.as_ref(), &arm)?;
     if !mismatches.is_empty() {
         return Err(format!(
             "framebuffer checksums differ from the host's: {}",
@@ -265,6 +290,24 @@ impl Board {
             Board::Microbit => "thumbv6m-none-eabi",
         }
     }
+    /// The plugin's cycle model (`cpu=`): the Cortex-M0 column's ARMv6-M code is costed as
+    /// on a Cortex-M0+ (same instructions, the M0+'s timings).
+    fn cycle_model(self) -> &'static str {
+        match self {
+            Board::Mps2An386 => "m4",
+            Board::Microbit => "m0plus",
+        }
+    }
+
+    /// The estimated cycles of one more iteration of the firmware's spin loop (`subs` and a
+    /// taken `bne`): 1 + (1 + P) with P = 2 on the Cortex-M4, 1 + 2 on the Cortex-M0+.
+    fn spin_cycles(self) -> u64 {
+        match self {
+            Board::Mps2An386 => 4,
+            Board::Microbit => 3,
+        }
+    }
+
     fn qemu_args(self) -> &'static [&'static str] {
         match self {
             Board::Mps2An386 => &["-machine", "mps2-an386", "-cpu", "cortex-m4"],
@@ -289,7 +332,7 @@ fn plugin_path(root: &Path) -> PathBuf {
 }
 
 fn build_plugin(root: &Path) -> Result<(), CliError> {
-    eprintln!("zscan bench: building the qemu-icount plugin");
+    crate::note!("zscan bench: building the qemu-icount plugin");
     run_checked(
         Command::new(cargo())
             .current_dir(root)
@@ -341,7 +384,7 @@ fn symbol(nm_out: &str, name: &str) -> Result<u64, CliError> {
 fn qemu_column(root: &Path, board: Board, build: bool) -> Result<Column, CliError> {
     let target = board.target();
     if build {
-        eprintln!("zscan bench: building the firmware for {target}");
+        crate::note!("zscan bench: building the firmware for {target}");
         run_checked(Command::new(cargo()).current_dir(root).args([
             "build",
             "--release",
@@ -362,7 +405,7 @@ fn qemu_column(root: &Path, board: Board, build: bool) -> Result<Column, CliErro
     let begin = symbol(&nm, "zscan_bench_begin")? & !1;
     let end = symbol(&nm, "zscan_bench_end")? & !1;
     let plugin = plugin_path(root);
-    eprintln!("zscan bench: running {} under QEMU", elf.display());
+    crate::note!("zscan bench: running {} under QEMU", elf.display());
     let out = run_checked(
         Command::new("timeout")
             .args(["300", "qemu-system-arm"])
@@ -378,28 +421,49 @@ fn qemu_column(root: &Path, board: Board, build: bool) -> Result<Column, CliErro
             .arg(&elf)
             .arg("-plugin")
             .arg(format!(
-                "{},begin={begin:#x},end={end:#x}",
-                plugin.display()
+                "{},begin={begin:#x},end={end:#x},cpu={}",
+                plugin.display(),
+                board.cycle_model()
             )),
     )?;
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    let mut regions = Vec::new();
+    let (mut regions, mut cycles, mut divisions) = (Vec::new(), Vec::new(), Vec::new());
     for l in stderr.lines() {
         let f: Vec<_> = l.split_whitespace().collect();
         if f.len() == 4 && f[0] == "qemu-icount:" && f[1] == "region" {
             regions.push(f[3].parse::<u64>()?);
+        }
+        // qemu-icount: cycles <k> <cycles> taken=<n> divisions=<n> model=<m>
+        if f.len() == 7 && f[0] == "qemu-icount:" && f[1] == "cycles" {
+            cycles.push(f[3].parse::<u64>()?);
+            let d = f[5]
+                .strip_prefix("divisions=")
+                .ok_or("no divisions= field")?;
+            divisions.push(d.parse::<u64>()?);
         }
         if f.len() == 5 && f[1] == "regions" && f[4] != "0" {
             return Err(format!("qemu-icount reported protocol errors: {l}").into());
         }
     }
     let n = cases::CASES.len();
-    if regions.len() != n + 2 {
+    if regions.len() != n + 2 || cycles.len() != n + 2 {
         return Err(format!(
-            "expected {} regions from qemu-icount, got {}:\n{stderr}",
+            "expected {} regions and cycle lines from qemu-icount, got {} and {}:\n{stderr}",
             n + 2,
-            regions.len()
+            regions.len(),
+            cycles.len()
+        )
+        .into());
+    }
+    // The cycle model's self-test: 1000 more taken iterations of `subs; bne`.
+    let spin = cycles[n + 1].checked_sub(cycles[n]);
+    if spin != Some(1000 * board.spin_cycles()) {
+        return Err(format!(
+            "cycle model self-test failed: spin regions estimated {} and {} cycles (expected a difference of {})",
+            cycles[n],
+            cycles[n + 1],
+            1000 * board.spin_cycles()
         )
         .into());
     }
@@ -415,12 +479,63 @@ fn qemu_column(root: &Path, board: Board, build: bool) -> Result<Column, CliErro
     let mut col = Column {
         raw: regions[..n].to_vec(),
         checksums: Vec::new(),
+        cycles: cycles[..n].to_vec(),
+        divisions: divisions[..n].to_vec(),
     };
     for case in cases::CASES {
         col.checksums
             .push(parse_case_line(&stdout, case.name).map(|(_, s, _)| s));
     }
     Ok(col)
+}
+
+/// The boards whose frame rate `zscan bench` states: the column's label, the board, the core
+/// whose timings are applied and the clock in Hz.
+const BOARDS: [(&str, &str, &str, u64); 2] = [
+    ("Cortex-M4", "STM32F411", "Cortex-M4", 100_000_000),
+    ("Cortex-M0", "RP2040", "Cortex-M0+", 133_000_000),
+];
+
+/// The cases whose frame rate is stated: SCENES.md's bunny frame in one pass (a full
+/// 320 × 240 frame and 16-bit depth buffer, 230 KB: an RP2040 holds it, an STM32F411's 128 KB
+/// do not) and in bands of 16 rows with the polygon table, each band copied out where a device
+/// converts and sends it (what a board draws with `render_in_bands` or `DoubleBands`).
+const RATED: [&str; 2] = ["frame_bunny", "frame_bunny_bands16"];
+
+/// Frames per second of the [`RATED`] cases (clears and set-up included; the display transfer
+/// not, which double-buffered bands overlap with drawing) at each board's clock from the cycle
+/// estimate. On the Cortex-M4 the figure is given with every division at 12 cycles and at 2
+/// (the TRM's range).
+fn print_frame_rates(arm: &[(&str, Column)]) -> Result<(), super::out::OutputError> {
+    for name in RATED {
+        let Some(i) = cases::CASES.iter().position(|c| c.name == name) else {
+            continue;
+        };
+        for (label, col) in arm {
+            let Some(&(_, board, core, hz)) = BOARDS.iter().find(|b| b.0 == *label) else {
+                continue;
+            };
+            let (Some(cycles), Some(instructions)) = (col.net_cycles(i), col.net(i)) else {
+                continue;
+            };
+            let fps = |c: u64| hz as f64 / c.max(1) as f64;
+            let mut line = format!(
+                "{name} on {board} ({core} at {} MHz): {instructions} instructions, ~{cycles} cycles = {:.1} frames/s",
+                hz / 1_000_000,
+                fps(cycles)
+            );
+            let divisions = col.net_divisions(i).unwrap_or(0);
+            if core == "Cortex-M4" && divisions > 0 {
+                let best = cycles.saturating_sub(10 * divisions);
+                line += &format!(
+                    " (divisions at 12 cycles; {divisions} of them, at 2 cycles: ~{best} cycles = {:.1} frames/s)",
+                    fps(best)
+                );
+            }
+            crate::outln!("{line}")?;
+        }
+    }
+    Ok(())
 }
 
 fn per_px(net: Option<u64>, px: u32) -> String {
@@ -434,7 +549,11 @@ fn cell(net: Option<u64>) -> String {
     net.map_or_else(|| "-".into(), |n| n.to_string())
 }
 
-fn print_table(sums: &[(u32, u32)], host: Option<&Column>, arm: &[(&str, Column)]) {
+fn print_table(
+    sums: &[(u32, u32)],
+    host: Option<&Column>,
+    arm: &[(&str, Column)],
+) -> Result<(), super::out::OutputError> {
     let mut cols: Vec<(&str, &Column)> = Vec::new();
     if let Some(h) = host {
         cols.push(("host x86-64", h));
@@ -442,21 +561,30 @@ fn print_table(sums: &[(u32, u32)], host: Option<&Column>, arm: &[(&str, Column)
     for (l, c) in arm {
         cols.push((l, c));
     }
-    println!("instructions per call (harness overhead subtracted), pixels written, instructions per pixel");
+    crate::outln!("instructions per call (harness overhead subtracted), pixels written, instructions per pixel;")?;
+    crate::outln!("on Cortex-M also the estimated cycles (timing-table model: zero wait states, no cache, see tools/qemu-icount/src/cycles.rs;")?;
+    crate::outln!("the Cortex-M0 column's ARMv6-M code costed with the Cortex-M0+'s timings)")?;
     let mut head = format!("{:<16} {:>7}", "case", "pixels");
-    for (l, _) in &cols {
+    for (l, c) in &cols {
         head += &format!(" | {:>22}", format!("{l} instr  /px"));
+        if !c.cycles.is_empty() {
+            head += &format!(" {:>11}", "~cycles");
+        }
     }
-    println!("{head} | checksum");
-    println!("{}", "-".repeat(head.len() + 11));
+    crate::outln!("{head} | checksum")?;
+    crate::outln!("{}", "-".repeat(head.len() + 11))?;
     for (i, case) in cases::CASES.iter().enumerate() {
         let px = sums[i].0;
         let mut row = format!("{:<16} {:>7}", case.name, px);
         for (_, c) in &cols {
             row += &format!(" | {:>13} {:>8}", cell(c.net(i)), per_px(c.net(i), px));
+            if !c.cycles.is_empty() {
+                row += &format!(" {:>11}", cell(c.net_cycles(i)));
+            }
         }
-        println!("{row} | {:08x}", sums[i].1);
+        crate::outln!("{row} | {:08x}", sums[i].1)?;
     }
+    print_frame_rates(arm)?;
     // A line model fitted on the two all-octant cases: per-line set-up + per-pixel cost.
     let idx = |n: &str| cases::CASES.iter().position(|c| c.name == n);
     if let (Some(a), Some(b)) = (idx("line_short"), idx("line_star64")) {
@@ -468,8 +596,9 @@ fn print_table(sums: &[(u32, u32)], host: Option<&Column>, arm: &[(&str, Column)
                 let det = la * pb - lb * pa;
                 let s = (na as f64 * pb - nb as f64 * pa) / det;
                 let p = (la * nb as f64 - lb * na as f64) / det;
-                println!("line model on {l}: {s:.1} instructions per line + {p:.2} per pixel (fit of line_short and line_star64)");
+                crate::outln!("line model on {l}: {s:.1} instructions per line + {p:.2} per pixel (fit of line_short and line_star64)")?;
             }
         }
     }
+    Ok(())
 }

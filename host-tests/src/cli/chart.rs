@@ -32,11 +32,11 @@ use std::process::Command;
 use zscan::geometry::camera::Camera;
 use zscan::geometry::mesh::Mesh;
 use zscan::geometry::vector::Vec3;
+use zscan::lighting::{Light, Material};
+use zscan::output::{DepthBuffer, Framebuffer};
+use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{PreparedVertex, RenderStats, Renderer};
 use zscan::scene::{Intensities, Object};
-use zscan::shade::lighting::{Light, Material};
-use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthBuffer, Framebuffer};
 
 /// Arguments of `zscan chart`.
 #[derive(clap::Args, Debug)]
@@ -51,7 +51,8 @@ pub struct ChartArgs {
     #[arg(long)]
     pub m4: Option<PathBuf>,
     /// Instead of the shading chart: the RAM-against-instructions chart of the visibility
-    /// methods from this data file (`docs/plan_chart.csv`), the planner's pick marked.
+    /// methods from this data file (`docs/plan_chart.csv`: rows scene,method,ram,m4,m0,kind,
+    /// whole positive numbers, each checked), the planner's pick marked.
     #[arg(long, value_name = "CSV")]
     pub plan_data: Option<PathBuf>,
     /// Internal: render one variant inside the measured region (what callgrind runs).
@@ -347,7 +348,7 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
     if let Some(data) = &args.plan_data {
         let svg = plan_chart(data)?;
         std::fs::write(&args.out, svg).map_err(|e| format!("{}: {e}", args.out.display()))?;
-        println!("wrote {}", args.out.display());
+        crate::outln!("wrote {}", args.out.display())?;
         return Ok(());
     }
     if let Some(name) = &args.run_variant {
@@ -357,20 +358,22 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
         return visibility_chart::run_one(tag);
     }
     if cfg!(debug_assertions) && !args.no_measure {
-        eprintln!("zscan chart: warning: a debug build; run with --release for meaningful figures");
+        crate::note!(
+            "zscan chart: warning: a debug build; run with --release for meaningful figures"
+        );
     }
     let rows = shading_rows(!args.no_measure)?;
-    print_rows(&rows);
+    print_rows(&rows)?;
     let count: visibility_chart::Counter<'_> = &host_instructions;
     let visibility = visibility_chart::points((!args.no_measure).then_some(count))?;
-    visibility_chart::print(&visibility);
+    visibility_chart::print(&visibility)?;
     if args.no_measure {
         return Ok(());
     }
     let m4 = m4_per_pixel(&rows, args.m4.as_deref())?;
     let svg = chart(&rows, &m4, &visibility)?;
     std::fs::write(&args.out, svg)?;
-    eprintln!("zscan chart: wrote {}", args.out.display());
+    crate::note!("zscan chart: wrote {}", args.out.display());
     Ok(())
 }
 
@@ -383,7 +386,7 @@ fn run_variant(name: &str) -> Result<(), CliError> {
     let mut p = Prepared::new(v.scene)?;
     render(&mut p, &v)?; // warm-up
     let covered = crate::core_render::measured(|| render(std::hint::black_box(&mut p), &v));
-    println!("{} covered={}", v.name(), covered?);
+    crate::outln!("{} covered={}", v.name(), covered?)?;
     Ok(())
 }
 
@@ -413,13 +416,18 @@ fn shading_rows(measure: bool) -> Result<Vec<Row>, CliError> {
     Ok(rows)
 }
 
-fn print_rows(rows: &[Row]) {
-    println!(
+fn print_rows(rows: &[Row]) -> Result<(), super::out::OutputError> {
+    crate::outln!(
         "{:<28} {:>8} {:>12} {:>10} {:>9} {:>9}",
-        "variant", "covered", "host instr", "instr/px", "max err", "mean err"
-    );
+        "variant",
+        "covered",
+        "host instr",
+        "instr/px",
+        "max err",
+        "mean err"
+    )?;
     for r in rows {
-        println!(
+        crate::outln!(
             "{:<28} {:>8} {:>12} {:>10} {:>9.3} {:>9.3}",
             r.variant.name(),
             r.covered,
@@ -427,8 +435,9 @@ fn print_rows(rows: &[Row]) {
             r.per_pixel().map_or("-".into(), |x| format!("{x:.1}")),
             r.errors.max,
             r.errors.mean
-        );
+        )?;
     }
+    Ok(())
 }
 
 /// Cortex-M4 instructions per covered pixel of each row from the bench table at `path` (none
@@ -449,15 +458,15 @@ fn m4_per_pixel(
         })
         .collect();
     if !m4_counts.is_empty() {
-        println!("\n{:<28} {:>12} {:>10}", "variant", "M4 instr", "instr/px");
+        crate::outln!("\n{:<28} {:>12} {:>10}", "variant", "M4 instr", "instr/px")?;
         for (r, x) in rows.iter().zip(&m4) {
             let n = m4_counts.get(&r.variant.name());
-            println!(
+            crate::outln!(
                 "{:<28} {:>12} {:>10}",
                 r.variant.name(),
                 n.map_or("-".into(), |n| n.to_string()),
                 x.map_or("-".into(), |x| format!("{x:.1}"))
-            );
+            )?;
         }
     }
     Ok(m4)
@@ -733,13 +742,175 @@ fn read_m4(path: &std::path::Path) -> Result<std::collections::HashMap<String, u
 /// instructions (`None` where not measured), peer)`.
 type PlanPoint = (String, String, f64, [Option<f64>; 2], bool);
 
+/// The scenes of the plan chart, one panel each per core.
+const PLAN_SCENES: [&str; 4] = ["quad", "cube", "sphere", "bunny"];
+
+/// Largest `ram` of a plan-data row, bytes (4 GiB).
+const MAX_PLAN_RAM: u64 = 1 << 32;
+
+/// Largest instruction count of a plan-data row (10^12).
+const MAX_PLAN_INSTRUCTIONS: u64 = 1_000_000_000_000;
+
+/// Reads the plan chart's data (`docs/plan_chart.csv`): `#` comment lines, blank lines, and
+/// rows `scene,method,ram,m4,m0,kind` of exactly six fields:
+/// - `scene`: one of [`PLAN_SCENES`];
+/// - `kind`: `zscan` (a method of this crate) or `peer` (another renderer);
+/// - `method`: for `zscan`, a method's name ([`Visibility::name`](zscan::visibility::Visibility::name))
+///   alone or followed by a variant (digits, or `_` and letters or digits:
+///   `scanline16`, `zbuffer_compact`); for `peer`, a name of letters, digits, `-` and `_`;
+/// - `ram`: bytes of caller memory, a whole number in `1..=`[`MAX_PLAN_RAM`];
+/// - `m4`, `m0`: Cortex-M4 and Cortex-M0 instructions per frame, whole numbers in
+///   `1..=`[`MAX_PLAN_INSTRUCTIONS`], or `-` where not measured (not both).
+///
+/// Each (scene, method, kind) appears once, and every panel (each scene on each core) needs at
+/// least one count. Anything else is an error naming `name`, the line, the field and what is
+/// accepted; NaN, infinities, zero, negative and fractional numbers are not numbers here.
+fn parse_plan_data(text: &str, name: &str) -> Result<Vec<PlanPoint>, String> {
+    let mut points: Vec<PlanPoint> = Vec::new();
+    let mut lines_of: Vec<usize> = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let at = format!("{name}:{}", n + 1);
+        if line.trim_start().starts_with('#') || line.trim().is_empty() {
+            continue;
+        }
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        if f.len() != 6 {
+            return Err(format!(
+                "{at}: {} fields, expected 6: scene,method,ram,m4,m0,kind",
+                f.len()
+            ));
+        }
+        let scene = f[0];
+        if !PLAN_SCENES.contains(&scene) {
+            return Err(format!(
+                "{at}: field 1 `scene` = {scene:?} is not one of {}",
+                PLAN_SCENES.join(", ")
+            ));
+        }
+        let peer = match f[5] {
+            "zscan" => false,
+            "peer" => true,
+            other => {
+                return Err(format!(
+                    "{at}: field 6 `kind` = {other:?} is not zscan or peer"
+                ))
+            }
+        };
+        let method = f[1];
+        if !plan_method_ok(method, peer) {
+            let names: Vec<_> = zscan::visibility::Visibility::ALL
+                .iter()
+                .map(|v| v.name())
+                .collect();
+            return Err(if peer {
+                format!(
+                    "{at}: field 2 `method` = {method:?}: a peer's name is letters, digits, \
+                     `-` and `_`"
+                )
+            } else {
+                format!(
+                    "{at}: field 2 `method` = {method:?} is not a zscan method: one of {}, \
+                     alone or followed by a variant (digits, or `_` and letters or digits)",
+                    names.join(", ")
+                )
+            });
+        }
+        let whole = |k: usize, key: &str, (max, unit, or): (u64, &str, &str)| {
+            let v = f[k];
+            v.parse::<u64>()
+                .ok()
+                .filter(|n| (1..=max).contains(n))
+                .ok_or_else(|| {
+                    format!(
+                        "{at}: field {} `{key}` = {v:?} is not a whole number of {unit} in \
+                         1..={max}{or}",
+                        k + 1
+                    )
+                })
+        };
+        let ram = whole(2, "ram", (MAX_PLAN_RAM, "bytes", ""))?;
+        let count = |k: usize, key: &str| -> Result<Option<f64>, String> {
+            if f[k] == "-" {
+                return Ok(None);
+            }
+            let accepted = (
+                MAX_PLAN_INSTRUCTIONS,
+                "instructions",
+                " (or - where not measured)",
+            );
+            whole(k, key, accepted).map(|n| Some(n as f64))
+        };
+        let counts = [count(3, "m4")?, count(4, "m0")?];
+        if counts == [None, None] {
+            return Err(format!(
+                "{at}: `m4` and `m0` are both - : a row needs at least one count"
+            ));
+        }
+        if let Some(k) = points
+            .iter()
+            .position(|p| p.0 == scene && p.1 == method && p.4 == peer)
+        {
+            return Err(format!(
+                "{at}: {scene},{method},{} appears twice (first on line {})",
+                f[5], lines_of[k]
+            ));
+        }
+        points.push((scene.into(), method.into(), ram as f64, counts, peer));
+        lines_of.push(n + 1);
+    }
+    if points.is_empty() {
+        return Err(format!(
+            "{name}: no data rows (expected lines scene,method,ram,m4,m0,kind)"
+        ));
+    }
+    for scene in PLAN_SCENES {
+        for (core, key) in ["m4", "m0"].iter().enumerate() {
+            if !points.iter().any(|p| p.0 == scene && p.3[core].is_some()) {
+                return Err(format!(
+                    "{name}: scene {scene} has no `{key}` count: every panel (each scene on \
+                     each core) needs at least one"
+                ));
+            }
+        }
+    }
+    Ok(points)
+}
+
+/// `method` is a plan-data method name ([`parse_plan_data`]).
+fn plan_method_ok(method: &str, peer: bool) -> bool {
+    let word = |s: &str, extra: &[char]| {
+        s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || extra.contains(&c))
+    };
+    if peer {
+        return !method.is_empty() && word(method, &['-', '_']);
+    }
+    zscan::visibility::Visibility::ALL.iter().any(|v| {
+        method.strip_prefix(v.name()).is_some_and(|rest| {
+            rest.is_empty()
+                || rest.chars().all(|c| c.is_ascii_digit())
+                || rest
+                    .strip_prefix('_')
+                    .is_some_and(|r| !r.is_empty() && word(r, &[]))
+        })
+    })
+}
+
+/// The x range of the plan chart (bytes, log scale): 20,000 to 600,000, widened to hold every
+/// point (a quarter beyond the extreme ones).
+fn plan_x_range(points: &[PlanPoint]) -> (f64, f64) {
+    let lo = points.iter().map(|p| p.2).fold(f64::INFINITY, f64::min);
+    let hi = points.iter().map(|p| p.2).fold(0.0, f64::max);
+    ((lo / 1.25).min(20_000.0), (hi * 1.25).max(600_000.0))
+}
+
 /// The planner's pick on standard scene `name` (no budget limit), as the data file's method.
 fn planner_pick(name: &str) -> Result<String, CliError> {
     let core = crate::core_render::to_core(&scenes::standard_scene(name)?)?;
     let objects = [core.object(ShadeMode::GouraudExact)?];
     let scene = crate::core_render::scene_of(&objects, core.camera);
     let mut pairs = Vec::new();
-    let facts = crate::core_render::mesh_facts(&scene, &mut pairs);
+    let facts = crate::core_render::mesh_facts(&scene, &mut pairs)?;
     let plan = zscan::visibility::plan::<4>(&scene, &facts, usize::MAX, &mut [0])
         .map_err(|e| e.to_string())?;
     Ok(plan.visibility.name().to_string())
@@ -752,32 +923,8 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
     use plotters::prelude::*;
     let e = |x: &dyn std::fmt::Display| -> CliError { x.to_string().into() };
     let text = std::fs::read_to_string(data).map_err(|x| format!("{}: {x}", data.display()))?;
-    let mut points: Vec<PlanPoint> = Vec::new();
-    for (n, line) in text.lines().enumerate() {
-        if line.starts_with('#') || line.trim().is_empty() {
-            continue;
-        }
-        let f: Vec<&str> = line.split(',').map(str::trim).collect();
-        let num = |i: usize| f.get(i).and_then(|v| v.parse::<f64>().ok());
-        // An instruction count, or "-" where the data has none (the peers on the Cortex-M0).
-        let count = |i: usize| match f.get(i) {
-            Some(&"-") => Some(None),
-            _ => num(i).map(Some),
-        };
-        match (f.first(), f.get(1), num(2), count(3), count(4), f.get(5)) {
-            (Some(s), Some(m), Some(r), Some(m4), Some(m0), Some(k)) => {
-                points.push((s.to_string(), m.to_string(), r, [m4, m0], *k == "peer"))
-            }
-            _ => {
-                return Err(format!(
-                    "{}:{}: expected scene,method,ram,m4,m0,kind (a count or -)",
-                    data.display(),
-                    n + 1
-                )
-                .into())
-            }
-        }
-    }
+    let points = parse_plan_data(&text, &data.display().to_string())?;
+    let x_range = plan_x_range(&points);
     let (width, height) = (1600u32, 800u32);
     let mut svg = String::new();
     let mut texts: Vec<String> = Vec::new();
@@ -787,9 +934,9 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
         let areas = root.margin(50, 60, 10, 10).split_evenly((2, 4));
         let panels = [0, 1]
             .into_iter()
-            .flat_map(|core| ["quad", "cube", "sphere", "bunny"].map(|name| (core, name)));
+            .flat_map(|core| PLAN_SCENES.map(|name| (core, name)));
         for (area, (core, name)) in areas.iter().zip(panels) {
-            plan_panel(area, (name, core), &points, &mut texts)?;
+            plan_panel(area, (name, core), (&points, x_range), &mut texts)?;
         }
         root.present().map_err(|x| e(&x))?;
     }
@@ -804,11 +951,11 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
 }
 
 /// One panel of the plan chart: scene `name`'s points on core `core` (0: Cortex-M4, 1:
-/// Cortex-M0), the planner's pick ringed.
+/// Cortex-M0) over the bytes `x0..x1`, the planner's pick ringed.
 fn plan_panel<DB: plotters::prelude::DrawingBackend>(
     area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
     (name, core): (&str, usize),
-    points: &[PlanPoint],
+    (points, (x0, x1)): (&[PlanPoint], (f64, f64)),
     texts: &mut Vec<String>,
 ) -> Result<(), CliError> {
     use plotters::prelude::*;
@@ -822,16 +969,25 @@ fn plan_panel<DB: plotters::prelude::DrawingBackend>(
     let ymax = rows.iter().map(|p| p.1).fold(0.0, f64::max) * 1.15 / 1e6;
     let mut chart = ChartBuilder::on(area)
         .margin(30)
-        .build_cartesian_2d((20_000f64..600_000f64).log_scale(), 0f64..ymax)
+        .build_cartesian_2d((x0..x1).log_scale(), 0f64..ymax)
         .map_err(|x| e(&x))?;
     chart
-        .draw_series(LineSeries::new(
-            [(20_000.0, ymax), (20_000.0, 0.0), (600_000.0, 0.0)],
-            BLACK,
-        ))
+        .draw_series(LineSeries::new([(x0, ymax), (x0, 0.0), (x1, 0.0)], BLACK))
         .map_err(|x| e(&x))?;
-    for kb in [32, 64, 128, 256, 512] {
+    // Grid lines at powers of two of KB within the range, at most 6 (every other, every
+    // third, … power when the data widen the range).
+    let kbs: Vec<u64> = (0..32u32)
+        .map(|k| 1u64 << k)
+        .filter(|&kb| (x0..=x1).contains(&(kb as f64 * 1024.0)))
+        .collect();
+    let every = kbs.len().div_ceil(6).max(1);
+    for &kb in kbs.iter().step_by(every) {
         let x = kb as f64 * 1024.0;
+        let label = match kb {
+            kb if kb >= 1 << 20 => format!("{} GB", kb >> 20),
+            kb if kb >= 1 << 10 => format!("{} MB", kb >> 10),
+            kb => format!("{kb} KB"),
+        };
         chart
             .draw_series(LineSeries::new(
                 [(x, 0.0), (x, ymax)],
@@ -840,18 +996,18 @@ fn plan_panel<DB: plotters::prelude::DrawingBackend>(
             .map_err(|q| e(&q))?;
         let (px, py) = chart.backend_coord(&(x, 0.0));
         texts.push(format!(
-            r#"<text x="{px}" y="{}" text-anchor="middle" font-size="11">{kb} KB</text>"#,
+            r#"<text x="{px}" y="{}" text-anchor="middle" font-size="11">{label}</text>"#,
             py + 14
         ));
     }
-    let (tx, ty) = chart.backend_coord(&(20_000.0, ymax));
+    let (tx, ty) = chart.backend_coord(&(x0, ymax));
     let core_name = ["Cortex-M4", "Cortex-M0"][core];
     texts.push(format!(
         r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{name}, {core_name}</text>"#,
         tx + 6,
         ty + 14
     ));
-    let (lx, ly) = chart.backend_coord(&(20_000.0, 0.0));
+    let (lx, ly) = chart.backend_coord(&(x0, 0.0));
     texts.push(format!(
         r#"<text x="{}" y="{}" text-anchor="end" font-size="11">0</text>"#,
         lx - 4,

@@ -24,7 +24,7 @@ pub struct ExportScenesArgs {
 /// Runs `zscan export-scenes`: writes the four standard scenes and lists the files written.
 pub fn run(args: ExportScenesArgs) -> Result<(), CliError> {
     for path in export_scenes(&args.dir)? {
-        println!("{}", path.display());
+        crate::outln!("{}", path.display())?;
     }
     Ok(())
 }

@@ -31,8 +31,8 @@ pub fn run(args: FailuresArgs) -> Result<(), CliError> {
     let cases = failures().map_err(|e| crate::cli::render::render_error_words(&e))?;
     std::fs::create_dir_all(&args.out_dir)
         .map_err(|e| format!("{}: {e}", args.out_dir.display()))?;
-    println!("| picture | method and scene | wrong pixels |");
-    println!("|---|---|---:|");
+    crate::outln!("| picture | method and scene | wrong pixels |")?;
+    crate::outln!("|---|---|---:|")?;
     for case in &cases {
         let path = args.out_dir.join(format!("{}.png", case.name));
         let (w, h) = (
@@ -51,12 +51,12 @@ pub fn run(args: FailuresArgs) -> Result<(), CliError> {
             .map_err(|e| format!("{}: {e}", path.display()))?;
         wr.finish()
             .map_err(|e| format!("{}: {e}", path.display()))?;
-        println!(
+        crate::outln!(
             "| `{}.png` | {} | {} |",
             case.name,
             case.caption,
             case.wrong()
-        );
+        )?;
     }
     Ok(())
 }

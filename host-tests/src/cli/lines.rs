@@ -9,8 +9,8 @@
 use super::CliError;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::Point;
+use zscan::output::{shaded_index, Framebuffer, Lut};
 use zscan::raster::{circle, line};
-use zscan::target::{shaded_index, Framebuffer, Lut};
 
 /// Arguments of `zscan lines`.
 #[derive(clap::Args, Debug)]
@@ -187,6 +187,6 @@ pub fn run(args: LinesArgs) -> Result<(), CliError> {
         palette()
     };
     crate::image::write_image(&args.output, &fb, &lut)?;
-    eprintln!("wrote {}", args.output.display());
+    crate::note!("wrote {}", args.output.display());
     Ok(())
 }

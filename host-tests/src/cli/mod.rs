@@ -1,11 +1,14 @@
 //! Subcommands of the `zscan` tool, one module each. Every `run` returns a descriptive error
-//! string on bad input instead of panicking.
+//! string on bad input instead of panicking, and writes standard output and error through
+//! [`out`] (a closed or full output is an error in words, not a panic).
 
 pub mod bench;
 pub mod chart;
 pub mod export;
 pub mod failures;
 pub mod lines;
+pub mod mesh;
+pub mod out;
 pub mod render;
 pub mod spans;
 pub mod visibility_chart;

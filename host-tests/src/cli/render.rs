@@ -6,7 +6,7 @@
 //!
 //! | section | keys (defaults) |
 //! |---|---|
-//! | `[camera]` | `eye` (`[0,0,3]`), `target` (`[0,0,0]`), `up` (`[0,1,0]`), `fov_deg` (60), `fov_axis` = `"vertical"` \| `"horizontal"` \| `"diagonal"`, `near` (0.5), `far` (10) |
+//! | `[camera]` | `eye` (`[0,0,3]`), `target` (`[0,0,0]`), `up` (`[0,1,0]`), `fov_deg` (60), `fov_axis` = `"vertical"` \| `"horizontal"` \| `"diagonal"`, `near` (0.5), `far` (10), `projection` = `"perspective"` (default) \| `"orthographic"`; orthographic takes `width` or `height`, the view's extent in world units, instead of `fov_deg` |
 //! | `[viewport]` | `width` (320), `height` (240), `principal` (`[(w−1)/2, (h−1)/2]`, pixels are lattice points), `pixel_aspect` = `[r_x, r_y]` (`[1,1]`) |
 //! | `[render]` | `depth_bits` = 16 \| 32 (16), `subpixel_bits` (4, the only value accepted), `background` palette index (0), `shade` = `"flat"` \| `"gouraud"` \| `"gouraud-fast"` \| `"phong"` (`"gouraud"`), `cull` back faces (true), `dither` (false: 4×4 ordered dithering between ramp levels) |
 //! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
@@ -44,8 +44,11 @@
 //!
 //! ## Output
 //! The frame (8-bit indices) goes through the LUT to the image (`.png`, `.ppm`, `.pgm` by
-//! extension). The depth image is 8-bit grey: the nearest depth drawn is 255, the farthest
-//! drawn 32, linearly in the stored depth, and the background 0. The stats JSON holds the
+//! extension). The depth image (`--depth-out`, the z-buffer only: the other methods keep no
+//! whole depth buffer and refuse it) is 8-bit grey: the nearest depth drawn is 255, the
+//! farthest drawn 32, linearly in the stored depth, and the background 0. `--bands` applies to
+//! the methods that draw in bands (z-buffer, scan-line); the others refuse it, and `auto`
+//! picks its own. The stats JSON (the same keys for every method) holds the
 //! core's [`RenderStats`] (with `--bands`, summed over the bands: the per-polygon counts then
 //! repeat once per band, the pixel counts add up to the frame's), the host's triangle count,
 //! frame size, bands and depth bits, the hidden-surface method (`visibility`), `ram_bytes`
@@ -55,25 +58,28 @@
 //! (painter: `tests` decided by Newell's tests 1–5, `ambiguities`, `splits`, `pieces`;
 //! scan-line: `active_peak`; Warnock: `windows` visited and by verdict, stack peaks;
 //! `stored`: front triangles stored). With the stored-triangle methods `triangles_drawn`
-//! counts a triangle once per piece, band or window that draws it.
+//! counts a triangle once per piece, band or window that draws it. A frame that covers no
+//! pixel is written (it is the right picture) with a warning on standard error naming the
+//! cause ([`LoadedScene::empty_picture_cause`]). With `--visibility auto`,
+//! `ram_bytes` is the plan's total and `plan` adds the plan, its reasons and its buffers.
 use std::fs;
 use std::path::{Path, PathBuf};
 
 use embedded_graphics::pixelcolor::Rgb888;
 use serde::Deserialize;
 use toml::Spanned;
-use zscan::geometry::camera::{Camera, FovAxis, Lens, Viewport};
+use zscan::geometry::camera::{Camera, FovAxis, Lens, OrthoView, Viewport};
 use zscan::geometry::generators;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
-use zscan::geometry::trig::Angle;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
+use zscan::lighting::{Light, Material, MAX_LIGHTS, MAX_SHININESS};
+use zscan::output::{DepthValue, Framebuffer, Lut};
+use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
     BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
 };
 use zscan::scene::{Intensities, Object, Scene};
-use zscan::shade::lighting::{Light, Material, MAX_LIGHTS, MAX_SHININESS};
-use zscan::shade::span_writer::{LuminanceRamp, ShadeMode};
-use zscan::target::{DepthValue, Framebuffer, Lut};
 
 use super::CliError;
 use crate::core_render::coord;
@@ -87,21 +93,24 @@ pub struct RenderArgs {
     /// Output image (.png, .ppm or .pgm).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Also write the depth buffer as a grey PNG (near bright, background black).
+    /// Also write the depth buffer as a grey PNG (near bright, background black); only
+    /// --visibility zbuffer keeps a whole depth buffer.
     #[arg(long)]
     pub depth_out: Option<PathBuf>,
     /// Write frame statistics as JSON.
     #[arg(long)]
     pub stats: Option<PathBuf>,
-    /// Render in bands of ROWS rows (the pixels are the same as one pass).
+    /// Render in bands of ROWS rows (the pixels are the same as one pass); --visibility
+    /// zbuffer and scanline only (the other methods draw the whole frame at once).
     #[arg(long, value_name = "ROWS")]
     pub bands: Option<u16>,
     /// Hidden-surface method: auto (zscan::visibility::plan: back faces alone for convex,
     /// separable objects, else the z-buffer in the layout and depth width that fit
     /// --ram-budget; the plan and its reasons are printed), backface, painter, scanline,
     /// warnock or zbuffer. Back faces alone, the painter and Warnock's subdivision need no
-    /// depth buffer (no --depth-out); the scan-line draws in bands of --bands rows
-    /// (default 1) through one band of depth.
+    /// depth buffer and draw the whole frame at once (no --depth-out, no --bands); the
+    /// scan-line draws in bands of --bands rows (default 1) through one band of depth (no
+    /// --depth-out).
     #[arg(long, value_name = "METHOD", default_value = "zbuffer", value_parser = parse_visibility)]
     pub visibility: VisibilityArg,
     /// With --visibility auto: the caller memory the plan may use, in bytes (32768 or 32K;
@@ -175,7 +184,7 @@ pub struct SceneFile {
 }
 
 /// `[camera]`: a look-at camera.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CameraSection {
     /// Eye position (world).
@@ -192,6 +201,23 @@ pub struct CameraSection {
     pub near: f64,
     /// Far plane distance.
     pub far: f64,
+    /// `"perspective"` (the default) or `"orthographic"` (parallel projection).
+    pub projection: ProjectionKey,
+    /// Orthographic: the view's width in world units (give this or `height`).
+    pub width: Option<f64>,
+    /// Orthographic: the view's height in world units (give this or `width`).
+    pub height: Option<f64>,
+}
+
+/// `projection` values of `[camera]`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProjectionKey {
+    /// Central projection with `fov_deg`.
+    #[default]
+    Perspective,
+    /// Parallel projection with `width` or `height`.
+    Orthographic,
 }
 
 impl Default for CameraSection {
@@ -204,6 +230,9 @@ impl Default for CameraSection {
             fov_axis: FovAxisKey::Vertical,
             near: 0.5,
             far: 10.0,
+            projection: ProjectionKey::Perspective,
+            width: None,
+            height: None,
         }
     }
 }
@@ -224,10 +253,11 @@ pub enum FovAxisKey {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ViewportSection {
-    /// Width in pixels.
-    pub width: u16,
-    /// Height in pixels.
-    pub height: u16,
+    /// Width in pixels, `1..=`[`MAX_PICTURE_SIDE`](super::MAX_PICTURE_SIDE) (read wide, so
+    /// that a value past 16 bits is named with the limit too).
+    pub width: i64,
+    /// Height in pixels, `1..=`[`MAX_PICTURE_SIDE`](super::MAX_PICTURE_SIDE).
+    pub height: i64,
     /// Principal point in pixels (default the picture's centre).
     pub principal: Option<[f64; 2]>,
     /// Physical pixel shape `[r_x, r_y]`.
@@ -399,9 +429,10 @@ pub struct LitMaterialKey {
     /// Specular reflection (0.3).
     #[serde(default = "default_ks")]
     pub ks: f64,
-    /// Specular exponent (20).
+    /// Specular exponent (20), `1..=200` (read wide, so that a value past a byte is named
+    /// with its range too).
     #[serde(default = "default_n")]
-    pub n: u8,
+    pub n: i64,
 }
 
 fn default_ka() -> f64 {
@@ -413,7 +444,7 @@ fn default_kd() -> f64 {
 fn default_ks() -> f64 {
     0.3
 }
-fn default_n() -> u8 {
+fn default_n() -> i64 {
     20
 }
 
@@ -426,17 +457,20 @@ impl LitMaterialKey {
             }
             Ok((v * 32768.0).round().min(65535.0) as u16)
         };
-        if !(1..=MAX_SHININESS).contains(&self.n) {
-            return Err(format!(
-                "material `n` must be in 1..={MAX_SHININESS}, got {}",
-                self.n
-            ));
-        }
+        let n = u8::try_from(self.n)
+            .ok()
+            .filter(|n| (1..=MAX_SHININESS).contains(n))
+            .ok_or_else(|| {
+                format!(
+                    "material `n` must be in 1..={MAX_SHININESS} (the specular exponent), got {}",
+                    self.n
+                )
+            })?;
         Ok(Material {
             ka: q("ka", self.ka)?,
             kd: q("kd", self.kd)?,
             ks: q("ks", self.ks)?,
-            n: self.n,
+            n,
         })
     }
 }
@@ -538,14 +572,41 @@ pub enum LutKind {
     Shaded,
 }
 
-/// A uniform or per-axis scale.
+/// A uniform or per-axis scale. Read through [`toml::Value`] so that a value of another form
+/// gets a message with the forms accepted instead of serde's "did not match any variant".
 #[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(untagged)]
+#[serde(try_from = "toml::Value")]
 pub enum ScaleKey {
     /// Uniform.
     Uniform(f64),
     /// `[sx, sy, sz]`.
     Axes([f64; 3]),
+}
+
+impl TryFrom<toml::Value> for ScaleKey {
+    type Error = String;
+
+    fn try_from(v: toml::Value) -> Result<Self, String> {
+        let number = |v: &toml::Value| match v {
+            toml::Value::Float(f) => Some(*f),
+            toml::Value::Integer(i) => Some(*i as f64),
+            _ => None,
+        };
+        let axes = match &v {
+            toml::Value::Array(a) if a.len() == 3 => {
+                a.iter().map(number).collect::<Option<Vec<f64>>>()
+            }
+            _ => None,
+        };
+        match (number(&v), axes) {
+            (Some(s), _) => Ok(ScaleKey::Uniform(s)),
+            (None, Some(a)) => Ok(ScaleKey::Axes([a[0], a[1], a[2]])),
+            _ => Err(format!(
+                "`scale` must be a number (uniform, `scale = 2`) or an array of three numbers \
+                 (per axis, `scale = [sx, sy, sz]`), got {v}"
+            )),
+        }
+    }
 }
 
 impl Default for ScaleKey {
@@ -687,11 +748,24 @@ pub struct LoadedScene {
     pub depth_bits: u32,
     /// Triangles of the meshes (a polygon of `n` vertices counts `n − 2`).
     pub triangles_in: u64,
+    /// `[camera]` as the file gave it (to say why a picture came out empty).
+    pub view: CameraSection,
 }
 
-/// 1-based line of byte offset `at` in `text`.
-fn line_of(text: &str, at: usize) -> usize {
-    text[..at.min(text.len())].matches('\n').count() + 1
+/// Line numbers of a scene file's text: the byte offsets of its line breaks, found once, so
+/// that each look-up is a binary search and loading stays linear in the number of objects
+/// (counting the breaks from the top for every object made it quadratic).
+struct LineIndex(Vec<usize>);
+
+impl LineIndex {
+    fn of(text: &str) -> LineIndex {
+        LineIndex(text.match_indices('\n').map(|(i, _)| i).collect())
+    }
+
+    /// 1-based line of byte offset `at`.
+    fn line(&self, at: usize) -> usize {
+        self.0.partition_point(|&b| b < at) + 1
+    }
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -748,7 +822,7 @@ fn mesh_error_words(e: zscan::geometry::mesh::MeshError) -> String {
         E::CoordinateOutOfRange => {
             "a coordinate is beyond ±1024 (world coordinates must stay within ±1024)".into()
         }
-        E::OutputTooSmall => "an output table is shorter than the mesh needs".into(),
+        E::OutputTooSmall { .. } => e.to_string(),
         E::BadParameters => "invalid generator parameters (too few segments, radii out of \
              order, or more than 65536 vertices)"
             .into(),
@@ -953,8 +1027,8 @@ fn intensities(mesh: &HostMesh, flat: bool, light: &LightSection) -> Vec<u8> {
 }
 
 /// Loads the mesh source of one object.
-fn object_mesh(o: &ObjectSection, dir: &Path, text: &str) -> Result<HostMesh, String> {
-    let at = |s: &Spanned<String>| line_of(text, s.span().start);
+fn object_mesh(o: &ObjectSection, dir: &Path, lines: &LineIndex) -> Result<HostMesh, String> {
+    let at = |s: &Spanned<String>| lines.line(s.span().start);
     let sources = [&o.generator, &o.obj, &o.builtin]
         .iter()
         .filter(|s| s.is_some())
@@ -1128,6 +1202,9 @@ fn camera_error_words(e: zscan::geometry::camera::CameraError) -> String {
         E::OutOfRange => "a derived position or distance (eye − target, focal length) leaves \
              the core's range ±32768"
             .into(),
+        E::BadExtent => "the orthographic width or height gives a scale outside 2^-16 to 2^15 \
+             pixels per world unit"
+            .into(),
     }
 }
 
@@ -1154,12 +1231,21 @@ fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String
         camera_point("target", c.target)?,
         camera_point("up", c.up)?,
     );
-    super::check_picture_size("[viewport] width × height", v.width, v.height)?;
+    let side = |key: &str, n: i64| {
+        let max = super::MAX_PICTURE_SIDE;
+        u16::try_from(n)
+            .ok()
+            .filter(|n| (1..=max).contains(n))
+            .ok_or_else(|| {
+                format!("[viewport] {key} = {n} is outside the supported sizes 1..={max} pixels")
+            })
+    };
+    let (width, height) = (side("width", v.width)?, side("height", v.height)?);
     if v.pixel_aspect.contains(&0) {
         return Err("[viewport] pixel_aspect entries must be positive".into());
     }
     let lens = Lens {
-        fov: Angle::from_turns(
+        fov: BinaryAngle::from_turns(
             (c.fov_deg / 360.0 * (1u64 << 31) as f64).round() as i64,
             1 << 31,
         ),
@@ -1171,7 +1257,7 @@ fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String
         near,
         far,
     };
-    let mut vp = Viewport::new(v.width, v.height);
+    let mut vp = Viewport::new(width, height);
     if let Some([px, py]) = v.principal {
         let m = MAX_CAMERA_VALUE;
         vp.principal_x = fixed_in("[viewport] principal[0]", px, -m, m)?;
@@ -1179,7 +1265,46 @@ fn build_camera(c: &CameraSection, v: &ViewportSection) -> Result<Camera, String
     }
     vp.pixel_width = v.pixel_aspect[0];
     vp.pixel_height = v.pixel_aspect[1];
-    Camera::look_at(eye, target, up, lens, vp).map_err(|e| {
+    let built = match (c.projection, c.width, c.height) {
+        (ProjectionKey::Perspective, None, None) => Camera::look_at(eye, target, up, lens, vp),
+        (ProjectionKey::Perspective, _, _) => {
+            return Err(
+                "[camera] width and height are for projection = \"orthographic\"; a \
+                 perspective camera takes fov_deg"
+                    .into(),
+            )
+        }
+        (ProjectionKey::Orthographic, Some(e), None)
+        | (ProjectionKey::Orthographic, None, Some(e)) => {
+            let key = if c.width.is_some() { "width" } else { "height" };
+            let extent = fixed_in(
+                &format!("[camera] {key}"),
+                e,
+                1.0 / 65536.0,
+                MAX_CAMERA_VALUE,
+            )?;
+            let axis = if c.width.is_some() {
+                FovAxis::Horizontal
+            } else {
+                FovAxis::Vertical
+            };
+            let view = OrthoView {
+                extent,
+                axis,
+                near,
+                far,
+            };
+            Camera::look_at_orthographic(eye, target, up, view, vp)
+        }
+        (ProjectionKey::Orthographic, _, _) => {
+            return Err(
+                "[camera] projection = \"orthographic\" needs exactly one of `width` or \
+                 `height` (the view's extent in world units)"
+                    .into(),
+            )
+        }
+    };
+    built.map_err(|e| {
         format!(
             "[camera]: cannot build the camera: {}",
             camera_error_words(e)
@@ -1241,13 +1366,14 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
     let camera = build_camera(&file.camera, &file.viewport).map_err(|e| format!("{name}: {e}"))?;
     let (lut, ramps) = build_lut(&file.lut).map_err(|e| format!("{name}: {e}"))?;
     let dir = path.parent().unwrap_or(Path::new("."));
+    let lines = LineIndex::of(text);
     let mut objects = Vec::new();
     let mut triangles_in = 0u64;
     for (k, spanned) in file.objects.iter().enumerate() {
         let o = spanned.get_ref();
-        let line = line_of(text, spanned.span().start);
+        let line = lines.line(spanned.span().start);
         let err = |e: String| format!("{name}: object {} (line {line}): {e}", k + 1);
-        let mut mesh = object_mesh(o, dir, text).map_err(err)?;
+        let mut mesh = object_mesh(o, dir, &lines).map_err(err)?;
         place(&mut mesh, o).map_err(err)?;
         let ramp = match file.lut.kind {
             LutKind::Grey => LuminanceRamp::GREY,
@@ -1310,6 +1436,7 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
         lights,
         background: file.render.background,
         depth_bits: file.render.depth_bits,
+        view: file.camera.clone(),
         triangles_in,
     })
 }
@@ -1338,7 +1465,9 @@ impl LoadedScene {
     /// Renders the frame with the core, in one pass or in bands of `band_rows` rows.
     ///
     /// Errors are in words ([`render_error_words`]); when the frame fails, each object is
-    /// rendered alone to name the first one that fails by itself (`object k of n`).
+    /// rendered alone to name the first one that fails by itself with the same error
+    /// (`object k of n`). An error no object causes alone (more objects than a stored
+    /// triangle can name, a store filled by all of them together) names none.
     pub fn render<D: DepthValue>(&self, band_rows: Option<u16>) -> Result<Frame<D>, String> {
         self.render_by::<D>(band_rows, Visibility::ZBuffer)
     }
@@ -1355,7 +1484,7 @@ impl LoadedScene {
         let objects = self.core_objects(None)?;
         let scene = self.core_scene(&objects);
         let mut pairs = Vec::new();
-        let facts = crate::core_render::mesh_facts(&scene, &mut pairs);
+        let facts = crate::core_render::mesh_facts(&scene, &mut pairs)?;
         let renderer = SceneRenderer::<SUBPIXEL_BITS>::new(&scene)
             .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
         crate::core_render::render_planned(&renderer, &facts, budget)
@@ -1389,19 +1518,28 @@ impl LoadedScene {
         band_rows: Option<u16>,
         visibility: Visibility,
     ) -> Result<Frame<D>, String> {
-        self.render_objects::<D>(band_rows, None, visibility)
-            .map_err(|e| {
-                let n = self.objects.len();
-                let culprit = (0..n).find(|&k| {
-                    self.render_objects::<D>(band_rows, Some(k), visibility)
-                        .is_err()
-                });
-                match culprit {
-                    Some(k) if n > 1 => format!("render: object {} of {n}: {e}", k + 1),
-                    Some(_) => format!("render: object 1: {e}"),
-                    None => format!("render: {e}"),
-                }
-            })
+        let e = match self.render_objects::<D>(band_rows, None, visibility) {
+            Ok(frame) => return Ok(frame),
+            Err(e) => e,
+        };
+        let n = self.objects.len();
+        let words = e.words();
+        if let FrameError::Render(zscan::render::RenderError::TooManyObjects) = e {
+            return Err(format!(
+                "render: {words} (the scene has {n}; --visibility {visibility} stores \
+                 triangles, which name their object in one byte)"
+            ));
+        }
+        // An object is named only when it fails alone with the same error.
+        let culprit = (0..n).find(|&k| {
+            self.render_objects::<D>(band_rows, Some(k), visibility)
+                .is_err_and(|alone| alone.words() == words)
+        });
+        Err(match culprit {
+            Some(k) if n > 1 => format!("render: object {} of {n}: {words}", k + 1),
+            Some(_) => format!("render: object 1: {words}"),
+            None => format!("render: {words}"),
+        })
     }
 
     /// [`LoadedScene::render`] of every object, or of object `only` alone.
@@ -1410,24 +1548,24 @@ impl LoadedScene {
         band_rows: Option<u16>,
         only: Option<usize>,
         visibility: Visibility,
-    ) -> Result<Frame<D>, String> {
+    ) -> Result<Frame<D>, FrameError> {
         let vp = *self.camera.viewport();
         let (w, h) = (vp.width, vp.height);
-        super::check_picture_size("[viewport] width × height", w, h)?;
-        let objects = self.core_objects(only)?;
+        super::check_picture_size("[viewport] width × height", w, h).map_err(FrameError::Setup)?;
+        let objects = self.core_objects(only).map_err(FrameError::Setup)?;
         let scene = self.core_scene(&objects);
         let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
-            .map_err(|e| format!("camera: {}", render_error_words(&e)))?;
+            .map_err(|e| FrameError::Setup(format!("camera: {}", render_error_words(&e))))?;
         if visibility != Visibility::ZBuffer {
             let band = band_rows.unwrap_or(1);
-            let (pixels, stats) = crate::core_render::render_visible(
+            let (pixels, stats) = crate::core_render::render_visible_at::<D, SUBPIXEL_BITS>(
                 &renderer,
                 (w, h),
                 visibility,
                 Some(PAINTER_SPLITS),
                 band,
             )
-            .map_err(|e| render_error_words(&e))?;
+            .map_err(FrameError::Render)?;
             let bands = if visibility == Visibility::ScanLine {
                 band_count(h, band)
             } else {
@@ -1456,7 +1594,7 @@ impl LoadedScene {
                 polygons: &mut table,
             },
         )
-        .map_err(|e| render_error_words(&e))?;
+        .map_err(FrameError::Render)?;
         let bands = band_count(h, band_rows.unwrap_or(h));
         Ok(Frame {
             pixels,
@@ -1464,6 +1602,24 @@ impl LoadedScene {
             stats,
             bands,
         })
+    }
+}
+
+/// Why [`LoadedScene::render_objects`] drew no frame: the scene could not be set up (words),
+/// or the core refused it.
+enum FrameError {
+    /// Picture size, meshes, camera: in words.
+    Setup(String),
+    /// The core's error.
+    Render(zscan::render::RenderError),
+}
+
+impl FrameError {
+    fn words(&self) -> String {
+        match self {
+            FrameError::Setup(s) => s.clone(),
+            FrameError::Render(e) => render_error_words(e),
+        }
     }
 }
 
@@ -1479,11 +1635,11 @@ fn band_count(h: u16, band_rows: u16) -> u32 {
 /// reached (the core's own `Display` prints some inner errors by their Debug names).
 pub fn render_error_words(e: &zscan::render::RenderError) -> String {
     use zscan::geometry::matrix::MatrixError;
+    use zscan::lighting::LightingError;
+    use zscan::raster::triangle::DrawError;
     use zscan::render::ClipError;
     use zscan::render::ProjectError;
     use zscan::render::{RenderError as R, MAX_POLYGON_VERTICES};
-    use zscan::shade::lighting::LightingError;
-    use zscan::shade::span_writer::DrawError;
     let matrix = |m: &MatrixError| match m {
         MatrixError::OutOfRange => {
             "a linear entry would exceed ±64 or a translation would leave ±32768".to_string()
@@ -1504,6 +1660,9 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
             ProjectError::SubpixelBitsTooLarge => {
                 "projection: sub-pixel bits above the raster's limit of 16".into()
             }
+            ProjectError::Orthographic(stage) => {
+                format!("projection: {stage} needs a perspective camera, not the orthographic one")
+            }
         },
         R::Clip(c) => match c {
             ClipError::CapacityExceeded => format!(
@@ -1518,16 +1677,13 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
         },
         R::Draw(DrawError::Fill(f)) => format!("raster: {f}"),
         R::Lighting(l) => match l {
-            LightingError::TooManyLights => format!(
-                "lighting: more than {} lights",
-                zscan::shade::lighting::MAX_LIGHTS
-            ),
+            LightingError::TooManyLights => {
+                format!("lighting: more than {} lights", zscan::lighting::MAX_LIGHTS)
+            }
             LightingError::ZeroDirection => {
                 "lighting: a directional light has a zero direction".into()
             }
-            LightingError::OutputTooSmall => {
-                "lighting: a normal or scratch table is shorter than the mesh's".into()
-            }
+            LightingError::OutputTooSmall { .. } => l.to_string(),
             LightingError::Transform(m) => format!("lighting transform: {}", matrix(m)),
         },
         other => other.to_string(),
@@ -1576,21 +1732,6 @@ fn finish<D: DepthValue + Into<u64>>(
     scene: &LoadedScene,
 ) -> Result<(), CliError> {
     let visibility = args.visibility.0.unwrap_or(Visibility::ZBuffer);
-    if args.depth_out.is_some()
-        && matches!(
-            visibility,
-            Visibility::BackFace | Visibility::Painter | Visibility::Warnock
-        )
-    {
-        return Err(format!(
-            "--depth-out: --visibility {} keeps no depth buffer",
-            visibility
-        )
-        .into());
-    }
-    if args.bands == Some(0) {
-        return Err("--bands 0: a band needs at least 1 row".into());
-    }
     let frame = scene.render_by::<D>(args.bands, visibility)?;
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
@@ -1613,11 +1754,8 @@ fn finish<D: DepthValue + Into<u64>>(
         let objects = scene.core_objects(None)?;
         let vertices: usize = objects.iter().map(|o| o.mesh.vertices().len()).sum();
         let polygons: usize = objects.iter().map(|o| o.mesh.polygon_count()).sum();
-        // The scan-line's band depth is 32-bit (render_visible), the z-buffer's the scene's.
-        let depth_bytes = match visibility {
-            Visibility::ZBuffer => D::BITS as usize / 8,
-            _ => 4,
-        };
+        // The scan-line's band depth and the z-buffer's are the scene's (render_visible_at).
+        let depth_bytes = D::BITS as usize / 8;
         let ram_bytes = crate::core_render::ram_bytes::<SUBPIXEL_BITS>(
             visibility,
             (w, h),
@@ -1652,33 +1790,23 @@ fn finish<D: DepthValue + Into<u64>>(
             }),
             Visibility::BackFace | Visibility::ZBuffer => serde_json::json!({}),
         };
-        let json = serde_json::json!({
-            "width": w,
-            "height": h,
-            "bands": frame.bands,
-            "band_rows": band_rows,
-            "depth_bits": D::BITS,
-            "visibility": visibility.name(),
-            "subpixel_bits": SUBPIXEL_BITS,
-            "objects": scene.objects.len(),
-            "triangles_in": scene.triangles_in,
-            "polygons_in": s.polygons_in,
-            "culled": s.culled,
-            "rejected": s.rejected,
-            "clipped": s.clipped,
-            "triangles_drawn": s.triangles_drawn,
-            "pixels_covered": s.pixels_covered,
-            "pixels_written": s.pixels_written,
-            "ram_bytes": ram_bytes,
-            "method": method,
-        });
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        }
-        let text = serde_json::to_string_pretty(&json)?;
-        fs::write(p, text + "\n").map_err(|e| format!("{}: {e}", p.display()))?;
+        let json = stats_json(
+            scene,
+            StatsFrame {
+                size: (w, h),
+                bands: frame.bands,
+                band_rows,
+                depth_bits: D::BITS,
+                visibility,
+                stats: &s,
+                ram_bytes,
+            },
+            method,
+        );
+        write_stats(p, &json)?;
     }
-    println!("{}", summary(&args.output, w, h, &frame.stats));
+    warn_if_empty(scene, &frame.stats);
+    crate::outln!("{}", summary(&args.output, w, h, &frame.stats))?;
     Ok(())
 }
 
@@ -1686,13 +1814,7 @@ fn finish<D: DepthValue + Into<u64>>(
 /// prints the plan and its reasons, draws the frame as planned.
 fn finish_auto(args: &RenderArgs, scene: &LoadedScene) -> Result<(), CliError> {
     use zscan::visibility::DepthWidth;
-    if args.bands.is_some() {
-        return Err("--bands: --visibility auto picks the band height".into());
-    }
     let budget = args.ram_budget.unwrap_or(usize::MAX);
-    if args.depth_out.is_some() {
-        return Err("--depth-out: --visibility auto keeps no whole depth picture".into());
-    }
     let crate::core_render::PlannedFrame {
         plan,
         order,
@@ -1700,7 +1822,7 @@ fn finish_auto(args: &RenderArgs, scene: &LoadedScene) -> Result<(), CliError> {
         stats,
     } = scene.render_planned(budget)?;
     for line in plan.to_string().lines() {
-        println!("plan: {line}");
+        crate::outln!("plan: {line}")?;
     }
     let vp = *scene.camera.viewport();
     let (w, h) = (vp.width, vp.height);
@@ -1714,14 +1836,20 @@ fn finish_auto(args: &RenderArgs, scene: &LoadedScene) -> Result<(), CliError> {
             DepthWidth::U16 => 16,
             DepthWidth::U32 => 32,
         };
-        let json = serde_json::json!({
-            "width": w,
-            "height": h,
-            "bands": band_count(h, plan.band_rows),
-            "band_rows": plan.band_rows,
-            "depth_bits": depth_bits,
-            "visibility": plan.visibility.name(),
-            "plan": {
+        let mut json = stats_json(
+            scene,
+            StatsFrame {
+                size: (w, h),
+                bands: band_count(h, plan.band_rows),
+                band_rows: plan.band_rows,
+                depth_bits,
+                visibility: plan.visibility,
+                stats: &stats,
+                ram_bytes: b.total(),
+            },
+            serde_json::json!({}),
+        );
+        json["plan"] = serde_json::json!({
                 "budget": args.ram_budget,
                 "method": plan.visibility.name(),
                 "method_reason": plan.method_reason.to_string(),
@@ -1739,26 +1867,185 @@ fn finish_auto(args: &RenderArgs, scene: &LoadedScene) -> Result<(), CliError> {
                     "tables": b.tables,
                     "total": b.total(),
                 },
-            },
-            "subpixel_bits": SUBPIXEL_BITS,
-            "objects": scene.objects.len(),
-            "triangles_in": scene.triangles_in,
-            "polygons_in": stats.polygons_in,
-            "culled": stats.culled,
-            "rejected": stats.rejected,
-            "clipped": stats.clipped,
-            "triangles_drawn": stats.triangles_drawn,
-            "pixels_covered": stats.pixels_covered,
-            "pixels_written": stats.pixels_written,
         });
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        }
-        let text = serde_json::to_string_pretty(&json)?;
-        fs::write(p, text + "\n").map_err(|e| format!("{}: {e}", p.display()))?;
+        write_stats(p, &json)?;
     }
-    println!("{}", summary(&args.output, w, h, &stats));
+    warn_if_empty(scene, &stats);
+    crate::outln!("{}", summary(&args.output, w, h, &stats))?;
     Ok(())
+}
+
+/// What `--stats` says of a frame, whatever the method (auto included).
+struct StatsFrame<'a> {
+    /// Width and height, pixels.
+    size: (u16, u16),
+    /// Bands drawn.
+    bands: u32,
+    /// Rows of a band (the picture's height when drawn in one).
+    band_rows: u16,
+    /// Bits of a depth sample (0: no depth).
+    depth_bits: u32,
+    /// The method that drew the frame.
+    visibility: Visibility,
+    /// The core's counts.
+    stats: &'a RenderStats,
+    /// Every caller buffer the frame used, bytes.
+    ram_bytes: usize,
+}
+
+/// The `--stats` JSON of the module doc (the same keys for every method; `--visibility auto`
+/// adds `plan`), `method` the method's own counts.
+fn stats_json(
+    scene: &LoadedScene,
+    f: StatsFrame<'_>,
+    method: serde_json::Value,
+) -> serde_json::Value {
+    let s = f.stats;
+    serde_json::json!({
+        "width": f.size.0,
+        "height": f.size.1,
+        "bands": f.bands,
+        "band_rows": f.band_rows,
+        "depth_bits": f.depth_bits,
+        "visibility": f.visibility.name(),
+        "subpixel_bits": SUBPIXEL_BITS,
+        "objects": scene.objects.len(),
+        "triangles_in": scene.triangles_in,
+        "polygons_in": s.polygons_in,
+        "culled": s.culled,
+        "rejected": s.rejected,
+        "clipped": s.clipped,
+        "triangles_drawn": s.triangles_drawn,
+        "pixels_covered": s.pixels_covered,
+        "pixels_written": s.pixels_written,
+        "ram_bytes": f.ram_bytes,
+        "method": method,
+    })
+}
+
+/// Writes the `--stats` JSON to `path` (its folder created).
+fn write_stats(path: &Path, json: &serde_json::Value) -> Result<(), CliError> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let text = serde_json::to_string_pretty(json)?;
+    fs::write(path, text + "\n").map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(())
+}
+
+/// Refuses, in words, the options the chosen method cannot honour (before the scene is
+/// read): `--bands` applies to the methods that draw in bands (z-buffer, scan-line),
+/// `--depth-out` to the one that keeps a whole depth picture (z-buffer), `--ram-budget` to
+/// `auto`.
+fn check_options(args: &RenderArgs) -> Result<(), String> {
+    if args.bands == Some(0) {
+        return Err("--bands 0: a band needs at least 1 row".into());
+    }
+    let Some(v) = args.visibility.0 else {
+        if args.bands.is_some() {
+            return Err("--bands: --visibility auto picks the band height itself".into());
+        }
+        if args.depth_out.is_some() {
+            return Err(
+                "--depth-out: --visibility auto keeps no whole depth picture \
+                 (only --visibility zbuffer writes one)"
+                    .into(),
+            );
+        }
+        return Ok(());
+    };
+    if args.ram_budget.is_some() {
+        return Err("--ram-budget: only --visibility auto plans within a budget".into());
+    }
+    if args.depth_out.is_some() && v != Visibility::ZBuffer {
+        let why = if v == Visibility::ScanLine {
+            "keeps no whole depth buffer, only the depth of one band of rows at a time"
+        } else {
+            "keeps no depth buffer"
+        };
+        return Err(format!(
+            "--depth-out: --visibility {v} {why} (only --visibility zbuffer writes one)"
+        ));
+    }
+    if args.bands.is_some() && !matches!(v, Visibility::ZBuffer | Visibility::ScanLine) {
+        return Err(format!(
+            "--bands: --visibility {v} draws the whole frame at once, not in bands \
+             (--bands applies to --visibility zbuffer and scanline)"
+        ));
+    }
+    Ok(())
+}
+
+impl LoadedScene {
+    /// Why a frame of this scene drew no pixel, in words for a warning: no object, every
+    /// object beyond `far` or nearer than `near` (depth along the view direction, from the
+    /// scene file's values), the eye inside a culled object's bounds (its faces are seen from
+    /// behind), or else outside the field of view or culled.
+    pub fn empty_picture_cause(&self) -> String {
+        let c = &self.view;
+        if self.objects.is_empty() {
+            return "the scene has no objects".into();
+        }
+        let Some(dir) = normalize(sub(c.target, c.eye)) else {
+            return "nothing is drawn".into();
+        };
+        let world = |v: &Vec3| v.bits().map(|b| b as f64 / 65536.0);
+        let mut nearest = f64::INFINITY;
+        let (mut beyond, mut before) = (0, 0);
+        let mut inside = None;
+        for (k, o) in self.objects.iter().enumerate() {
+            let depths = o.vertices.iter().map(|v| dot(sub(world(v), c.eye), dir));
+            let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
+                (lo.min(d), hi.max(d))
+            });
+            nearest = nearest.min(lo);
+            beyond += usize::from(lo > c.far);
+            before += usize::from(hi < c.near);
+            let within = (0..3).all(|a| {
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for v in &o.vertices {
+                    let p = world(v)[a];
+                    (lo, hi) = (lo.min(p), hi.max(p));
+                }
+                lo < c.eye[a] && c.eye[a] < hi
+            });
+            if within && o.cull && inside.is_none() {
+                inside = Some(k);
+            }
+        }
+        let n = self.objects.len();
+        if beyond == n {
+            return format!(
+                "every object lies beyond [camera] far = {} (the nearest at depth {nearest:.3})",
+                c.far
+            );
+        }
+        if before == n {
+            return format!(
+                "every object lies nearer than [camera] near = {} or behind the camera",
+                c.near
+            );
+        }
+        if let Some(k) = inside {
+            return format!(
+                "the camera is inside object {} (its faces are seen from behind and culled; \
+                 cull = false draws them)",
+                k + 1
+            );
+        }
+        "every object is outside the field of view, beyond far, nearer than near or culled".into()
+    }
+}
+
+/// On standard error: a warning that the picture is empty, with its cause, when the frame
+/// covered no pixel (the picture is right, and the exit stays 0).
+fn warn_if_empty(scene: &LoadedScene, stats: &RenderStats) {
+    if stats.pixels_covered == 0 {
+        crate::note!(
+            "zscan render: warning: the picture is empty: {}",
+            scene.empty_picture_cause()
+        );
+    }
 }
 
 /// The one-line summary `zscan render` prints on success.
@@ -1773,12 +2060,7 @@ pub fn summary(output: &Path, w: u16, h: u16, stats: &RenderStats) -> String {
 
 /// Runs `zscan render`.
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
-    if args.bands == Some(0) {
-        return Err("--bands: a band needs at least one row".into());
-    }
-    if args.ram_budget.is_some() && args.visibility.0.is_some() {
-        return Err("--ram-budget: only --visibility auto plans within a budget".into());
-    }
+    check_options(&args)?;
     let scene = load_scene(&args.scene)?;
     if args.visibility.0.is_none() {
         return finish_auto(&args, &scene);

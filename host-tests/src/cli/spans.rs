@@ -13,12 +13,13 @@
 //! ## Output
 //! For each polygon in input order, a line `polygon K` (`K` from 0), then one line `y x0 x1` per
 //! maximal horizontal run of covered pixels, `x0 ≤ x1` **inclusive**, sorted by `y` then `x0`.
-//! Coverage is the library's fill rule (`zscan::raster::polygon`: top-left rule, nonzero
-//! winding); the window is the polygon's whole bounding box. Nothing is printed when the input
+//! Coverage is the library's fill rule (`zscan::raster::polygon`: top-left rule, and for
+//! self-intersecting polygons the nonzero winding rule, or the even-odd rule with
+//! `--rule even-odd`); the window is the polygon's whole bounding box. Nothing is printed when the input
 //! has an error.
 use super::CliError;
-use std::io::{BufWriter, Read, Write};
-use zscan::raster::polygon::{fill_polygon, PolygonEdges};
+use std::io::{Read, Write};
+use zscan::raster::polygon::{fill_polygon_with_rule, FillRule, PolygonEdges};
 use zscan::raster::{Span, SubpixelPoint, Window};
 use zscan::raster::{MAX_COORD, MAX_SUBPIXEL_BITS};
 
@@ -32,9 +33,31 @@ pub struct SpansArgs {
     /// of 2^-S pixel.
     #[arg(long, default_value_t = 4)]
     pub subpixel_bits: u32,
+    /// Which pixels of a self-intersecting polygon are inside: `nonzero` (winding number not
+    /// zero) or `even-odd` (an odd number of edges at or left of the pixel on its row).
+    #[arg(long, value_enum, default_value_t = RuleArg::Nonzero)]
+    pub rule: RuleArg,
     /// Input file: one vertex `x y` per line (pixels, decimals allowed), a blank line between
     /// polygons, `#` comments; standard input when absent.
     pub file: Option<std::path::PathBuf>,
+}
+
+/// The `--rule` values: the core's [`FillRule`] by its command-line name.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RuleArg {
+    /// Nonzero winding (the default).
+    Nonzero,
+    /// Even-odd parity (the course's algorithm 2.4).
+    EvenOdd,
+}
+
+impl From<RuleArg> for FillRule {
+    fn from(rule: RuleArg) -> Self {
+        match rule {
+            RuleArg::Nonzero => FillRule::NonZero,
+            RuleArg::EvenOdd => FillRule::EvenOdd,
+        }
+    }
 }
 
 /// A polygon read from the input: its vertices in units of `2^-S` pixel and the line where it
@@ -62,18 +85,20 @@ pub fn run(args: SpansArgs) -> Result<(), CliError> {
                 .map_err(|e| format!("cannot read standard input: {e}"))?;
         }
     }
-    let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
-    write_spans(&text, args.subpixel_bits, &mut out)?;
-    out.flush()
-        .map_err(|e| format!("cannot write standard output: {e}"))?;
-    Ok(())
+    let mut out = super::out::Stdout::new();
+    write_spans(&text, args.subpixel_bits, args.rule.into(), &mut out)?;
+    Ok(out.finish()?)
 }
 
 /// Parses `input` and writes the output described in the module doc to `out`. The whole input
 /// is parsed and every polygon checked (capacity) before anything is written, so an input
 /// error leaves `out` untouched; spans are then streamed to `out` as the fill emits them.
-pub fn write_spans(input: &str, subpixel_bits: u32, out: &mut impl Write) -> Result<(), CliError> {
+pub fn write_spans(
+    input: &str,
+    subpixel_bits: u32,
+    rule: FillRule,
+    out: &mut impl Write,
+) -> Result<(), CliError> {
     let polygons = parse_polygons(input, subpixel_bits)?;
     let context = |k: usize, p: &InputPolygon, e: String| {
         format!(
@@ -85,7 +110,7 @@ pub fn write_spans(input: &str, subpixel_bits: u32, out: &mut impl Write) -> Res
     for (k, p) in polygons.iter().enumerate() {
         check_polygon(&p.vertices, subpixel_bits).map_err(|e| context(k, p, e))?;
     }
-    let werr = |e: std::io::Error| format!("cannot write output: {e}");
+    let werr = super::out::Stdout::error;
     for (k, p) in polygons.iter().enumerate() {
         writeln!(out, "polygon {k}").map_err(werr)?;
         let mut io_error: Option<std::io::Error> = None;
@@ -102,6 +127,7 @@ pub fn write_spans(input: &str, subpixel_bits: u32, out: &mut impl Write) -> Res
         for_each_span(
             &p.vertices,
             subpixel_bits,
+            rule,
             &mut |s| match pending.as_mut() {
                 Some(last) if last.y == s.y && last.x1 == s.x0 => last.x1 = s.x1,
                 _ => {
@@ -259,24 +285,34 @@ pub fn check_polygon(vertices: &[(i32, i32)], subpixel_bits: u32) -> Result<(), 
     dispatch!(subpixel_bits, check_at(vertices))
 }
 
-/// Calls `emit` with the covered spans of one polygon (vertices in units of `2^-S` pixel),
-/// half-open, in row order and left to right, as the library's fill emits them.
+/// Calls `emit` with the covered spans of one polygon (vertices in units of `2^-S` pixel)
+/// under `rule`, half-open, in row order and left to right, as the library's fill emits them.
 pub fn for_each_span(
     vertices: &[(i32, i32)],
     subpixel_bits: u32,
+    rule: FillRule,
     emit: &mut dyn FnMut(Span),
 ) -> Result<(), String> {
-    dispatch!(subpixel_bits, fill_at(vertices, emit))
+    dispatch!(subpixel_bits, fill_at(vertices, rule, emit))
 }
 
-/// The covered spans of one polygon (vertices in units of `2^-S` pixel, `S` given at run time),
-/// half-open, sorted by row then column, touching runs merged.
-pub fn polygon_spans(vertices: &[(i32, i32)], subpixel_bits: u32) -> Result<Vec<Span>, String> {
+/// The covered spans of one polygon (vertices in units of `2^-S` pixel, `S` given at run time)
+/// under `rule`, half-open, sorted by row then column, touching runs merged.
+pub fn polygon_spans(
+    vertices: &[(i32, i32)],
+    subpixel_bits: u32,
+    rule: FillRule,
+) -> Result<Vec<Span>, String> {
     let mut spans: Vec<Span> = Vec::new();
-    for_each_span(vertices, subpixel_bits, &mut |s| match spans.last_mut() {
-        Some(last) if last.y == s.y && last.x1 == s.x0 => last.x1 = s.x1,
-        _ => spans.push(s),
-    })?;
+    for_each_span(
+        vertices,
+        subpixel_bits,
+        rule,
+        &mut |s| match spans.last_mut() {
+            Some(last) if last.y == s.y && last.x1 == s.x0 => last.x1 = s.x1,
+            _ => spans.push(s),
+        },
+    )?;
     spans.sort_unstable_by_key(|s| (s.y, s.x0));
     Ok(spans)
 }
@@ -298,6 +334,7 @@ fn check_at<const S: u32>(vertices: &[(i32, i32)]) -> Result<(), String> {
 /// [`for_each_span`] for a compile-time `S`.
 fn fill_at<const S: u32>(
     vertices: &[(i32, i32)],
+    rule: FillRule,
     emit: &mut dyn FnMut(Span),
 ) -> Result<(), String> {
     let points = to_points::<S>(vertices);
@@ -311,7 +348,7 @@ fn fill_at<const S: u32>(
     let min_y = points.iter().map(|p| p.y).min().unwrap_or(0) >> S;
     let max_y = points.iter().map(|p| p.y).max().unwrap_or(0) >> S;
     let window = Window::new(min_x, min_y, max_x + 1, max_y + 1);
-    fill_polygon::<S, MAX_EDGES>(&points, &window, emit).map_err(|e| e.to_string())
+    fill_polygon_with_rule::<S, MAX_EDGES>(&points, &window, rule, emit).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

@@ -70,20 +70,24 @@ pub fn points(count: Option<Counter<'_>>) -> Result<Vec<Point>, CliError> {
 }
 
 /// Prints the table of the points.
-pub fn print(points: &[Point]) {
-    println!(
+pub fn print(points: &[Point]) -> Result<(), super::out::OutputError> {
+    crate::outln!(
         "\n{:<18} {:<34} {:>12} {:>12}",
-        "scene", "method", "wrong px", "host instr"
-    );
+        "scene",
+        "method",
+        "wrong px",
+        "host instr"
+    )?;
     for p in points {
-        println!(
+        crate::outln!(
             "{:<18} {:<34} {:>12} {:>12}",
             p.trap.name(),
             p.method.label(),
             p.wrong,
             p.instructions.map_or("-".into(), |i| i.to_string())
-        );
+        )?;
     }
+    Ok(())
 }
 
 /// What callgrind runs: the frame of `tag` (`trap:method`), its core call in the measured
@@ -99,7 +103,7 @@ pub fn run_one(tag: &str) -> Result<(), CliError> {
     let picture = trap
         .with(|r| method.draw(std::hint::black_box(r)))
         .map_err(|e| super::render::render_error_words(&e))?;
-    println!("{tag}: {} pixels", picture.len());
+    crate::outln!("{tag}: {} pixels", picture.len())?;
     Ok(())
 }
 

@@ -21,6 +21,10 @@
 //! on an edge where the winding starts (the polygon's left boundary) is in, and one exactly on
 //! an edge where it returns to zero (the right boundary) is out.
 //!
+//! The even-odd rule ([`RefRule::EvenOdd`]) counts the same edges without their sign: the
+//! pixel is covered iff an odd number of edges count for it (the parity of the count is the
+//! parity of the winding number).
+//!
 //! Cost: `O(pixels · edges)`; meant for tests on small polygons, or on a small window of a
 //! large one ([`covered_pixels_in`]).
 
@@ -67,7 +71,28 @@ pub fn winding(vertices: &[Vertex], s: u32, x: i64, y: i64) -> i64 {
 
 /// True when pixel `(x, y)` is covered (winding number not zero).
 pub fn covered(vertices: &[Vertex], s: u32, x: i64, y: i64) -> bool {
-    vertices.len() >= 3 && winding(vertices, s, x, y) != 0
+    covered_by(vertices, s, x, y, RefRule::NonZero)
+}
+
+/// Which count decides coverage (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RefRule {
+    /// The winding number is not zero.
+    NonZero,
+    /// The number of counting edges is odd.
+    EvenOdd,
+}
+
+/// True when pixel `(x, y)` is covered under `rule`.
+pub fn covered_by(vertices: &[Vertex], s: u32, x: i64, y: i64, rule: RefRule) -> bool {
+    if vertices.len() < 3 {
+        return false;
+    }
+    let w = winding(vertices, s, x, y);
+    match rule {
+        RefRule::NonZero => w != 0,
+        RefRule::EvenOdd => w.rem_euclid(2) == 1,
+    }
 }
 
 /// `⌊v / 2^s⌋`.
@@ -98,13 +123,23 @@ pub fn pixel_bounds(vertices: &[Vertex], s: u32) -> (i64, i64, i64, i64) {
 pub fn covered_pixels_in(
     vertices: &[Vertex],
     s: u32,
+    rect: (i64, i64, i64, i64),
+) -> BTreeSet<(i64, i64)> {
+    covered_pixels_in_by(vertices, s, rect, RefRule::NonZero)
+}
+
+/// [`covered_pixels_in`] under `rule`.
+pub fn covered_pixels_in_by(
+    vertices: &[Vertex],
+    s: u32,
     (x0, y0, x1, y1): (i64, i64, i64, i64),
+    rule: RefRule,
 ) -> BTreeSet<(i64, i64)> {
     let (bx0, by0, bx1, by1) = pixel_bounds(vertices, s);
     let mut set = BTreeSet::new();
     for y in y0.max(by0)..y1.min(by1) {
         for x in x0.max(bx0)..x1.min(bx1) {
-            if covered(vertices, s, x, y) {
+            if covered_by(vertices, s, x, y, rule) {
                 set.insert((x, y));
             }
         }
@@ -137,7 +172,13 @@ pub fn spans_of(pixels: &BTreeSet<(i64, i64)>) -> Vec<RefSpan> {
 
 /// All covered pixels of the polygon as maximal half-open runs, sorted by row then column.
 pub fn covered_spans(vertices: &[Vertex], s: u32) -> Vec<RefSpan> {
-    spans_of(&covered_pixels(vertices, s))
+    covered_spans_by(vertices, s, RefRule::NonZero)
+}
+
+/// [`covered_spans`] under `rule`.
+pub fn covered_spans_by(vertices: &[Vertex], s: u32, rule: RefRule) -> Vec<RefSpan> {
+    let bounds = pixel_bounds(vertices, s);
+    spans_of(&covered_pixels_in_by(vertices, s, bounds, rule))
 }
 
 #[cfg(test)]
@@ -157,6 +198,14 @@ mod tests {
         // In sub-pixel units (S = 2), the same square.
         let sq4: Vec<_> = sq.iter().map(|&(x, y)| (x * 4, y * 4)).collect();
         assert_eq!(covered_pixels(&sq4, 2), expect);
+    }
+
+    #[test]
+    fn even_odd_rule_leaves_a_pentagram_centre_empty() {
+        let star = [(10, 0), (16, 19), (0, 7), (20, 7), (4, 19)];
+        assert!(!covered_by(&star, 0, 10, 10, RefRule::EvenOdd));
+        assert!(covered_by(&star, 0, 10, 3, RefRule::EvenOdd));
+        assert!(covered_by(&star, 0, 10, 10, RefRule::NonZero));
     }
 
     #[test]

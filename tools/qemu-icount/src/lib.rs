@@ -25,11 +25,25 @@
 //! conditional instruction (IT block) counts as executed, and an interrupt handler running
 //! inside a region is counted. QEMU must run with a single vCPU (Cortex-M boards have one).
 //!
+//! # Cycle estimate
+//! With `cpu=m4` or `cpu=m0plus` (options: `div=<2..12>` cycles per Cortex-M4 division, default
+//! 12; `mul=<1|32>` cycles per Cortex-M0+ multiply, default 1), each closed region also prints
+//! `qemu-icount: cycles <k> <cycles> taken=<branches> divisions=<n>`: every instruction of
+//! each executed block weighted by the core's timing table (`cycles.rs`, whose module doc
+//! lists the assumptions: zero wait states, no cache, `P` = 2 on the Cortex-M4, …). A block's
+//! last instruction is its only possible branch (TCG ends a block at every branch); a
+//! conditional one is taken when the next block executed does not start right after it.
+//! Instruction bytes are decoded once per translation; the estimate costs nothing when
+//! `cpu=` is absent.
+//!
 //! Counts are exact because TCG calls the execute callback once per execution of a block and a
 //! block always runs to its end unless an exception leaves it (none occurs in the measured code);
 //! with `-icount`, QEMU retranslates shorter blocks instead of stopping one half-way, and
 //! those shorter blocks are announced to this plugin with their own sizes.
 
+mod cycles;
+
+use cycles::{block_cost, BlockCost, Model};
 use qemu_plugin::{
     install::{Args, Info},
     plugin::{HasCallbacks, Register},
@@ -51,6 +65,14 @@ static COUNT: AtomicU64 = AtomicU64::new(0);
 static REGIONS: AtomicU64 = AtomicU64::new(0);
 /// Protocol errors (begin inside a region, end outside one).
 static ERRORS: AtomicU64 = AtomicU64::new(0);
+/// Estimated cycles, taken branches and divisions in the open region (`cpu=` given).
+static CYCLES: AtomicU64 = AtomicU64::new(0);
+static TAKEN: AtomicU64 = AtomicU64::new(0);
+static DIVISIONS: AtomicU64 = AtomicU64::new(0);
+/// The block executed last: where it falls through to, and what taking its conditional exit
+/// adds (`u64::MAX` fall-through when its exit is not conditional).
+static PREVIOUS_FALLTHROUGH: AtomicU64 = AtomicU64::new(u64::MAX);
+static PREVIOUS_TAKEN_EXTRA: AtomicU64 = AtomicU64::new(0);
 /// Optional output file (`out=` argument).
 static OUT: Mutex<Option<std::fs::File>> = Mutex::new(None);
 /// Profile of one region (`profile=<file>,profile_region=<k>`): per translation block, its
@@ -64,6 +86,16 @@ type Profile = (String, u64, std::collections::HashMap<u64, (u64, u64)>);
 struct ICount {
     begin: u64,
     end: u64,
+    model: Option<Model>,
+}
+
+/// Records the block at `at` as executed, with its own exit (`fallthrough`, `taken_extra`;
+/// `u64::MAX` when the exit is not conditional); returns the extra cycles of the previous
+/// block's conditional exit when it was taken (the block at `at` is not its fall-through).
+fn follow(at: u64, fallthrough: u64, taken_extra: u64) -> Option<u64> {
+    let previous = PREVIOUS_FALLTHROUGH.swap(fallthrough, Ordering::Relaxed);
+    let extra = PREVIOUS_TAKEN_EXTRA.swap(taken_extra, Ordering::Relaxed);
+    (previous != u64::MAX && previous != at).then_some(extra)
 }
 
 fn parse_addr(s: &str) -> Option<u64> {
@@ -87,17 +119,30 @@ fn emit(line: &str) {
 }
 
 fn on_begin(_: VCPUIndex) {
+    follow(0, u64::MAX, 0);
     if OPEN.swap(true, Ordering::Relaxed) {
         ERRORS.fetch_add(1, Ordering::Relaxed);
     }
-    COUNT.store(0, Ordering::Relaxed);
+    for counter in [&COUNT, &CYCLES, &TAKEN, &DIVISIONS] {
+        counter.store(0, Ordering::Relaxed);
+    }
 }
 
-fn on_end(_: VCPUIndex) {
+fn on_end(model: Option<Model>) {
+    follow(0, u64::MAX, 0);
     if OPEN.swap(false, Ordering::Relaxed) {
         let k = REGIONS.fetch_add(1, Ordering::Relaxed);
         let n = COUNT.load(Ordering::Relaxed);
         emit(&format!("qemu-icount: region {k} {n}"));
+        if let Some(model) = model {
+            emit(&format!(
+                "qemu-icount: cycles {k} {} taken={} divisions={} model={}",
+                CYCLES.load(Ordering::Relaxed),
+                TAKEN.load(Ordering::Relaxed),
+                DIVISIONS.load(Ordering::Relaxed),
+                model.name(),
+            ));
+        }
     } else {
         ERRORS.fetch_add(1, Ordering::Relaxed);
     }
@@ -128,6 +173,7 @@ impl Register for ICount {
     fn register(&mut self, id: PluginId, args: &Args, _info: &Info) -> Result<()> {
         let mut begin = None;
         let mut end = None;
+        let (mut cpu, mut divide, mut multiply) = (None, None, None);
         for raw in &args.raw {
             let (k, v) = raw.split_once('=').unwrap_or((raw.as_str(), ""));
             match k {
@@ -146,15 +192,33 @@ impl Register for ICount {
                         None => *g = Some((String::new(), k, Default::default())),
                     }
                 }
+                "cpu" => cpu = Some(v.to_string()),
+                "div" => divide = v.parse::<u32>().ok().filter(|d| (2..=12).contains(d)),
+                "mul" => multiply = v.parse::<u32>().ok().filter(|m| *m == 1 || *m == 32),
                 "out" => match std::fs::File::create(v) {
                     Ok(f) => *OUT.lock().expect("not poisoned") = Some(f),
                     Err(e) => eprintln!("qemu-icount: cannot create {v}: {e}"),
                 },
                 _ => {
-                    eprintln!("qemu-icount: unknown argument {raw:?} (expected begin=, end=, out=)")
+                    eprintln!("qemu-icount: unknown argument {raw:?} (expected begin=, end=, out=, cpu=, div=, mul=, profile=, profile_region=)")
                 }
             }
         }
+        self.model = match (cpu.as_deref().map(Model::parse), divide, multiply) {
+            (None, None, None) => None,
+            (Some(Some(Model::M4 { divide: d })), div, None) => Some(Model::M4 {
+                divide: div.unwrap_or(d),
+            }),
+            (Some(Some(Model::M0Plus { multiply: m })), None, mul) => Some(Model::M0Plus {
+                multiply: mul.unwrap_or(m),
+            }),
+            _ => {
+                eprintln!(
+                    "qemu-icount: bad cycle model arguments: cpu=m4 [div=2..12] or cpu=m0plus [mul=1|32]"
+                );
+                std::process::exit(2);
+            }
+        };
         match (begin, end) {
             (Some(b), Some(e)) if b != e => {
                 self.begin = b;
@@ -180,30 +244,47 @@ impl HasCallbacks for ICount {
         if at == self.begin {
             tb.register_execute_callback(on_begin);
         } else if at == self.end {
-            tb.register_execute_callback(on_end);
+            let model = self.model;
+            tb.register_execute_callback(move |_| on_end(model));
         } else {
             let n = tb.size() as u64;
             let profiling = PROFILE.lock().map(|g| g.is_some()).unwrap_or(false);
-            if profiling {
-                tb.register_execute_callback(move |_| {
-                    if OPEN.load(Ordering::Relaxed) {
-                        COUNT.fetch_add(n, Ordering::Relaxed);
-                        if let Ok(mut g) = PROFILE.lock() {
-                            if let Some((_, region, blocks)) = g.as_mut() {
-                                if REGIONS.load(Ordering::Relaxed) == *region {
-                                    blocks.entry(at).or_insert((n, 0)).1 += 1;
-                                }
+            // The block's bytes, decoded once here: its cycles and its exit.
+            let (cost, fallthrough) = match self.model {
+                Some(model) => {
+                    let bytes: Vec<Vec<u8>> = tb.instructions().map(|i| i.data()).collect();
+                    let len: usize = bytes.iter().map(Vec::len).sum();
+                    let cost = block_cost(model, bytes.iter().map(Vec::as_slice));
+                    let exit = if cost.conditional {
+                        at + len as u64
+                    } else {
+                        u64::MAX
+                    };
+                    (cost, exit)
+                }
+                None => (BlockCost::default(), u64::MAX),
+            };
+            tb.register_execute_callback(move |_| {
+                let taken = follow(at, fallthrough, cost.taken_extra);
+                if !OPEN.load(Ordering::Relaxed) {
+                    return;
+                }
+                COUNT.fetch_add(n, Ordering::Relaxed);
+                let extra = taken.unwrap_or(0);
+                CYCLES.fetch_add(cost.cycles + extra, Ordering::Relaxed);
+                let branches = cost.always_taken + taken.is_some() as u64;
+                TAKEN.fetch_add(branches, Ordering::Relaxed);
+                DIVISIONS.fetch_add(cost.divisions, Ordering::Relaxed);
+                if profiling {
+                    if let Ok(mut g) = PROFILE.lock() {
+                        if let Some((_, region, blocks)) = g.as_mut() {
+                            if REGIONS.load(Ordering::Relaxed) == *region {
+                                blocks.entry(at).or_insert((n, 0)).1 += 1;
                             }
                         }
                     }
-                });
-            } else {
-                tb.register_execute_callback(move |_| {
-                    if OPEN.load(Ordering::Relaxed) {
-                        COUNT.fetch_add(n, Ordering::Relaxed);
-                    }
-                });
-            }
+                }
+            });
         }
         Ok(())
     }

@@ -1,0 +1,213 @@
+//! The raster target's slices: the frame's and the depth buffer's pixels handed to each span
+//! of a triangle as two slices.
+//!
+//! Role in the pipeline: between the span loop over a triangle's spans (`spans`) and the
+//! output buffers (`output`). A [`RasterTarget`] is a frame and its depth buffer prepared once
+//! for many triangles (the window both hold, their samples as whole slices); a
+//! [`DepthTarget`] a depth buffer alone (a shadow map's samples). Each hands the span loop
+//! every span's pixels through [`SpanTarget`].
+//!
+//! Numeric contract: a span slice is a checked `get_mut` (a span outside the buffers is
+//! skipped, never a panic); rows are absolute picture rows (a band's buffers start at their
+//! `top`); the window is half-open, as [`Window`].
+
+use super::span::{CountWritten, WrittenCount};
+use crate::output::{DepthBuffer, DepthValue, Framebuffer};
+use crate::raster::{Span, Window};
+
+/// A frame and its depth buffer prepared once for many triangles ([`draw_triangle_on`]): the
+/// window both hold and their samples as whole slices, so that a triangle's set-up does not
+/// recompute them.
+/// `C` says whether triangles drawn into it count their written pixels ([`WrittenCount`]).
+#[derive(Debug)]
+pub(crate) struct RasterTarget<'t, D, C = CountWritten> {
+    /// Where triangles are drawn: the buffers' window, or part of it ([`Self::restrict`]).
+    pub(super) window: Window,
+    /// The window both buffers hold.
+    buffers: Window,
+    pub(super) targets: Targets<'t, D>,
+    pub(super) count: C,
+}
+
+impl<'t, D: DepthValue> RasterTarget<'t, D> {
+    /// Borrows `frame` and `depth` for drawing; written pixels are counted.
+    pub fn new(frame: &'t mut Framebuffer<'_>, depth: &'t mut DepthBuffer<'_, D>) -> Self {
+        RasterTarget::with_count(frame, depth, CountWritten)
+    }
+}
+
+impl<'t, D: DepthValue, C: WrittenCount> RasterTarget<'t, D, C> {
+    /// Borrows `frame` and `depth` for drawing, counting written pixels as `count` says.
+    pub fn with_count(
+        frame: &'t mut Framebuffer<'_>,
+        depth: &'t mut DepthBuffer<'_, D>,
+        count: C,
+    ) -> Self {
+        let buffers = drawable_window(frame, depth);
+        RasterTarget {
+            window: buffers,
+            buffers,
+            targets: Targets::new(frame, depth),
+            count,
+        }
+    }
+}
+
+impl<D, C> RasterTarget<'_, D, C> {
+    /// Draws from now on only inside `window` ∩ the buffers' window: the pixels a triangle
+    /// then writes are exactly those of the whole triangle inside it (the fill clips spans to
+    /// the window, the tiny writer declines a triangle whose columns leave it). The visibility
+    /// methods draw parts of triangles this way (a band of rows, one side of a split, an area
+    /// of Warnock's subdivision).
+    #[inline]
+    pub(crate) fn restrict(&mut self, window: Window) {
+        self.window = self.buffers.intersect(&window);
+    }
+
+    /// The window both buffers hold (what [`Self::restrict`] intersects with).
+    #[inline]
+    pub(crate) fn buffers(&self) -> Window {
+        self.buffers
+    }
+}
+
+/// A depth buffer without a frame, prepared once for many depth-only triangles
+/// ([`draw_depth_only`]): a shadow map's samples, `width × height` from row 0.
+#[derive(Debug)]
+pub(crate) struct DepthTarget<'t, D> {
+    pub(super) window: Window,
+    pub(super) targets: DepthTargets<'t, D>,
+}
+
+impl<'t, D: DepthValue> DepthTarget<'t, D> {
+    /// Borrows `samples` (at least `width × height`, row by row) for drawing depths.
+    pub(crate) fn new(samples: &'t mut [D], width: u16, height: u16) -> Self {
+        DepthTarget {
+            window: Window::new(0, 0, width as i32, height as i32),
+            targets: DepthTargets::new(samples, width as usize),
+        }
+    }
+}
+
+/// The pixels both buffers hold (a band's rows, the frame's width).
+#[inline(always)]
+pub(crate) fn drawable_window<D: DepthValue>(
+    frame: &Framebuffer<'_>,
+    depth: &DepthBuffer<'_, D>,
+) -> Window {
+    frame.window().intersect(&Window::new(
+        0,
+        depth.top(),
+        depth.width() as i32,
+        depth.top() + depth.height() as i32,
+    ))
+}
+
+/// The colour and depth buffers of one triangle as whole slices, sliced per span without the
+/// per-span row and column checks of [`Framebuffer::span_mut`]: the spans come from
+/// [`fill_triangle`](crate::raster::triangle::fill_triangle) inside [`drawable_window`], whose rows both buffers hold and whose
+/// columns are `0..width` of both. Each span slice is still a checked `get_mut` (a span outside
+/// the slices is skipped, never a panic).
+#[derive(Debug)]
+pub(crate) struct Targets<'t, D> {
+    colours: &'t mut [u8],
+    colour_stride: usize,
+    colour_top: i32,
+    depths: &'t mut [D],
+    depth_stride: usize,
+    depth_top: i32,
+}
+
+impl<'t, D: DepthValue> Targets<'t, D> {
+    #[inline(always)]
+    pub(crate) fn new(frame: &'t mut Framebuffer<'_>, depth: &'t mut DepthBuffer<'_, D>) -> Self {
+        let (colour_stride, colour_top) = (frame.stride(), frame.top());
+        let (depth_stride, depth_top) = (depth.width() as usize, depth.top());
+        Targets {
+            colours: frame.pixels_mut(),
+            colour_stride,
+            colour_top,
+            depths: depth.samples_mut(),
+            depth_stride,
+            depth_top,
+        }
+    }
+
+    /// The `len` pixels from `(x, y)` in both buffers.
+    #[inline(always)]
+    pub(crate) fn span_at(&mut self, x: i32, y: i32, len: usize) -> Option<(&mut [u8], &mut [D])> {
+        self.span(&Span {
+            y,
+            x0: x,
+            x1: x + len as i32,
+        })
+    }
+
+    /// The pixels of span `s` (inside the drawable window) in both buffers.
+    #[inline(always)]
+    pub(crate) fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
+        let len = s.x1.wrapping_sub(s.x0) as usize;
+        let at = |y: i32, top: i32, stride: usize| {
+            (y.wrapping_sub(top) as usize)
+                .wrapping_mul(stride)
+                .wrapping_add(s.x0 as usize)
+        };
+        let c = at(s.y, self.colour_top, self.colour_stride);
+        let z = at(s.y, self.depth_top, self.depth_stride);
+        Some((
+            self.colours.get_mut(c..c.wrapping_add(len))?,
+            self.depths.get_mut(z..z.wrapping_add(len))?,
+        ))
+    }
+}
+
+/// Where the one triangle writer's span loop takes each span's pixels: the samples of the
+/// depth buffer and the colours beside them. [`Targets`] (a frame and its depth buffer) for the
+/// shaded kinds; [`DepthTargets`] (depth samples alone, no colours: an empty colour slice) for
+/// the depth-only kind, whose span ignores the colours.
+pub(crate) trait SpanTarget {
+    /// The depth samples' type.
+    type Depth: DepthValue;
+    /// The pixels of span `s` (inside the drawable window): colours and depth samples.
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [Self::Depth])>;
+}
+
+impl<D: DepthValue> SpanTarget for Targets<'_, D> {
+    type Depth = D;
+
+    #[inline(always)]
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
+        Targets::span(self, s)
+    }
+}
+
+/// The depth samples of a z-buffer without a frame (a shadow map's, `width` samples a row from
+/// row 0), sliced per span like [`Targets`]: one checked `get_mut` per span (a span outside
+/// the samples is skipped, never a panic). Its colours are empty: only the depth-only kind
+/// draws into it.
+#[derive(Debug)]
+pub(crate) struct DepthTargets<'t, D> {
+    depths: &'t mut [D],
+    stride: usize,
+}
+
+impl<'t, D: DepthValue> DepthTargets<'t, D> {
+    /// The samples `depths`, `stride` to a row.
+    #[inline(always)]
+    pub(crate) fn new(depths: &'t mut [D], stride: usize) -> Self {
+        DepthTargets { depths, stride }
+    }
+}
+
+impl<D: DepthValue> SpanTarget for DepthTargets<'_, D> {
+    type Depth = D;
+
+    #[inline(always)]
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
+        let len = s.x1.wrapping_sub(s.x0) as usize;
+        let at = (s.y as usize)
+            .wrapping_mul(self.stride)
+            .wrapping_add(s.x0 as usize);
+        Some((&mut [], self.depths.get_mut(at..at.wrapping_add(len))?))
+    }
+}
