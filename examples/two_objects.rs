@@ -8,11 +8,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut objects = [unit_cube(), unit_cube()].map(Object::new);
     objects[0].transform = Affine3::rotation_y(BinaryAngle::from_degrees(30));
     objects[1].transform = Affine3::translation(Vec3::from_int(1, 0, -1));
-    let lens = Lens::new(
-        BinaryAngle::from_degrees(60),
-        Coord::lit("0.5"),
-        Coord::lit("20"),
-    );
+    let fov = BinaryAngle::from_degrees(60);
+    let lens = Lens::new(fov, Coord::lit("0.5"), Coord::lit("20"));
     let (eye, up) = (Vec3::from_int(0, 1, 4), Vec3::from_int(0, 1, 0));
     let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(160, 120))?;
     let scene = Scene {
