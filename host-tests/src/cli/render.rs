@@ -1683,7 +1683,10 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
             LightingError::ZeroDirection => {
                 "lighting: a directional light has a zero direction".into()
             }
-            LightingError::OutputTooSmall { .. } => l.to_string(),
+            LightingError::OutputTooSmall { .. }
+            | LightingError::ZeroAxis { .. }
+            | LightingError::ConeOutOfRange { .. }
+            | LightingError::AttenuationOutOfRange { .. } => l.to_string(),
             LightingError::Transform(m) => format!("lighting transform: {}", matrix(m)),
         },
         other => other.to_string(),
