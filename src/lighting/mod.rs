@@ -18,7 +18,7 @@
 //! A light with `N·L ≤ 0` is behind the surface and contributes nothing (neither diffuse nor
 //! specular): the course's `cos θ` is taken as `cos⁺θ`, which is what the exercises assume.
 //!
-//! Local lights beyond the course's point source ([`spot`]): a [`Light::AttenuatedPoint`]
+//! Local lights beyond the course's point source ([`Attenuation`], [`Cone`]): a [`Light::AttenuatedPoint`]
 //! scales `I_p,i` by a distance attenuation `1/(k_c + k_l·d + k_q·d²)`, a [`Light::Spot`]
 //! also by a cone fall-off around its axis. The factors enter the sum above wherever it is
 //! evaluated (vertices, polygon centres, pixels), so every shading mode sees them.
@@ -36,7 +36,8 @@
 //! - `(cos⁺α)^n` by squaring in Q15 with `u32` products (`≤ 2^30`), rounded at each step: at
 //!   most 15 products, each off by at most 2^-16, so the power is within `15·2^-16` of the exact
 //!   power of the rounded cosine.
-//! - A local light's factor `f_att·f_spot` is Q15 (`0..=32768`, [`spot`]'s contract) and
+//! - A local light's factor `f_att·f_spot` is Q15 (`0..=32768`; ranges and precision in
+//!   [`Attenuation`] and [`Cone`]) and
 //!   scales that light's `k_d·cos θ + k_s·cos^n α` (below `2^32`), rounded once.
 //! - The sum is accumulated in Q30 `u64`: each `k·cos` product is below `2^31`, times
 //!   `I ≤ 255` below `2^39`, at most [`MAX_LIGHTS`] lights plus ambient: below `2^42`.

@@ -22,7 +22,15 @@
 //!   level `L·32/256 − 1/2`, `L` the `f64` Phong illumination (`reference::float_lighting`) at
 //!   the visible surface point of `reference::float_render` (perspective-correct position and
 //!   smooth area-weighted normal interpolated in 3D): the picture every mode approximates.
-//!   Maximum and mean over pixels covered in both frames.
+//!   Maximum and mean over pixels covered in both frames. For the sphere the reference
+//!   normal is the true sphere's at the visible point (the radial direction), not the
+//!   interpolated one: the surface the mesh approximates.
+//! - **Analytic normals** (course ch. 4 §2.5): the sphere again and a torus (32 rings ×
+//!   16 sides, radii 0.8 and 0.3, turned 60° about `x`, same camera), in exact Gouraud and
+//!   Phong, with the mesh's averaged vertex normals and with the generators' analytic ones
+//!   (`uv_sphere_normals`, `torus_normals`, given as a table: the frame does not compute
+//!   them); the torus's reference normal is its true normal at the visible point (from the
+//!   tube's centre line). Ringed marks; host panel only (not bench cases).
 use super::{visibility_chart, CliError};
 use crate::reference::float_lighting::{unit, FloatLight, FloatLighting, FloatMaterial, V3};
 use crate::reference::float_render;
