@@ -186,6 +186,22 @@ impl fmt::Display for LightingError {
                 "lighting: the {table} holds {given} entries, the mesh needs {needed}"
             ),
             LightingError::Transform(e) => write!(f, "lighting: model-view transform: {e}"),
+            LightingError::ZeroAxis { light } => {
+                write!(
+                    f,
+                    "light {light}: a spot light has the zero vector as its axis"
+                )
+            }
+            LightingError::ConeOutOfRange { light } => write!(
+                f,
+                "light {light}: spot cone out of range: needs 0 <= inner < outer <= 90 degrees \
+                 and cos(inner) - cos(outer) >= 1/64"
+            ),
+            LightingError::AttenuationOutOfRange { light } => write!(
+                f,
+                "light {light}: attenuation out of range: constant must be in 1..=256, linear \
+                 and quadratic in 0..=256"
+            ),
         }
     }
 }
@@ -507,7 +523,21 @@ mod tests {
                 needed: 482,
             },
             LightingError::Transform(MatrixError::OutOfRange),
+            LightingError::ZeroAxis { light: 2 },
+            LightingError::ConeOutOfRange { light: 1 },
+            LightingError::AttenuationOutOfRange { light: 3 },
         ]);
+        assert!(
+            t[4].contains("light 2") && t[4].contains("axis"),
+            "{}",
+            t[4]
+        );
+        assert!(t[5].contains("light 1") && t[5].contains("90"), "{}", t[5]);
+        assert!(
+            t[6].contains("light 3") && t[6].contains("1..=256"),
+            "{}",
+            t[6]
+        );
         assert!(t[0].contains(&MAX_LIGHTS.to_string()), "{}", t[0]);
         let sizes = ["vertex normal table", "100", "482"];
         assert!(sizes.iter().all(|w| t[2].contains(w)), "{}", t[2]);

@@ -45,7 +45,7 @@ pub use crate::geometry::vector::Vec3;
 pub use crate::scene::{Intensities, Object, Scene};
 
 // Light and shading.
-pub use crate::lighting::{Light, Material};
+pub use crate::lighting::{Attenuation, Cone, Light, Material};
 pub use crate::raster::triangle::{LuminanceRamp, ShadeMode};
 
 // The camera.

@@ -232,7 +232,10 @@ fn bad_scenes_fail_with_messages_naming_the_problem() {
         "two-kinds.toml",
         "[lighting]\n[[lighting.light]]\npoint = [1, 2, 3]\ntoward = [0, 1, 0]\nintensity = 9\n",
     );
-    assert!(err.contains("exactly one of `point` or `toward`"), "{err}");
+    assert!(
+        err.contains("exactly one of `point`, `toward` or `spot`"),
+        "{err}"
+    );
     let light = "[[lighting.light]]\ntoward = [0, 1, 0]\nintensity = 9\n";
     let err = fails(
         "five-lights.toml",
@@ -244,6 +247,49 @@ fn bad_scenes_fail_with_messages_naming_the_problem() {
         "[lighting]\n[[lighting.light]]\ntoward = [0, 0, 0]\nintensity = 9\n",
     );
     assert!(err.contains("must not be zero"), "{err}");
+
+    // Spots and attenuation: keys that belong together, ranges in words.
+    let spot = |keys: &str| {
+        format!(
+            "[lighting]\n[[lighting.light]]\nspot = [0, 3, 0]\nintensity = 200\n{keys}\n\
+             [[object]]\ngenerator = \"cube\"\nmaterial = {{ kd = 0.7 }}\n"
+        )
+    };
+    let err = fails("spot-no-axis.toml", &spot("cone = [10, 20]"));
+    assert!(err.contains("needs `axis"), "{err}");
+    let err = fails(
+        "spot-cone.toml",
+        &spot("axis = [0, -1, 0]\ncone = [20, 20.5]"),
+    );
+    assert!(
+        err.contains("light 0") && err.contains("cone out of range"),
+        "{err}"
+    );
+    let err = fails(
+        "spot-cone-degrees.toml",
+        &spot("axis = [0, -1, 0]\ncone = [10, 120]"),
+    );
+    assert!(err.contains("within [0, 90]"), "{err}");
+    let err = fails(
+        "spot-zero-axis.toml",
+        &spot("axis = [0, 0, 0]\ncone = [10, 20]"),
+    );
+    assert!(err.contains("`axis` must not be zero"), "{err}");
+    let err = fails(
+        "attenuation.toml",
+        &spot("axis = [0, -1, 0]\ncone = [10, 20]\nattenuation = [0.5, 0, 0]"),
+    );
+    assert!(err.contains("constant in [1, 256]"), "{err}");
+    let err = fails(
+        "attenuation-toward.toml",
+        "[lighting]\n[[lighting.light]]\ntoward = [0, 1, 0]\nattenuation = [1, 0, 0]\nintensity = 9\n",
+    );
+    assert!(err.contains("no `attenuation`"), "{err}");
+    let err = fails(
+        "axis-on-point.toml",
+        "[lighting]\n[[lighting.light]]\npoint = [0, 1, 0]\naxis = [1, 0, 0]\nintensity = 9\n",
+    );
+    assert!(err.contains("belong to a `spot`"), "{err}");
 
     // A scene file that does not exist.
     let dir = out_dir("errors");
@@ -561,4 +607,43 @@ fn orthographic_camera_from_the_command_line() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(words), "{words}: {err}");
     }
+}
+
+/// `spot.toml` renders, and its spot only takes light away: the same scene with the spot
+/// replaced by a point light at the same place (same attenuation) is at least as bright at
+/// every pixel, brighter at many (outside the cone and across its ramp) and equal at many
+/// (inside the inner cone).
+#[test]
+fn a_spot_lights_a_cone_of_what_a_point_lights() {
+    let scene = scenes().join("spot.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let dir = out_dir("spot");
+    let point_scene = dir.join("spot-as-point.toml");
+    let as_point = text
+        .replace("spot = [", "point = [")
+        .replace("axis = [1.7, -4.0, -1.3]", "")
+        .replace("cone = [14.0, 24.0]", "");
+    assert_ne!(as_point, text);
+    std::fs::write(&point_scene, as_point).unwrap();
+    let (spot_png, _, _) = render(&scene, &dir, &[]);
+    let spot = read_png_rgb(&spot_png).unwrap();
+    let (point_png, _, _) = render(&point_scene, &out_dir("spot-as-point"), &[]);
+    let point = read_png_rgb(&point_png).unwrap();
+    let sums = |img: &zscan_host::image::RgbImage| -> Vec<u32> {
+        img.data
+            .chunks_exact(3)
+            .map(|p| p.iter().map(|&c| c as u32).sum())
+            .collect()
+    };
+    let (s, p) = (sums(&spot), sums(&point));
+    let darker = s.iter().zip(&p).filter(|(a, b)| a < b).count();
+    let brighter = s.iter().zip(&p).filter(|(a, b)| a > b).count();
+    let lit_equal = s
+        .iter()
+        .zip(&p)
+        .filter(|(a, b)| a == b && **a > 200)
+        .count();
+    assert_eq!(brighter, 0);
+    assert!(darker > 10_000, "{darker}");
+    assert!(lit_equal > 1_000, "{lit_equal}");
 }

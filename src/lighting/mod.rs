@@ -18,6 +18,11 @@
 //! A light with `N·L ≤ 0` is behind the surface and contributes nothing (neither diffuse nor
 //! specular): the course's `cos θ` is taken as `cos⁺θ`, which is what the exercises assume.
 //!
+//! Local lights beyond the course's point source ([`Attenuation`], [`Cone`]): a [`Light::AttenuatedPoint`]
+//! scales `I_p,i` by a distance attenuation `1/(k_c + k_l·d + k_q·d²)`, a [`Light::Spot`]
+//! also by a cone fall-off around its axis. The factors enter the sum above wherever it is
+//! evaluated (vertices, polygon centres, pixels), so every shading mode sees them.
+//!
 //! ## Numeric contract
 //! - Coefficients `k_a, k_d, k_s` are unsigned Q15 (`32768 = 1.0`, up to `65535 ≈ 2.0`;
 //!   [`Material::from_thousandths`] builds them from integers). Shininess `n` is `1..=200`
@@ -31,12 +36,19 @@
 //! - `(cos⁺α)^n` by squaring in Q15 with `u32` products (`≤ 2^30`), rounded at each step: at
 //!   most 15 products, each off by at most 2^-16, so the power is within `15·2^-16` of the exact
 //!   power of the rounded cosine.
+//! - A local light's factor `f_att·f_spot` is Q15 (`0..=32768`; ranges and precision in
+//!   [`Attenuation`] and [`Cone`]) and
+//!   scales that light's `k_d·cos θ + k_s·cos^n α` (below `2^32`), rounded once.
 //! - The sum is accumulated in Q30 `u64`: each `k·cos` product is below `2^31`, times
 //!   `I ≤ 255` below `2^39`, at most [`MAX_LIGHTS`] lights plus ambient: below `2^42`.
 //!
 //! Integer only (no `f32`): usable per pixel on an FPU-less core.
 
 pub(crate) mod phong;
+pub(crate) mod spot;
+
+pub use spot::{Attenuation, Cone, MAX_COEFFICIENT, MIN_CONE_GAP, MIN_CONSTANT};
+use spot::{FactorError, LocalFactors};
 
 use crate::geometry::camera::Camera;
 use crate::geometry::matrix::{Affine3, MatrixError};
@@ -109,6 +121,29 @@ pub enum Light {
         /// Intensity `I_p`.
         intensity: u8,
     },
+    /// A point source whose intensity falls with distance ([`Attenuation`]).
+    AttenuatedPoint {
+        /// World position.
+        position: Vec3,
+        /// Intensity `I_p` at zero distance (times `1/k_c`).
+        intensity: u8,
+        /// Distance attenuation.
+        attenuation: Attenuation,
+    },
+    /// A spot: a point source at `position` lighting the cone around `axis` ([`Cone`]), with
+    /// distance attenuation.
+    Spot {
+        /// World position.
+        position: Vec3,
+        /// Direction the spot points to, from the light (world frame, any non-zero length).
+        axis: Vec3,
+        /// Half-angles of full intensity and of cut-off.
+        cone: Cone,
+        /// Distance attenuation ([`Attenuation::NONE`] for none).
+        attenuation: Attenuation,
+        /// Intensity `I_p` on the axis at zero distance (times `1/k_c`).
+        intensity: u8,
+    },
 }
 
 /// Why lighting could not be set up.
@@ -129,13 +164,42 @@ pub enum LightingError {
     },
     /// Composing the model and view transforms overflowed.
     Transform(MatrixError),
+    /// A spot light's axis is the zero vector.
+    ZeroAxis {
+        /// Index of the light in the list given.
+        light: usize,
+    },
+    /// A spot light's cone is outside `0 ≤ inner < outer ≤ 90°` with
+    /// `cos inner − cos outer ≥ 1/64` ([`MIN_CONE_GAP`]).
+    ConeOutOfRange {
+        /// Index of the light in the list given.
+        light: usize,
+    },
+    /// An attenuation coefficient is outside its range: `k_c` in `1.0..=256.0`, `k_l` and
+    /// `k_q` in `0..=256.0` (Q16: [`MIN_CONSTANT`], [`MAX_COEFFICIENT`]).
+    AttenuationOutOfRange {
+        /// Index of the light in the list given.
+        light: usize,
+    },
 }
 
 /// A light moved to the observer frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ObserverLight {
-    Point { position: Vec3, intensity: u8 },
-    Directional { l: [i32; 3], intensity: u8 },
+    Point {
+        position: Vec3,
+        intensity: u8,
+    },
+    Directional {
+        l: [i32; 3],
+        intensity: u8,
+    },
+    /// An attenuated point or a spot.
+    Local {
+        position: Vec3,
+        intensity: u8,
+        factors: LocalFactors,
+    },
 }
 
 /// The lights of a frame in the observer frame, and the ambient intensity.
@@ -216,7 +280,7 @@ pub(crate) fn unit_q15(v: [i64; 3]) -> Option<[i32; 3]> {
 
 /// Dot product of two Q15 unit vectors, rounded to Q15 (in `[-32769, 32769]`).
 #[inline(always)]
-fn dot_q15(a: [i32; 3], b: [i32; 3]) -> i32 {
+pub(crate) fn dot_q15(a: [i32; 3], b: [i32; 3]) -> i32 {
     let s = a[0] as i64 * b[0] as i64 + a[1] as i64 * b[1] as i64 + a[2] as i64 * b[2] as i64;
     ((s + (1 << (FRAC - 1))) >> FRAC) as i32
 }
@@ -260,6 +324,28 @@ impl Illumination {
                 toward: view.transform_vector(toward),
                 intensity,
             },
+            Light::AttenuatedPoint {
+                position,
+                intensity,
+                attenuation,
+            } => Light::AttenuatedPoint {
+                position: view.transform_point(position),
+                intensity,
+                attenuation,
+            },
+            Light::Spot {
+                position,
+                axis,
+                cone,
+                attenuation,
+                intensity,
+            } => Light::Spot {
+                position: view.transform_point(position),
+                axis: view.transform_vector(axis),
+                cone,
+                attenuation,
+                intensity,
+            },
         };
         let mut obs = [Light::Directional {
             toward: Vec3::ZERO,
@@ -285,7 +371,14 @@ impl Illumination {
             l: [0; 3],
             intensity: 0,
         }; MAX_LIGHTS];
-        for (o, l) in out.iter_mut().zip(lights) {
+        for (i, (o, l)) in out.iter_mut().zip(lights).enumerate() {
+            let local = |attenuation, spot| {
+                LocalFactors::new(attenuation, spot).map_err(|e| match e {
+                    FactorError::Attenuation => LightingError::AttenuationOutOfRange { light: i },
+                    FactorError::ZeroAxis => LightingError::ZeroAxis { light: i },
+                    FactorError::Cone => LightingError::ConeOutOfRange { light: i },
+                })
+            };
             *o = match *l {
                 Light::Point {
                     position,
@@ -297,6 +390,26 @@ impl Illumination {
                 Light::Directional { toward, intensity } => ObserverLight::Directional {
                     l: unit_q15(wide(toward)).ok_or(LightingError::ZeroDirection)?,
                     intensity,
+                },
+                Light::AttenuatedPoint {
+                    position,
+                    intensity,
+                    attenuation,
+                } => ObserverLight::Local {
+                    position,
+                    intensity,
+                    factors: local(attenuation, None)?,
+                },
+                Light::Spot {
+                    position,
+                    axis,
+                    cone,
+                    attenuation,
+                    intensity,
+                } => ObserverLight::Local {
+                    position,
+                    intensity,
+                    factors: local(attenuation, Some((wide(axis), cone)))?,
                 },
             };
         }
@@ -337,18 +450,30 @@ impl Illumination {
         let shininess = m.shininess();
         let mut acc = m.ka as u64 * self.ambient as u64 * ONE as u64; // Q30
         for light in &self.lights[..self.count.min(MAX_LIGHTS)] {
-            let (l, ip) = match *light {
+            let to = |q: Vec3| {
+                let q = wide(q);
+                [q[0] - pw[0], q[1] - pw[1], q[2] - pw[2]]
+            };
+            let (l, ip, factors) = match *light {
                 ObserverLight::Point {
                     position,
                     intensity,
+                } => match unit_q15(to(position)) {
+                    Some(l) => (l, intensity, None),
+                    None => continue,
+                },
+                ObserverLight::Directional { l, intensity } => (l, intensity, None),
+                ObserverLight::Local {
+                    position,
+                    intensity,
+                    ref factors,
                 } => {
-                    let q = wide(position);
-                    match unit_q15([q[0] - pw[0], q[1] - pw[1], q[2] - pw[2]]) {
-                        Some(l) => (l, intensity),
+                    let d = to(position);
+                    match unit_q15(d) {
+                        Some(l) => (l, intensity, Some((factors, d))),
                         None => continue,
                     }
                 }
-                ObserverLight::Directional { l, intensity } => (l, intensity),
             };
             let ndl = dot_q15(n, l);
             if ndl <= 0 {
@@ -359,7 +484,12 @@ impl Illumination {
             // R·V = 2(N·L)(N·V) − L·V, Q15.
             let rdv = ((2 * ndl as i64 * ndv + (1 << (FRAC - 1))) >> FRAC) - ldv;
             let spec = pow_q15(rdv.clamp(0, ONE as i64) as u32, shininess);
-            let term = m.kd as u64 * ndl as u64 + m.ks as u64 * spec as u64; // < 2^32
+            let mut term = m.kd as u64 * ndl as u64 + m.ks as u64 * spec as u64; // < 2^32
+            if let Some((factors, d)) = factors {
+                // f_att·f_spot ≤ 2^15: the scaled term stays below 2^32.
+                let f = factors.factor(d, l) as u64;
+                term = (term * f + (1 << (FRAC - 1))) >> FRAC;
+            }
             acc += ip as u64 * term;
         }
         Self::finish(acc)

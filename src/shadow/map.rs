@@ -115,6 +115,27 @@ fn isqrt_u128(n: u128) -> u64 {
     (isqrt_u64((n >> (2 * k)) as u64) as u64) << k
 }
 
+/// The smallest half-angle in `(0, cap]` for which `fits` holds (`fits` monotonic on that
+/// range), by binary search on binary-angle units; `None` when even `cap` does not fit.
+fn narrowest_half_angle(
+    cap: BinaryAngle,
+    fits: impl Fn(BinaryAngle) -> bool,
+) -> Option<BinaryAngle> {
+    if !fits(cap) {
+        return None;
+    }
+    let (mut lo, mut hi) = (0u32, cap.0);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if fits(BinaryAngle(mid)) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Some(BinaryAngle(hi))
+}
+
 fn camera_error(e: CameraError) -> ShadowError {
     match e {
         CameraError::OutOfRange | CameraError::FocalTooLong => ShadowError::OutOfRange,
@@ -238,20 +259,10 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
             // s·(2e − 2)·q ≥ c·2e·r: Q30 × 2^15 × 2^33 < 2^79, in u128.
             s as u128 * (two_e - 2) * q >= c.max(0) as u128 * two_e * r as u128
         };
-        let half = if q == 0 || !fits(cap) {
+        let half = if q == 0 {
             cap
         } else {
-            // Binary search on (0, cap]: fits is monotonic in a on that range.
-            let (mut lo, mut hi) = (0u32, cap.0);
-            while hi - lo > 1 {
-                let mid = lo + (hi - lo) / 2;
-                if fits(BinaryAngle(mid)) {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
-            }
-            BinaryAngle(hi)
+            narrowest_half_angle(cap, fits).unwrap_or(cap)
         };
         let lens = Lens {
             fov: BinaryAngle(half.0.saturating_mul(2)),
@@ -259,6 +270,79 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
             near: Coord::from_bits(near as i32),
             far: Coord::from_bits(far as i32),
         };
+        let vp = Viewport::new(width, height);
+        let camera = Camera::new(position, dir, up_for(dir), lens, vp).map_err(camera_error)?;
+        Self::from_camera(samples, &camera)
+    }
+
+    /// A cleared perspective map for a **spot** at `position` pointing along `axis` (any
+    /// non-zero length) with the cone's outer half-angle `outer`: the light's camera looks
+    /// along the axis with the narrowest field of view whose picture holds the cone with a
+    /// margin of one texel (the cone's circle inscribed in the smaller side); its near and far
+    /// planes frame the sphere (`centre`, `radius`) along the axis, `far = a + r` and
+    /// `near = max(a − r, far/256)`, `a` the centre's depth along the axis. Outside the cone
+    /// the spot lights nothing, so the map misses no shadow. `width, height ≥ 4`.
+    ///
+    /// Errors: [`ShadowError::SpotConeTooWide`] when the cone and its margin need more than
+    /// [`MAX_POINT_FOV_DEGREES`] of field of view (the projection's limit for a map);
+    /// [`ShadowError::BadLight`] for a zero axis, a non-positive radius or a sphere wholly
+    /// behind the spot; [`ShadowError::BadSize`], [`ShadowError::OutOfRange`] as
+    /// [`ShadowMap::point`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn spot(
+        samples: &'a mut [D],
+        width: u16,
+        height: u16,
+        position: Vec3,
+        axis: Vec3,
+        outer: BinaryAngle,
+        centre: Vec3,
+        radius: Coord,
+    ) -> Result<Self, ShadowError> {
+        check_size(samples, width, height, 4)?;
+        let r = radius.to_bits() as i64;
+        let a = axis.bits().map(|c| c as i64);
+        let unit = unit_bits(a, 16).ok_or(ShadowError::BadLight)?;
+        if r <= 0 {
+            return Err(ShadowError::BadLight);
+        }
+        // The centre's depth along the axis: |diff| < 2^33 times a Q16 unit, below 2^50.
+        let depth: i64 = (0..3)
+            .map(|i| (centre.bits()[i] as i64 - position.bits()[i] as i64) * unit[i] as i64)
+            .sum::<i64>()
+            >> 16;
+        let far = depth + r;
+        if far <= 0 {
+            return Err(ShadowError::BadLight);
+        }
+        if far > i32::MAX as i64 {
+            return Err(ShadowError::OutOfRange);
+        }
+        let near = (depth - r).max(far / NEAR_FAR_RATIO as i64).max(1);
+        let (fov_axis, two_e) = if height <= width {
+            (FovAxis::Vertical, height as i128)
+        } else {
+            (FovAxis::Horizontal, width as i128)
+        };
+        // tan a·(e − 1)/e ≥ tan outer, i.e. sin a·cos o·(2e − 2) ≥ cos a·sin o·2e: Q30 × Q30
+        // × 2^15 < 2^75, in i128.
+        let (so, co) = sin_cos_bits(outer);
+        if outer > BinaryAngle::QUARTER_TURN {
+            return Err(ShadowError::SpotConeTooWide);
+        }
+        let fits = |h: BinaryAngle| {
+            let (s, c) = sin_cos_bits(h);
+            s as i128 * co as i128 * (two_e - 2) >= c as i128 * so as i128 * two_e
+        };
+        let cap = BinaryAngle::from_degrees(MAX_POINT_FOV_DEGREES).half();
+        let half = narrowest_half_angle(cap, fits).ok_or(ShadowError::SpotConeTooWide)?;
+        let lens = Lens {
+            fov: BinaryAngle(half.0.saturating_mul(2)),
+            axis: fov_axis,
+            near: Coord::from_bits(near as i32),
+            far: Coord::from_bits(far as i32),
+        };
+        let dir = Vec3::from_bits(unit[0], unit[1], unit[2]);
         let vp = Viewport::new(width, height);
         let camera = Camera::new(position, dir, up_for(dir), lens, vp).map_err(camera_error)?;
         Self::from_camera(samples, &camera)
@@ -290,7 +374,8 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
     }
 
     /// The map of a [`Light`]: [`ShadowMap::new`] for a directional light,
-    /// [`ShadowMap::point`] for a point light (the intensity is not used).
+    /// [`ShadowMap::point`] for a point light (attenuated or not), [`ShadowMap::spot`] for a
+    /// spot (the intensity and attenuation are not used).
     pub fn for_light(
         samples: &'a mut [D],
         width: u16,
@@ -303,9 +388,17 @@ impl<'a, D: DepthValue> ShadowMap<'a, D> {
             Light::Directional { toward, .. } => {
                 Self::new(samples, width, height, toward, centre, radius)
             }
-            Light::Point { position, .. } => {
+            Light::Point { position, .. } | Light::AttenuatedPoint { position, .. } => {
                 Self::point(samples, width, height, position, centre, radius)
             }
+            Light::Spot {
+                position,
+                axis,
+                cone,
+                ..
+            } => Self::spot(
+                samples, width, height, position, axis, cone.outer, centre, radius,
+            ),
         }
     }
 

@@ -19,6 +19,7 @@
 //! |---|---|---|
 //! | directional | orthographic along the light over a bounding sphere (`centre`, `r`) | [`ShadowMap::new`] |
 //! | point | perspective from the light position, looking at `centre`, field of view framing the sphere | [`ShadowMap::point`] |
+//! | spot | perspective from the light position along its axis, field of view framing its cone (outer half-angle below 60°) | [`ShadowMap::spot`] |
 //! | either, from a [`Light`](crate::lighting::Light) | the above | [`ShadowMap::for_light`] |
 //! | any aimed perspective (a spot, one face of a cube map) | the given [`Camera`](crate::geometry::camera::Camera) | [`ShadowMap::from_camera`] |
 //!
@@ -153,6 +154,10 @@ pub enum ShadowError {
     /// A triangle could not be drawn into the map (outside the raster's range or too large;
     /// not expected within the documented sizes).
     Raster,
+    /// A spot's cone, with the map's one-texel margin, needs a wider field of view than a
+    /// map's projection allows ([`MAX_POINT_FOV_DEGREES`], 120°:
+    /// an outer half-angle below 60°).
+    SpotConeTooWide,
     /// The frame and the depth buffer differ in size or rows, or do not fit the camera's
     /// viewport, or the viewport is too wide for the back-projection (`|i − i0| ≥ 2^16`).
     FrameMismatch,
@@ -201,6 +206,13 @@ impl core::fmt::Display for ShadowError {
                 )
             }
             ShadowError::Raster => write!(f, "triangle outside the raster's limits"),
+            ShadowError::SpotConeTooWide => write!(
+                f,
+                "spot cone too wide for a shadow map: its outer half-angle plus one texel must \
+                 fit a {} degree field of view (half-angle below {} degrees)",
+                map::MAX_POINT_FOV_DEGREES,
+                map::MAX_POINT_FOV_DEGREES / 2
+            ),
             ShadowError::FrameMismatch => write!(
                 f,
                 "frame, depth buffer and camera viewport do not match, or the viewport is too \

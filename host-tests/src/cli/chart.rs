@@ -22,7 +22,15 @@
 //!   level `L·32/256 − 1/2`, `L` the `f64` Phong illumination (`reference::float_lighting`) at
 //!   the visible surface point of `reference::float_render` (perspective-correct position and
 //!   smooth area-weighted normal interpolated in 3D): the picture every mode approximates.
-//!   Maximum and mean over pixels covered in both frames.
+//!   Maximum and mean over pixels covered in both frames. For the sphere the reference
+//!   normal is the true sphere's at the visible point (the radial direction), not the
+//!   interpolated one: the surface the mesh approximates.
+//! - **Analytic normals** (course ch. 4 §2.5): the sphere again and a torus (32 rings ×
+//!   16 sides, radii 0.8 and 0.3, turned 60° about `x`, same camera), in exact Gouraud and
+//!   Phong, with the mesh's averaged vertex normals and with the generators' analytic ones
+//!   (`uv_sphere_normals`, `torus_normals`, given as a table: the frame does not compute
+//!   them); the torus's reference normal is its true normal at the visible point (from the
+//!   tube's centre line). Ringed marks; host panel only (not bench cases).
 use super::{visibility_chart, CliError};
 use crate::reference::float_lighting::{unit, FloatLight, FloatLighting, FloatMaterial, V3};
 use crate::reference::float_render;
@@ -30,7 +38,10 @@ use crate::scenes::{self, Scene};
 use std::path::PathBuf;
 use std::process::Command;
 use zscan::geometry::camera::Camera;
+use zscan::geometry::generators::{torus, torus_normals, torus_sizes, uv_sphere_normals};
+use zscan::geometry::matrix::Affine3;
 use zscan::geometry::mesh::Mesh;
+use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
 use zscan::lighting::{Light, Material};
 use zscan::output::{DepthBuffer, Framebuffer};
@@ -76,6 +87,18 @@ const MODES: [(ShadeMode, &str); 4] = [
     (ShadeMode::Phong, "phong"),
 ];
 const SCENES: [&str; 2] = ["sphere", "bunny"];
+/// Every scene of the chart: the standard two and the torus (analytic-normal comparison).
+const ALL_SCENES: [&str; 3] = ["sphere", "bunny", "torus"];
+
+/// The smooth-shading modes drawn with both kinds of vertex normals (sphere and torus).
+const NORMAL_MODES: [(ShadeMode, &str); 2] = [
+    (ShadeMode::GouraudExact, "gouraud_exact"),
+    (ShadeMode::Phong, "phong"),
+];
+
+/// The torus of the analytic-normal comparison: 32 rings, 16 sides, radii 0.8 and 0.3, turned
+/// 60° about `x` (its hole toward the camera), in the standard scenes' camera.
+const TORUS: (u16, u16, f64, f64, i32) = (32, 16, 0.8, 0.3, 60);
 
 /// One point of the chart.
 #[derive(Debug, Clone, Copy)]
@@ -84,14 +107,18 @@ struct Variant {
     mode: ShadeMode,
     mode_name: &'static str,
     dither: bool,
+    /// The generator's analytic vertex normals (`uv_sphere_normals`, `torus_normals`) instead
+    /// of the mesh's averaged ones.
+    analytic: bool,
 }
 
 impl Variant {
     fn name(&self) -> String {
         format!(
-            "{}_{}{}",
+            "{}_{}{}{}",
             self.scene,
             self.mode_name,
+            if self.analytic { "_analytic" } else { "" },
             if self.dither { "_dither" } else { "" }
         )
     }
@@ -106,6 +133,21 @@ impl Variant {
                         mode,
                         mode_name,
                         dither,
+                        analytic: false,
+                    });
+                }
+            }
+        }
+        // Averaged against analytic normals: the sphere's averaged rows are above.
+        for (scene, kinds) in [("sphere", &[true][..]), ("torus", &[false, true][..])] {
+            for (mode, mode_name) in NORMAL_MODES {
+                for &analytic in kinds {
+                    v.push(Variant {
+                        scene,
+                        mode,
+                        mode_name,
+                        dither: false,
+                        analytic,
                     });
                 }
             }
@@ -114,28 +156,123 @@ impl Variant {
     }
 }
 
+/// The torus's points in `f64` (the generator's layout: vertex `i·sides + j` at azimuth
+/// `2πi/rings` about `y` and tube angle `2πj/sides`), turned by `TORUS`'s angle about `x`,
+/// and its triangles (each quad `a, b, c, d` as `a, b, c` and `a, c, d`, as the renderer
+/// splits it).
+fn torus_scene() -> Scene {
+    let (rings, sides, major, minor, _) = TORUS;
+    let (nr, ns) = (rings as usize, sides as usize);
+    let tau = std::f64::consts::TAU;
+    let mut vertices = Vec::with_capacity(nr * ns);
+    for i in 0..nr {
+        let phi = tau * i as f64 / nr as f64;
+        for j in 0..ns {
+            let theta = tau * j as f64 / ns as f64;
+            let rc = major + minor * theta.cos();
+            vertices.push(torus_turn([
+                rc * phi.cos(),
+                minor * theta.sin(),
+                -rc * phi.sin(),
+            ]));
+        }
+    }
+    let mut triangles = Vec::with_capacity(2 * nr * ns);
+    for i in 0..nr {
+        for j in 0..ns {
+            let (i1, j1) = ((i + 1) % nr, (j + 1) % ns);
+            let q = [i * ns + j, i1 * ns + j, i1 * ns + j1, i * ns + j1];
+            triangles.push([q[0], q[1], q[2]]);
+            triangles.push([q[0], q[2], q[3]]);
+        }
+    }
+    Scene {
+        name: "torus".into(),
+        camera: scenes::Camera::standard(),
+        intensities: vec![[0; 3]; triangles.len()],
+        vertices,
+        triangles,
+        scale: 1.0,
+    }
+}
+
+/// The torus's turn about `x` (positive: `y` toward `z`).
+fn torus_turn(p: V3) -> V3 {
+    let (s, c) = (TORUS.4 as f64).to_radians().sin_cos();
+    [p[0], p[1] * c - p[2] * s, p[1] * s + p[2] * c]
+}
+
+/// The true unit normal of the turned torus at world point `p` (the surface point nearest to
+/// `p` is reached along it): from the tube's centre line through `p`'s azimuth.
+fn torus_true_normal(p: V3) -> V3 {
+    let (s, c) = (TORUS.4 as f64).to_radians().sin_cos();
+    let m = [p[0], p[1] * c + p[2] * s, -p[1] * s + p[2] * c]; // back to the model frame
+    let r = (m[0] * m[0] + m[2] * m[2]).sqrt().max(1e-12);
+    let centre = [m[0] / r * TORUS.2, 0.0, m[2] / r * TORUS.2];
+    torus_turn(unit(scenes::sub(m, centre)))
+}
+
 /// A scene in core form plus the buffers a frame needs (allocated outside the measured region).
 struct Prepared {
     scene: Scene,
     vertices: Vec<Vec3>,
     indices: Vec<u16>,
     camera: Camera,
+    /// Model → world of the core's object (the torus's turn; identity otherwise).
+    transform: Affine3,
     scratch: Vec<PreparedVertex<4>>,
     normals: Vec<Vec3>,
+    /// The generator's analytic vertex normals (model frame), for the sphere and the torus.
+    analytic: Vec<Vec3>,
     pixels: Vec<u8>,
     depth: Vec<u16>,
 }
 
 impl Prepared {
     fn new(name: &str) -> Result<Prepared, CliError> {
-        let scene = scenes::standard_scene(name)?;
-        let camera = crate::core_render::core_camera(&scene.camera)?;
         let c = crate::core_render::coord;
-        let vertices: Vec<Vec3> = scene
-            .vertices
-            .iter()
-            .map(|v| Vec3::new(c(v[0]), c(v[1]), c(v[2])))
-            .collect();
+        let (scene, vertices, transform, analytic) = if name == "torus" {
+            // The core's own torus and analytic normals, turned by the object's transform;
+            // the f64 scene is built independently above (checked to agree below).
+            let (rings, sides, major, minor, turn) = TORUS;
+            let (nv, ni) = torus_sizes(rings, sides);
+            let (mut v, mut quads) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
+            torus(rings, sides, c(major), c(minor), &mut v, &mut quads)
+                .map_err(|e| format!("{e:?}"))?;
+            let mut n = vec![Vec3::ZERO; nv];
+            torus_normals(rings, sides, &mut n).map_err(|e| format!("{e:?}"))?;
+            let turn = Affine3::rotation_x(BinaryAngle::from_degrees(turn));
+            let scene = torus_scene();
+            for (core, f) in v.iter().zip(&scene.vertices) {
+                let w = turn
+                    .transform_point(*core)
+                    .bits()
+                    .map(|b| b as f64 / 65536.0);
+                if (0..3).any(|k| (w[k] - f[k]).abs() > 1e-3) {
+                    return Err(format!("torus: core {w:?} against f64 {f:?}").into());
+                }
+            }
+            (scene, v, turn, n)
+        } else {
+            let scene = scenes::standard_scene(name)?;
+            let vertices: Vec<Vec3> = scene
+                .vertices
+                .iter()
+                .map(|v| Vec3::new(c(v[0]), c(v[1]), c(v[2])))
+                .collect();
+            let mut n = Vec::new();
+            if name == "sphere" {
+                n = vec![Vec3::ZERO; vertices.len()];
+                uv_sphere_normals(
+                    scenes::SPHERE_SEGMENTS as u16,
+                    scenes::SPHERE_RINGS as u16,
+                    &mut n,
+                )
+                .map_err(|e| format!("{e:?}"))?;
+            }
+            (scene, vertices, Affine3::IDENTITY, n)
+        };
+        let camera = crate::core_render::core_camera(&scene.camera)?;
         let indices: Vec<u16> = scene
             .triangles
             .iter()
@@ -148,12 +285,14 @@ impl Prepared {
         Ok(Prepared {
             scratch: vec![PreparedVertex::default(); nv],
             normals: vec![Vec3::ZERO; nv],
+            analytic,
             pixels: vec![0; w * h],
             depth: vec![0; w * h],
             scene,
             vertices,
             indices,
             camera,
+            transform,
         })
     }
 
@@ -188,14 +327,15 @@ fn render(p: &mut Prepared, v: &Variant) -> Result<u32, String> {
     let mut zb = DepthBuffer::new(&mut p.depth, w, h).map_err(|e| e.to_string())?;
     fb.clear(BACKGROUND);
     zb.clear();
-    if v.mode != ShadeMode::Flat {
+    if v.mode != ShadeMode::Flat && !v.analytic {
         mesh.vertex_normals(&mut p.normals)
             .map_err(|e| format!("{e:?}"))?;
     }
     let mut object = Object::new(mesh);
+    object.transform = p.transform;
     object.intensities = Intensities::Lit {
         material: MATERIAL,
-        normals: &p.normals,
+        normals: if v.analytic { &p.analytic } else { &p.normals },
     };
     object.shade = v.mode;
     object.ramp = LuminanceRamp {
@@ -237,6 +377,13 @@ fn reference_levels(scene: &Scene) -> Result<Vec<Option<f64>>, CliError> {
     let frame = float_render::render(scene)?;
     let cam = &scene.camera;
     let (f, (cx, cy)) = (cam.focal(), cam.principal);
+    // The surface every mode approximates: the true sphere and torus (their normal at the
+    // visible point), the bunny's smooth interpolated normals (it has no other).
+    let truth: Option<fn(V3) -> V3> = match scene.name.as_str() {
+        "sphere" => Some(unit),
+        "torus" => Some(torus_true_normal),
+        _ => None,
+    };
     let normals = smooth_normals(scene);
     let lighting = FloatLighting {
         eye: cam.eye,
@@ -272,6 +419,7 @@ fn reference_levels(scene: &Scene) -> Result<Vec<Option<f64>>, CliError> {
                 pw = scenes::add(pw, scenes::scale(scene.vertices[tri[k]], w[k]));
                 nw = scenes::add(nw, scenes::scale(normals[tri[k]], w[k]));
             }
+            let nw = truth.map_or(nw, |t| t(pw));
             let l = lighting.intensity(&m, pw, nw);
             out[(y * frame.width + x) as usize] = Some(l * LEVELS as f64 / 256.0 - 0.5);
         }
@@ -394,7 +542,7 @@ fn run_variant(name: &str) -> Result<(), CliError> {
 /// instructions.
 fn shading_rows(measure: bool) -> Result<Vec<Row>, CliError> {
     let mut rows = Vec::new();
-    for scene in SCENES {
+    for scene in ALL_SCENES {
         let mut p = Prepared::new(scene)?;
         let reference = reference_levels(&p.scene)?;
         for v in Variant::all().into_iter().filter(|v| v.scene == scene) {
@@ -556,17 +704,25 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
                 colour.stroke_width(1),
             )))
             .map_err(|q| e(&q))?;
-        if r.variant.scene == "sphere" {
+        let at = (x, r.errors.mean);
+        match r.variant.scene {
+            "sphere" => chart
+                .draw_series(std::iter::once(Circle::new(at, 5, style)))
+                .map(|_| ()),
+            "torus" => chart
+                .draw_series(std::iter::once(
+                    EmptyElement::at(at) + Rectangle::new([(-5, -5), (5, 5)], style),
+                ))
+                .map(|_| ()),
+            _ => chart
+                .draw_series(std::iter::once(TriangleMarker::new(at, 6, style)))
+                .map(|_| ()),
+        }
+        .map_err(|q| e(&q))?;
+        if r.variant.analytic {
+            // Analytic normals: a black ring around the mark.
             chart
-                .draw_series(std::iter::once(Circle::new((x, r.errors.mean), 5, style)))
-                .map_err(|q| e(&q))?;
-        } else {
-            chart
-                .draw_series(std::iter::once(TriangleMarker::new(
-                    (x, r.errors.mean),
-                    6,
-                    style,
-                )))
+                .draw_series(std::iter::once(Circle::new(at, 9, BLACK.stroke_width(2))))
                 .map_err(|q| e(&q))?;
         }
     }
@@ -674,7 +830,7 @@ fn chart(
 /// for a figure `w` wide whose shading panels end at `bottom`.
 fn shading_legend(w: i32, bottom: i32, texts: &mut Vec<String>) {
     texts.push(format!(
-        r#"<text x="{}" y="28" text-anchor="middle" font-size="16" font-weight="bold">zscan shading: speed vs accuracy (standard sphere and bunny, 320x240, 32-level ramp)</text>"#,
+        r#"<text x="{}" y="28" text-anchor="middle" font-size="16" font-weight="bold">zscan shading: speed vs accuracy (standard sphere and bunny, a torus, 320x240, 32-level ramp)</text>"#,
         w / 2
     ));
     let mid = 50 + (bottom - 50) / 2;
@@ -703,6 +859,9 @@ fn shading_legend(w: i32, bottom: i32, texts: &mut Vec<String>) {
     for line in [
         "circle: sphere",
         "triangle: bunny",
+        "square: torus",
+        "black ring: analytic normals",
+        "(sphere, torus: error vs the true surface)",
         "filled: plain ramp",
         "hollow: 4x4 Bayer dither",
         "line from mean up to max",

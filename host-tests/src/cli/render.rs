@@ -10,7 +10,7 @@
 //! | `[viewport]` | `width` (320), `height` (240), `principal` (`[(w−1)/2, (h−1)/2]`, pixels are lattice points), `pixel_aspect` = `[r_x, r_y]` (`[1,1]`) |
 //! | `[render]` | `depth_bits` = 16 \| 32 (16), `subpixel_bits` (4, the only value accepted), `background` palette index (0), `shade` = `"flat"` \| `"gouraud"` \| `"gouraud-fast"` \| `"phong"` (`"gouraud"`), `cull` back faces (true), `dither` (false: 4×4 ordered dithering between ramp levels) |
 //! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
-//! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]` or `toward = [x,y,z]`, and `intensity` `0..=255` |
+//! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]`, `toward = [x,y,z]` or `spot = [x,y,z]` with `axis = [x,y,z]` and `cone = [inner, outer]` (half-angles in degrees), `attenuation = [c, l, q]` for a point or spot, and `intensity` `0..=255` |
 //! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
 //! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither` |
 //!
@@ -73,7 +73,9 @@ use zscan::geometry::generators;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
-use zscan::lighting::{Light, Material, MAX_LIGHTS, MAX_SHININESS};
+use zscan::lighting::{
+    Attenuation, Cone, Illumination, Light, Material, MAX_LIGHTS, MAX_SHININESS,
+};
 use zscan::output::{DepthValue, Framebuffer, Lut};
 use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
@@ -344,8 +346,9 @@ pub struct LightingSection {
     pub lights: Vec<LightKey>,
 }
 
-/// One `[[lighting.light]]`: exactly one of `point` (a position) or `toward` (a direction
-/// toward a light at infinity), and its intensity `0..=255`.
+/// One `[[lighting.light]]`: exactly one of `point` (a position), `toward` (a direction
+/// toward a light at infinity) or `spot` (a position, with `axis` and `cone`), optionally
+/// `attenuation` (point and spot), and its intensity `0..=255`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightKey {
@@ -353,8 +356,56 @@ pub struct LightKey {
     pub point: Option<[f64; 3]>,
     /// Direction toward a directional light (world, any non-zero length).
     pub toward: Option<[f64; 3]>,
+    /// Position of a spot light (world).
+    pub spot: Option<[f64; 3]>,
+    /// A spot's axis: the direction it points to (world, any non-zero length).
+    pub axis: Option<[f64; 3]>,
+    /// A spot's inner and outer half-angles in degrees.
+    pub cone: Option<[f64; 2]>,
+    /// Distance attenuation `[constant, linear, quadratic]` of a point or spot light.
+    pub attenuation: Option<[f64; 3]>,
     /// Intensity `I_p`, `0..=255`.
     pub intensity: u8,
+}
+
+/// A light's `attenuation = [c, l, q]`: `c` in `[1, 256]`, `l` and `q` in `[0, 256]` (the
+/// core's ranges), rounded to Q16.
+fn attenuation(k: Option<[f64; 3]>) -> Result<Attenuation, String> {
+    let Some(k) = k else {
+        return Ok(Attenuation::NONE);
+    };
+    if !finite(&k)
+        || !(1.0..=256.0).contains(&k[0])
+        || k[1..].iter().any(|c| !(0.0..=256.0).contains(c))
+    {
+        return Err(format!(
+            "[lighting] a light's `attenuation = [constant, linear, quadratic]` needs constant in \
+             [1, 256] and linear, quadratic in [0, 256], got {k:?}"
+        ));
+    }
+    let q16 = |c: f64| (c * 65536.0).round() as u32;
+    Ok(Attenuation {
+        constant: q16(k[0]),
+        linear: q16(k[1]),
+        quadratic: q16(k[2]),
+    })
+}
+
+/// A spot's `cone = [inner, outer]` in degrees, rounded to 1/1000 degree (the core checks
+/// `0 ≤ inner < outer ≤ 90` and the gap between their cosines).
+fn spot_cone(c: [f64; 2]) -> Result<Cone, String> {
+    if c.iter()
+        .any(|d| !d.is_finite() || !(0.0..=90.0).contains(d))
+    {
+        return Err(format!(
+            "[lighting] a spot's `cone = [inner, outer]` is in degrees within [0, 90], got {c:?}"
+        ));
+    }
+    let angle = |d: f64| BinaryAngle::from_degrees_ratio((d * 1000.0).round() as i64, 1000);
+    Ok(Cone {
+        inner: angle(c[0]),
+        outer: angle(c[1]),
+    })
 }
 
 /// An object's `material`: a palette ramp index, or a table with the ramp and the reflection
@@ -492,24 +543,67 @@ fn lights(l: &LightingSection) -> Result<Vec<Light>, String> {
     };
     l.lights
         .iter()
-        .map(|k| match (k.point, k.toward) {
-            (Some(q), None) => Ok(Light::Point {
-                position: p(q)?,
-                intensity: k.intensity,
-            }),
-            (None, Some(t)) => {
-                let toward = p(t)?;
-                if toward == Vec3::ZERO {
-                    return Err("[lighting] a light's `toward` must not be zero".into());
-                }
-                Ok(Light::Directional {
-                    toward,
-                    intensity: k.intensity,
-                })
+        .map(|k| {
+            if k.spot.is_none() && (k.axis.is_some() || k.cone.is_some()) {
+                return Err("[lighting] `axis` and `cone` belong to a `spot` light".into());
             }
-            _ => Err("[[lighting.light]] needs exactly one of `point` or `toward`".into()),
+            match (k.point, k.toward, k.spot) {
+                (Some(q), None, None) => match k.attenuation {
+                    None => Ok(Light::Point {
+                        position: p(q)?,
+                        intensity: k.intensity,
+                    }),
+                    Some(_) => Ok(Light::AttenuatedPoint {
+                        position: p(q)?,
+                        intensity: k.intensity,
+                        attenuation: attenuation(k.attenuation)?,
+                    }),
+                },
+                (None, Some(t), None) => {
+                    let toward = p(t)?;
+                    if toward == Vec3::ZERO {
+                        return Err("[lighting] a light's `toward` must not be zero".into());
+                    }
+                    if k.attenuation.is_some() {
+                        return Err(
+                            "[lighting] a directional light (`toward`) has no `attenuation`".into(),
+                        );
+                    }
+                    Ok(Light::Directional {
+                        toward,
+                        intensity: k.intensity,
+                    })
+                }
+                (None, None, Some(q)) => {
+                    let (Some(axis), Some(cone)) = (k.axis, k.cone) else {
+                        return Err("[lighting] a `spot` light needs `axis = [x, y, z]` and \
+                             `cone = [inner, outer]` (degrees)"
+                            .into());
+                    };
+                    let axis = p(axis)?;
+                    if axis == Vec3::ZERO {
+                        return Err("[lighting] a spot's `axis` must not be zero".into());
+                    }
+                    Ok(Light::Spot {
+                        position: p(q)?,
+                        axis,
+                        cone: spot_cone(cone)?,
+                        attenuation: attenuation(k.attenuation)?,
+                        intensity: k.intensity,
+                    })
+                }
+                _ => Err(
+                    "[[lighting.light]] needs exactly one of `point`, `toward` or `spot`".into(),
+                ),
+            }
         })
-        .collect()
+        .collect::<Result<Vec<Light>, String>>()
+        .and_then(|lights| {
+            // The core's own checks (cones, attenuation), which do not depend on the frame.
+            Illumination::observer(0, &lights)
+                .map(|_| lights)
+                .map_err(|e| format!("[lighting] {e}"))
+        })
 }
 
 /// `[light]`: one directional light, SCENES.md's model.
@@ -1683,7 +1777,10 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
             LightingError::ZeroDirection => {
                 "lighting: a directional light has a zero direction".into()
             }
-            LightingError::OutputTooSmall { .. } => l.to_string(),
+            LightingError::OutputTooSmall { .. }
+            | LightingError::ZeroAxis { .. }
+            | LightingError::ConeOutOfRange { .. }
+            | LightingError::AttenuationOutOfRange { .. } => l.to_string(),
             LightingError::Transform(m) => format!("lighting transform: {}", matrix(m)),
         },
         other => other.to_string(),

@@ -6,6 +6,9 @@
 //! R = 2N(N·L) − L
 //! ```
 //!
+//! with a local light's intensity scaled by its distance attenuation `1/(c + l·d + q·d²)` and,
+//! for a spot, by `clamp((cos φ − cos outer)/(cos inner − cos outer), 0, 1)` (`φ` the angle
+//! between the spot's axis and the ray to the point),
 //! evaluated in the **world** frame with the eye position (angles and lengths do not depend on
 //! the rigid frame, so this equals the observer-frame evaluation). A light with `N·L ≤ 0` is
 //! behind the surface and contributes nothing. The result is clamped to `[0, 255]`, unrounded.
@@ -24,6 +27,30 @@ pub enum FloatLight {
     Point(V3, f64),
     /// Source at infinity in a direction (toward the light).
     Directional(V3, f64),
+    /// Point source at a position, intensity scaled by `1/(c + l·d + q·d²)` (`[c, l, q]`).
+    Attenuated(V3, f64, [f64; 3]),
+    /// Spot at a position pointing along an axis, with inner and outer half-angles in
+    /// degrees and attenuation `[c, l, q]`: full within the inner angle, zero beyond the
+    /// outer, linear in the cosine between.
+    Spot {
+        /// Position.
+        position: V3,
+        /// Direction the spot points to.
+        axis: V3,
+        /// Inner half-angle, degrees.
+        inner: f64,
+        /// Outer half-angle, degrees.
+        outer: f64,
+        /// `[c, l, q]`.
+        attenuation: [f64; 3],
+        /// Intensity.
+        intensity: f64,
+    },
+}
+
+/// `1/(c + l·d + q·d²)` at distance `d`.
+fn attenuation(k: [f64; 3], d: f64) -> f64 {
+    1.0 / (k[0] + k[1] * d + k[2] * d * d)
 }
 
 /// Reflection coefficients.
@@ -83,6 +110,25 @@ impl FloatLighting {
             let (l, ip) = match *light {
                 FloatLight::Point(q, ip) => (unit(sub(q, p)), ip),
                 FloatLight::Directional(d, ip) => (unit(d), ip),
+                FloatLight::Attenuated(q, ip, k) => {
+                    let d = sub(q, p);
+                    (unit(d), ip * attenuation(k, dot(d, d).sqrt()))
+                }
+                FloatLight::Spot {
+                    position,
+                    axis,
+                    inner,
+                    outer,
+                    attenuation: k,
+                    intensity,
+                } => {
+                    let d = sub(position, p);
+                    let l = unit(d);
+                    let cos_phi = -dot(l, unit(axis));
+                    let (ci, co) = (inner.to_radians().cos(), outer.to_radians().cos());
+                    let cone = ((cos_phi - co) / (ci - co)).clamp(0.0, 1.0);
+                    (l, intensity * cone * attenuation(k, dot(d, d).sqrt()))
+                }
             };
             let cos_theta = dot(n, l);
             if cos_theta <= 0.0 {
