@@ -15,28 +15,33 @@
 //!    centre, depth-tested (`raster::depth_line`).
 //!
 //! ## The offset rule
-//! A line pixel is pulled toward the eye by [`LineStyle::depth_offset`] units of the 32-bit
-//! depth before the z-buffer's strict test, and stores its pulled depth when it passes. A
-//! surface stores its plane's depth at the pixel centre, while an edge of that surface has
-//! the depth of the edge, up to half a pixel away on the surface: the offset must exceed half
-//! a pixel of the surface's depth slope for the edge to show on its own surface, and stay
-//! below the depth gap to the surfaces it should hide behind.
-//! [`DEFAULT_DEPTH_OFFSET`] = 2^22 (1/1024 of the depth range): for SCENES.md's lens (near
-//! 0.5, far 10) at distance 4 that is ≈ 0.03 world units, half a pixel of a face seen at 80°
-//! from its normal at 320 × 240; hidden edges nearer than that behind a surface show through.
-//! A 16-bit buffer stores the top 16 bits: the offset is 64 of its steps.
+//! A line pixel is pulled toward the eye by a number of units of the 32-bit depth before the
+//! z-buffer's strict test, and stores its pulled depth when it passes (`raster::depth_line`).
+//! - Segments of a line list ([`Renderer::draw_lines`], [`Wireframe::All`]) and points are
+//!   pulled by [`LineStyle::depth_offset`] alone ([`DEFAULT_DEPTH_OFFSET`] = 2^12).
+//! - **The edges of a face** ([`Wireframe::Front`], [`Wireframe::Hidden`]) are drawn with
+//!   that face, pulled by `depth_offset + 2^(32 − b) + ⌈max(|∂D/∂x|, |∂D/∂y|) / 2⌉`: one
+//!   step of the `b`-bit buffer, and half a pixel of the face's depth slope (its plane on
+//!   screen, from the first triangle the polygon stage hands for it). A line pixel sits at
+//!   the exact edge's major coordinate, at most half a pixel from the edge along the minor
+//!   axis, where the face stores its plane's depth: that pull makes **every edge pixel of a
+//!   face show on the face** whatever the face's slope (grazing faces included), and hides it
+//!   behind any surface farther than the pull in front of it. A hidden edge within half a
+//!   pixel's depth of the face that hides it shows through.
 //!
 //! ## Wireframes ([`Wireframe`])
 //! - [`Wireframe::All`]: every edge of the mesh once, from its edge table
-//!   ([`Mesh::edges`](crate::geometry::mesh::Mesh::edges): the undirected edges, a shared edge once), depth-tested.
-//! - [`Wireframe::Front`]: the edges of the front-facing polygons (the polygon stage's own
-//!   culling decision, `cull.rs`), depth-tested: Roberts's observation that for a convex
-//!   object these are exactly the visible edges. An edge shared by two front polygons is
-//!   walked twice; the second walk draws nothing (same pixels, same depths, and the test is
-//!   strict: tested).
+//!   ([`Mesh::edges`](crate::geometry::mesh::Mesh::edges): the undirected edges, a shared
+//!   edge once), depth-tested.
+//! - [`Wireframe::Front`]: the edges of the polygons the polygon stage draws with back faces
+//!   culled (its own rejection and culling, `cull.rs`), each with its face's pull: Roberts's
+//!   observation that for a convex object these are exactly the visible edges. An edge shared
+//!   by two front polygons is walked twice, the pixels the first walk drew unchanged by the
+//!   second.
 //! - [`Wireframe::Hidden`]: hidden lines removed through the depth buffer: the object's faces
 //!   into depth only (the polygon stage with the writer's depth-only kind, frame untouched),
-//!   then every edge of the table depth-tested against them.
+//!   then the edges of the faces drawn (as in front mode, the object's own culling),
+//!   depth-tested against them.
 //!
 //! ## Points
 //! [`Renderer::draw_points`] draws each vertex inside the view volume as a square of
@@ -48,7 +53,7 @@
 //! I16F16, projected end points within the guard band, `±(2^28 − 1)` sub-pixel units at most,
 //! inside the line walker's `±2^30`); depths 32-bit.
 
-use super::consumer::DepthOnlyWriter;
+use super::consumer::{Corner, DepthOnlyWriter, TriangleConsumer};
 use super::object::checked_scratch;
 use super::{PreparedVertex, RenderError, RenderStats, Renderer};
 use crate::clip::frustum::clip_segment;
@@ -58,10 +63,11 @@ use crate::raster::depth_line::{draw_depth_line, LineTarget, Walk};
 use crate::raster::line::SubpixelLine;
 use crate::raster::triangle::{drawable_window, DepthTarget};
 use crate::raster::{SubpixelPoint, Window};
+use crate::geometry::mesh::Polygons;
 use crate::scene::Object;
 
-/// The default [`LineStyle::depth_offset`]: `2^22` units of the 32-bit depth (module doc).
-pub const DEFAULT_DEPTH_OFFSET: u32 = 1 << 22;
+/// The default [`LineStyle::depth_offset`]: `2^12` units of the 32-bit depth (module doc).
+pub const DEFAULT_DEPTH_OFFSET: u32 = 1 << 12;
 
 /// The largest side of a point's square, in pixels.
 pub const MAX_POINT_SIZE: u8 = 16;
@@ -139,7 +145,7 @@ impl<const S: u32> Renderer<S> {
         let mut drawn = 0;
         for &[i, j] in segments {
             let (a, b) = (&prepared[i as usize], &prepared[j as usize]);
-            drawn += self.segment(a, b, &window, &mut target, style)?;
+            drawn += self.segment(a, b, &window, &mut target, (style.depth_offset, style))?;
         }
         Ok(drawn)
     }
@@ -186,13 +192,12 @@ impl<const S: u32> Renderer<S> {
     }
 
     /// Draws `object` as a wireframe in `mode` (module doc). `edges` is the mesh's edge table
-    /// ([`Mesh::edges`](crate::geometry::mesh::Mesh::edges)), read by [`Wireframe::All`] and [`Wireframe::Hidden`] (
-    /// [`Wireframe::Front`] walks the front polygons instead and may be given `&[]`). The
-    /// hidden mode writes the faces' depths into `depth` first (the frame untouched). Returns
-    /// the pixels drawn.
+    /// ([`Mesh::edges`](crate::geometry::mesh::Mesh::edges)), read by [`Wireframe::All`]
+    /// only (the other modes walk the faces; they may be given `&[]`). The hidden mode
+    /// writes the faces' depths into `depth` first (the frame untouched). Returns the pixels
+    /// drawn.
     ///
-    /// Errors: as [`draw_lines`](Self::draw_lines); an edge naming a vertex the mesh has not;
-    /// a polygon above the clipper's size.
+    /// Errors: as [`draw_lines`](Self::draw_lines); a polygon above the clipper's size.
     #[allow(clippy::too_many_arguments)]
     pub fn draw_wireframe<D: DepthValue>(
         &self,
@@ -204,68 +209,50 @@ impl<const S: u32> Renderer<S> {
         frame: &mut Framebuffer<'_>,
         depth: &mut DepthBuffer<'_, D>,
     ) -> Result<u32, RenderError> {
-        match mode {
-            Wireframe::All => self.draw_lines(object, edges, scratch, style, frame, depth),
-            Wireframe::Hidden => {
-                self.check_targets(frame, depth)?;
-                check_segments(edges, object.mesh.vertices().len())?;
-                self.prepare(object, scratch)?;
-                self.faces_into_depth(object, scratch, frame, depth)?;
-                let prepared = &scratch[..object.mesh.vertices().len()];
-                let (window, mut target) = line_target(frame, depth);
-                let mut drawn = 0;
-                for &[i, j] in edges {
-                    let (a, b) = (&prepared[i as usize], &prepared[j as usize]);
-                    drawn += self.segment(a, b, &window, &mut target, style)?;
-                }
-                Ok(drawn)
+        let object = match mode {
+            Wireframe::All => {
+                return self.draw_lines(object, edges, scratch, style, frame, depth);
             }
-            Wireframe::Front => {
-                self.check_targets(frame, depth)?;
-                self.prepare(object, scratch)?;
-                let culled = Object {
-                    cull_back_faces: true,
-                    ..*object
-                };
-                let prepared = checked_scratch(&culled, scratch)?;
-                let rows = (0, self.camera.viewport().height as i32);
-                let stage = self.stage(&culled, prepared, rows, None);
-                let (window, mut target) = line_target(frame, depth);
-                let (mut drawn, mut stats) = (0, RenderStats::default());
-                for poly in object.mesh.polygons() {
-                    if matches!(stage.decide(poly, &mut stats)?, super::polygon_stage::Path::Skip) {
-                        continue;
-                    }
-                    for (k, &i) in poly.iter().enumerate() {
-                        let j = poly[(k + 1) % poly.len()];
-                        let (a, b) = (&prepared[i as usize], &prepared[j as usize]);
-                        drawn += self.segment(a, b, &window, &mut target, style)?;
-                    }
-                }
-                Ok(drawn)
-            }
-        }
-    }
-
-    /// The hidden-line pass: `object`'s faces (prepared in `scratch`) into `depth` alone.
-    fn faces_into_depth<D: DepthValue>(
-        &self,
-        object: &Object<'_>,
-        scratch: &[PreparedVertex<S>],
-        frame: &Framebuffer<'_>,
-        depth: &mut DepthBuffer<'_, D>,
-    ) -> Result<(), RenderError> {
-        let prepared = checked_scratch(object, scratch)?;
+            Wireframe::Front => Object {
+                cull_back_faces: true,
+                ..*object
+            },
+            Wireframe::Hidden => *object,
+        };
+        self.check_targets(frame, depth)?;
+        self.prepare(&object, scratch)?;
+        let prepared = checked_scratch(&object, scratch)?;
         let rows = (frame.top().max(depth.top()), {
             let f = frame.top() + frame.height() as i32;
             f.min(depth.top() + depth.height() as i32)
         });
-        let stage = self.stage(object, prepared, rows, None);
-        let mut target = DepthTarget::of_buffer(frame, depth);
-        let writer = DepthOnlyWriter {
-            target: &mut target,
+        let stage = self.stage(&object, prepared, rows, None);
+        let mut stats = RenderStats::default();
+        if mode == Wireframe::Hidden {
+            let mut target = DepthTarget::of_buffer(frame, depth);
+            let writer = DepthOnlyWriter {
+                target: &mut target,
+            };
+            stage.run(&mut stats, |_, _, _, _| [0i32; 0], writer)?;
+        }
+        let (window, target) = line_target(frame, depth);
+        let step = match D::BITS {
+            1..=31 => 1u32 << (32 - D::BITS),
+            _ => 0,
         };
-        stage.run(&mut RenderStats::default(), |_, _, _, _| [0i32; 0], writer)
+        let mut writer = EdgeWriter {
+            renderer: self,
+            prepared,
+            polygons: object.mesh.polygons(),
+            next: 0,
+            window,
+            target,
+            style,
+            pull: style.depth_offset.saturating_add(step),
+            drawn: 0,
+        };
+        stage.run(&mut stats, |_, _, _, _| [0i32; 0], &mut writer)?;
+        Ok(writer.drawn)
     }
 
     /// One segment between prepared vertices: kept, or clipped in 3D and projected, then
@@ -276,7 +263,7 @@ impl<const S: u32> Renderer<S> {
         b: &End<S>,
         window: &Window,
         target: &mut LineTarget<'_, D>,
-        style: &LineStyle,
+        (pull, style): (u32, &LineStyle),
     ) -> Result<u32, RenderError> {
         let ends = if a.outcode == 0 && b.outcode == 0 {
             ((a.screen, a.depth), (b.screen, b.depth))
@@ -296,7 +283,7 @@ impl<const S: u32> Renderer<S> {
                 target,
                 &line,
                 (d0, d1),
-                style.depth_offset,
+                pull,
                 style.index,
                 style.walk,
             ),
@@ -353,4 +340,77 @@ fn line_target<'a, D: DepthValue>(
 fn nearest_pixel<const S: u32>(c: i32) -> i32 {
     let u = 1i64 << S;
     (-((u - 2 * c as i64).div_euclid(2 * u))) as i32
+}
+
+/// The edge consumer of the front and hidden wireframes: for the first triangle the polygon
+/// stage hands for a polygon (in increasing polygon order), the polygon's own edges, pulled by
+/// the face's slope (module doc, "The offset rule").
+struct EdgeWriter<'r, 'o, 't, D, const S: u32> {
+    renderer: &'r Renderer<S>,
+    prepared: &'r [PreparedVertex<S>],
+    /// The mesh's polygons, `next` the index of the one `polygons` yields next.
+    polygons: Polygons<'o>,
+    next: usize,
+    window: Window,
+    target: LineTarget<'t, D>,
+    style: &'r LineStyle,
+    /// The pull of every face edge before the slope: `depth_offset + 2^(32 − b)`.
+    pull: u32,
+    drawn: u32,
+}
+
+impl<D: DepthValue, const S: u32, const N: usize> TriangleConsumer<S, N>
+    for EdgeWriter<'_, '_, '_, D, S>
+{
+    fn triangle(
+        &mut self,
+        polygon: usize,
+        c: [Corner<S, N>; 3],
+    ) -> Result<(u32, u32), RenderError> {
+        if polygon < self.next {
+            return Ok((0, 0)); // a later triangle of a polygon already drawn
+        }
+        let mut poly = None;
+        while self.next <= polygon {
+            poly = self.polygons.next();
+            self.next += 1;
+        }
+        let Some(poly) = poly else {
+            return Ok((0, 0));
+        };
+        let pull = self.pull.saturating_add(half_slope(&c));
+        for (k, &i) in poly.iter().enumerate() {
+            let j = poly[(k + 1) % poly.len()];
+            let (a, b) = (&self.prepared[i as usize], &self.prepared[j as usize]);
+            self.drawn += self.renderer.segment(
+                a,
+                b,
+                &self.window,
+                &mut self.target,
+                (pull, self.style),
+            )?;
+        }
+        Ok((0, 0))
+    }
+}
+
+/// `⌈max(|∂D/∂x|, |∂D/∂y|) / 2⌉`, the depth a triangle's plane spans over half a pixel
+/// (saturating; 0 for a triangle of no area, which covers nothing). Exact in `i128`: screen
+/// differences below `2^29`, depth differences below `2^32`.
+fn half_slope<const S: u32, const N: usize>(c: &[Corner<S, N>; 3]) -> u32 {
+    let (x, y, d) = (
+        c.map(|c| c.screen.x as i128),
+        c.map(|c| c.screen.y as i128),
+        c.map(|c| c.depth as i128),
+    );
+    let area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    if area == 0 {
+        return 0;
+    }
+    let gx = ((d[1] - d[0]) * (y[2] - y[0]) - (d[2] - d[0]) * (y[1] - y[0])) << S;
+    let gy = ((x[1] - x[0]) * (d[2] - d[0]) - (x[2] - x[0]) * (d[1] - d[0])) << S;
+    let g = gx.abs().max(gy.abs());
+    let a2 = 2 * area.abs();
+    let half = (g + a2 - 1) / a2;
+    half.min(u32::MAX as i128) as u32
 }
