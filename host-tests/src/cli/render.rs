@@ -2271,6 +2271,12 @@ pub fn summary(output: &Path, w: u16, h: u16, stats: &RenderStats) -> String {
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
     check_options(&args)?;
     let scene = load_scene(&args.scene)?;
+    let lined = scene.objects.iter().any(|o| o.wireframe.is_some()) || !scene.lines.is_empty();
+    if lined && (args.visibility.0 != Some(Visibility::ZBuffer) || args.bands.is_some()) {
+        return Err("wireframes and [[lines]] are drawn through the whole-frame z-buffer: \
+                    --visibility zbuffer without --bands"
+            .into());
+    }
     if args.visibility.0.is_none() {
         return finish_auto(&args, &scene);
     }
