@@ -24,8 +24,8 @@
 //! up, clears again, then measures one call between the region markers.
 use zscan::internals::{DivisionWalker, IncrementalWalker};
 use zscan::output::Framebuffer;
-use zscan::raster::triangle::ShadeMode;
 use zscan::raster::depth_line::Walk;
+use zscan::raster::triangle::ShadeMode;
 use zscan::render::{PreparedVertex, Wireframe};
 
 /// Framebuffer width of every case.

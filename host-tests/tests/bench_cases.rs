@@ -177,7 +177,10 @@ fn wireframe_cases_draw_and_both_walks_agree() {
             set
         };
         let (all, front, hidden) = (count("all"), count("front"), count("hidden"));
-        assert!(hidden <= front && front <= all, "{mesh}: {all} {front} {hidden}");
+        assert!(
+            hidden <= front && front <= all,
+            "{mesh}: {all} {front} {hidden}"
+        );
     }
     for mesh in ["sphere", "bunny"] {
         let one = draw(case(&format!("wire_{mesh}_all")));

@@ -157,11 +157,7 @@ fn float_segment(a: [f64; 3], b: [f64; 3]) -> Option<[((f64, f64), f64); 2]> {
         }
         let cut = |p: [f64; 3], q: [f64; 3], dp: f64, dq: f64| {
             let t = dp / (dp - dq);
-            [
-                p[0] + t * (q[0] - p[0]),
-                p[1] + t * (q[1] - p[1]),
-                plane,
-            ]
+            [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), plane]
         };
         if da < 0.0 {
             va = cut(vb, va, db, da);
@@ -188,7 +184,11 @@ fn against_float(
     what: &str,
 ) -> usize {
     let Some([(p0, d0), (p1, d1)]) = seg else {
-        assert!(got.is_empty(), "{what}: drew {} pixels of nothing", got.len());
+        assert!(
+            got.is_empty(),
+            "{what}: drew {} pixels of nothing",
+            got.len()
+        );
         return 0;
     };
     let (adx, ady) = ((p1.0 - p0.0).abs(), (p1.1 - p0.1).abs());
@@ -200,7 +200,12 @@ fn against_float(
         let ((m0, v0), (m1, v1)) = (pick(p0), pick(p1));
         move |m: f64| {
             let s = if m1 == m0 { 0.0 } else { (m - m0) / (m1 - m0) };
-            (v0 + s * (v1 - v0), d0 + s * (d1 - d0), m0.min(m1), m0.max(m1))
+            (
+                v0 + s * (v1 - v0),
+                d0 + s * (d1 - d0),
+                m0.min(m1),
+                m0.max(m1),
+            )
         }
     };
     for &((x, y), d) in got {
@@ -240,7 +245,11 @@ fn against_float(
         let frac = v - v.floor();
         let clear_of_tie = (frac - 0.5).abs() > eps;
         let k = (v - 0.5).ceil();
-        let p = if xm { (m as i64, k as i64) } else { (k as i64, m as i64) };
+        let p = if xm {
+            (m as i64, k as i64)
+        } else {
+            (k as i64, m as i64)
+        };
         let inside = (0..W as i64).contains(&p.0) && (0..H as i64).contains(&p.1);
         if clear_of_tie && inside {
             assert!(set.contains(&p), "{what}: f64 pixel {p:?} not drawn");
@@ -264,9 +273,19 @@ fn lines_inside_the_view_match_the_definition_and_the_float_camera() {
     let mut rng = Rng(0x5EED_1133_7000_0001);
     let mut compared = 0;
     for i in 0..400 {
-        let mut p = || Vec3::new(c(rng.f(-1.5, 1.5)), c(rng.f(-1.1, 1.1)), c(rng.f(-4.0, 1.5)));
+        let mut p = || {
+            Vec3::new(
+                c(rng.f(-1.5, 1.5)),
+                c(rng.f(-1.1, 1.1)),
+                c(rng.f(-4.0, 1.5)),
+            )
+        };
         let (a, b) = (p(), p());
-        let walk = if i % 2 == 0 { Walk::OneEnded } else { Walk::TwoEnded };
+        let walk = if i % 2 == 0 {
+            Walk::OneEnded
+        } else {
+            Walk::TwoEnded
+        };
         let (pixels, depths, n) = draw(&[a, b], &[[0, 1]], Affine3::default(), walk);
         let got = drawn(&pixels, &depths);
         assert_eq!(n as usize, got.len());
@@ -295,7 +314,9 @@ fn lines_inside_the_view_match_the_definition_and_the_float_camera() {
         let tol = seg.map_or(0.0, |[(p0, e0), (p1, e1)]| {
             let len = (p1.0 - p0.0).abs().max((p1.1 - p0.1).abs()).max(1.0);
             let zmin = 1.5;
-            D32 * 0.5 * 10.0 / 9.5 / (zmin * zmin) * 2f64.powi(-14) + (e1 - e0).abs() / len / 16.0 + 16.0
+            D32 * 0.5 * 10.0 / 9.5 / (zmin * zmin) * 2f64.powi(-14)
+                + (e1 - e0).abs() / len / 16.0
+                + 16.0
         });
         compared += against_float(&got, seg, 0.07, tol, &format!("{a:?} {b:?}"));
     }
@@ -309,7 +330,11 @@ fn lines_crossing_the_near_plane_and_behind_the_eye() {
     let mut crossing = 0;
     for i in 0..300 {
         // The eye is at z = 3 looking toward −z: z > 3 is behind it.
-        let a = Vec3::new(c(rng.f(-1.0, 1.0)), c(rng.f(-0.8, 0.8)), c(rng.f(-3.0, 2.0)));
+        let a = Vec3::new(
+            c(rng.f(-1.0, 1.0)),
+            c(rng.f(-0.8, 0.8)),
+            c(rng.f(-3.0, 2.0)),
+        );
         let b = Vec3::new(c(rng.f(-6.0, 6.0)), c(rng.f(-6.0, 6.0)), c(rng.f(3.2, 9.0)));
         let (a, b) = if i % 3 == 0 {
             // Wholly behind: nothing drawn.
@@ -423,8 +448,12 @@ fn hidden_lines_show_the_front_edges() {
         let hidden = wire(core, Wireframe::Hidden, Walk::OneEnded).unwrap().0;
         let all = wire(core, Wireframe::All, Walk::OneEnded).unwrap().0;
         let count = |p: &[u8]| p.iter().filter(|&&v| v != 0).count();
-        let only_front = (0..W * H).filter(|&k| front[k] != 0 && hidden[k] == 0).count();
-        let only_hidden = (0..W * H).filter(|&k| front[k] == 0 && hidden[k] != 0).count();
+        let only_front = (0..W * H)
+            .filter(|&k| front[k] != 0 && hidden[k] == 0)
+            .count();
+        let only_hidden = (0..W * H)
+            .filter(|&k| front[k] == 0 && hidden[k] != 0)
+            .count();
         eprintln!(
             "mesh {i}: all {} front {} hidden {} front-not-hidden {only_front} hidden-not-front {only_hidden}",
             count(&all),
@@ -445,7 +474,13 @@ fn hidden_lines_show_the_front_edges() {
 fn points_land_on_the_nearest_pixel() {
     let mut rng = Rng(0x9017_5000_0000_0003);
     let points: Vec<Vec3> = (0..200)
-        .map(|_| Vec3::new(c(rng.f(-1.5, 1.5)), c(rng.f(-1.1, 1.1)), c(rng.f(-4.0, 1.5))))
+        .map(|_| {
+            Vec3::new(
+                c(rng.f(-1.5, 1.5)),
+                c(rng.f(-1.1, 1.1)),
+                c(rng.f(-4.0, 1.5)),
+            )
+        })
         .collect();
     let renderer = Renderer::<4>::new(&camera()).unwrap();
     let object = Object::new(Mesh::triangles(&points, &[]).unwrap());
@@ -460,7 +495,9 @@ fn points_land_on_the_nearest_pixel() {
             .unwrap();
         let (lo, hi) = ((size as i64 - 1) / 2, size as i64 / 2);
         for p in &points {
-            let Some((x, y)) = host().project(f(*p)) else { continue };
+            let Some((x, y)) = host().project(f(*p)) else {
+                continue;
+            };
             let tie = |v: f64| ((v - v.floor()) - 0.5).abs() < 0.04;
             if tie(x) || tie(y) {
                 continue;
@@ -492,7 +529,14 @@ fn bad_input_is_refused() {
     let mut depth = DepthBuffer::new(&mut depths, W as u16, H as u16).unwrap();
     let style = LineStyle::new(1);
     let e = renderer
-        .draw_lines(&object, &[[0, 1], [1, 2]], &mut scratch, &style, &mut frame, &mut depth)
+        .draw_lines(
+            &object,
+            &[[0, 1], [1, 2]],
+            &mut scratch,
+            &style,
+            &mut frame,
+            &mut depth,
+        )
         .unwrap_err();
     assert_eq!(
         e,
@@ -511,15 +555,31 @@ fn bad_input_is_refused() {
     }
     let mut short = [PreparedVertex::default(); 1];
     assert!(matches!(
-        renderer.draw_lines(&object, &[[0, 1]], &mut short, &style, &mut frame, &mut depth),
-        Err(RenderError::ScratchTooSmall { given: 1, needed: 2 })
+        renderer.draw_lines(
+            &object,
+            &[[0, 1]],
+            &mut short,
+            &style,
+            &mut frame,
+            &mut depth
+        ),
+        Err(RenderError::ScratchTooSmall {
+            given: 1,
+            needed: 2
+        })
     ));
-    drop(frame);
     assert!(pixels.iter().all(|&p| p == 0));
     let mut small = vec![0u8; 10 * 10];
     let mut frame = Framebuffer::new(&mut small, 10, 10).unwrap();
     assert!(matches!(
-        renderer.draw_lines(&object, &[[0, 1]], &mut scratch, &style, &mut frame, &mut depth),
+        renderer.draw_lines(
+            &object,
+            &[[0, 1]],
+            &mut scratch,
+            &style,
+            &mut frame,
+            &mut depth
+        ),
         Err(RenderError::TargetSmallerThanViewport { .. })
     ));
     let cube = unit_cube();

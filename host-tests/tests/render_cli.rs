@@ -575,7 +575,11 @@ fn wireframe_scenes_render_their_modes() {
         let scene = scenes().join(format!("wireframe_{mode}.toml"));
         let png = dir.join(format!("{mode}.png"));
         let out = zscan(&[&scene, Path::new("-o"), &png]);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let img = read_png_rgb(&png).unwrap();
         let golden = read_png_rgb(&docs.join(format!("wireframe_{mode}.png"))).unwrap();
         assert!(img.data == golden.data, "{mode}: differs from docs/images");
@@ -590,9 +594,17 @@ fn wireframe_scenes_render_their_modes() {
     let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
         .arg("render")
         .arg(&scene)
-        .args(["-o", dir.join("bands.png").to_str().unwrap(), "--bands", "8"])
+        .args([
+            "-o",
+            dir.join("bands.png").to_str().unwrap(),
+            "--bands",
+            "8",
+        ])
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && err.contains("whole-frame z-buffer"), "{err}");
+    assert!(
+        !out.status.success() && err.contains("whole-frame z-buffer"),
+        "{err}"
+    );
 }

@@ -472,13 +472,11 @@ impl Mesh<'_> {
     /// Errors: [`MeshError::OutputTooSmall`] when `out` is shorter than the index count.
     pub fn edges(&self, out: &mut [[u16; 2]]) -> Result<usize, MeshError> {
         let (needed, given) = (self.indices().len(), out.len());
-        let table = out
-            .get_mut(..needed)
-            .ok_or(MeshError::OutputTooSmall {
-                table: MeshTable::Edges,
-                given,
-                needed,
-            })?;
+        let table = out.get_mut(..needed).ok_or(MeshError::OutputTooSmall {
+            table: MeshTable::Edges,
+            given,
+            needed,
+        })?;
         let mut k = 0;
         for poly in self.polygons() {
             for (c, &i) in poly.iter().enumerate() {

@@ -289,9 +289,16 @@ mod tests {
             let r = |rng: &mut crate::test_rng::XorShift, m: u64| (rng.next_u64() % m) as i32;
             let span = [8 * 16, 50 * 16, 400 * 16][i % 3];
             let mut c = || r(&mut rng, span as u64 * 2) - span + 16 * 16;
-            let (p0, p1) = (SubpixelPoint::<4>::new(c(), c()), SubpixelPoint::new(c(), c()));
+            let (p0, p1) = (
+                SubpixelPoint::<4>::new(c(), c()),
+                SubpixelPoint::new(c(), c()),
+            );
             let d0 = rng.next_u64() as u32;
-            let d1 = if i % 5 == 0 { d0 } else { rng.next_u64() as u32 };
+            let d1 = if i % 5 == 0 {
+                d0
+            } else {
+                rng.next_u64() as u32
+            };
             let want = by_definition(p0, p1, d0, d1, &w);
             let got = SubpixelLine::new(p0, p1, &w).unwrap();
             let Some(line) = got else {

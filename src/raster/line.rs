@@ -89,8 +89,8 @@
 
 use super::outcode::Outcode;
 use crate::output::Framebuffer;
-use crate::raster::Window;
 use crate::raster::SubpixelPoint;
+use crate::raster::Window;
 use embedded_graphics_core::geometry::Point;
 
 /// The largest end-point coordinate magnitude accepted by clipping and drawing: `2^30`.

@@ -20,8 +20,8 @@
 use super::{PreparedVertex, RenderError};
 use crate::geometry::vector::Vec3;
 use crate::output::DepthValue;
-use crate::raster::triangle::Bayer4;
 use crate::raster::triangle::setup::TriangleSetup;
+use crate::raster::triangle::Bayer4;
 use crate::raster::triangle::{draw_depth_only, DepthTarget};
 use crate::raster::triangle::{draw_in_range, RasterTarget, WrittenCount};
 use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};

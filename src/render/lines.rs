@@ -57,13 +57,13 @@ use super::consumer::{Corner, DepthOnlyWriter, TriangleConsumer};
 use super::object::checked_scratch;
 use super::{PreparedVertex, RenderError, RenderStats, Renderer};
 use crate::clip::frustum::clip_segment;
+use crate::geometry::mesh::Polygons;
 use crate::geometry::vector::Vec3;
 use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::raster::depth_line::{draw_depth_line, LineTarget, Walk};
 use crate::raster::line::SubpixelLine;
 use crate::raster::triangle::{drawable_window, DepthTarget};
 use crate::raster::{SubpixelPoint, Window};
-use crate::geometry::mesh::Polygons;
 use crate::scene::Object;
 
 /// The default [`LineStyle::depth_offset`]: `2^12` units of the 32-bit depth (module doc).
@@ -179,7 +179,10 @@ impl<const S: u32> Renderer<S> {
             if v.outcode != 0 {
                 continue;
             }
-            let (x, y) = (nearest_pixel::<S>(v.screen.x), nearest_pixel::<S>(v.screen.y));
+            let (x, y) = (
+                nearest_pixel::<S>(v.screen.x),
+                nearest_pixel::<S>(v.screen.y),
+            );
             let square = Window::new(x - lo, y - lo, x + hi + 1, y + hi + 1).intersect(&window);
             for py in square.y0..square.y1 {
                 for px in square.x0..square.x1 {
@@ -279,14 +282,7 @@ impl<const S: u32> Renderer<S> {
         let line = SubpixelLine::new(p0, p1, window)
             .map_err(|_| RenderError::Projection(crate::project::ProjectError::OutOfRange))?;
         Ok(match line {
-            Some(line) => draw_depth_line(
-                target,
-                &line,
-                (d0, d1),
-                pull,
-                style.index,
-                style.walk,
-            ),
+            Some(line) => draw_depth_line(target, &line, (d0, d1), pull, style.index, style.walk),
             None => 0,
         })
     }
@@ -382,13 +378,9 @@ impl<D: DepthValue, const S: u32, const N: usize> TriangleConsumer<S, N>
         for (k, &i) in poly.iter().enumerate() {
             let j = poly[(k + 1) % poly.len()];
             let (a, b) = (&self.prepared[i as usize], &self.prepared[j as usize]);
-            self.drawn += self.renderer.segment(
-                a,
-                b,
-                &self.window,
-                &mut self.target,
-                (pull, self.style),
-            )?;
+            self.drawn +=
+                self.renderer
+                    .segment(a, b, &self.window, &mut self.target, (pull, self.style))?;
         }
         Ok((0, 0))
     }

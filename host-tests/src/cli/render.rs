@@ -1503,9 +1503,11 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
             cull: o.cull.unwrap_or(file.render.cull),
             dither: o.dither.unwrap_or(file.render.dither),
             wireframe: o.wireframe.map(WireKey::mode),
-            line_index: o
-                .line_index
-                .unwrap_or((ramp.first as u16 + ramp.levels as u16).saturating_sub(1).min(255) as u8),
+            line_index: o.line_index.unwrap_or(
+                (ramp.first as u16 + ramp.levels as u16)
+                    .saturating_sub(1)
+                    .min(255) as u8,
+            ),
         };
         objects.push(prepare(&mesh, look).map_err(err)?);
     }
@@ -1729,8 +1731,14 @@ impl LoadedScene {
                 .filter_map(|(o, &k)| self.objects[k].wireframe.map(|m| (o, m, &self.objects[k])))
                 .collect();
             let lines = if only.is_none() { &self.lines[..] } else { &[] };
-            let drawn =
-                self.draw_lines::<D>(renderer.renderer(), (w, h), &wires, lines, &mut pixels, &mut depth)?;
+            let drawn = self.draw_lines::<D>(
+                renderer.renderer(),
+                (w, h),
+                &wires,
+                lines,
+                &mut pixels,
+                &mut depth,
+            )?;
             stats.pixels_written = stats.pixels_written.saturating_add(drawn);
             stats.pixels_covered = stats.pixels_covered.saturating_add(drawn);
         }
@@ -1772,16 +1780,17 @@ impl LoadedScene {
             };
             let mut scratch = vec![PreparedVertex::default(); mesh.vertices().len()];
             let style = LineStyle::new(prepared.line_index);
-            drawn += renderer.draw_wireframe(
-                object,
-                &edges[..k],
-                *mode,
-                &mut scratch,
-                &style,
-                &mut frame,
-                &mut depth,
-            )
-            .map_err(FrameError::Render)?;
+            drawn += renderer
+                .draw_wireframe(
+                    object,
+                    &edges[..k],
+                    *mode,
+                    &mut scratch,
+                    &style,
+                    &mut frame,
+                    &mut depth,
+                )
+                .map_err(FrameError::Render)?;
         }
         for l in lines {
             let mesh = Mesh::new(&l.points, &[], PolygonSizes::Uniform(3))
@@ -1789,25 +1798,27 @@ impl LoadedScene {
             let object = Object::new(mesh);
             let mut scratch = vec![PreparedVertex::default(); l.points.len()];
             let style = LineStyle::new(l.index);
-            drawn += renderer.draw_lines(
-                &object,
-                &l.segments,
-                &mut scratch,
-                &style,
-                &mut frame,
-                &mut depth,
-            )
-            .map_err(FrameError::Render)?;
-            if l.point_size > 0 {
-                drawn += renderer.draw_points(
+            drawn += renderer
+                .draw_lines(
                     &object,
+                    &l.segments,
                     &mut scratch,
-                    l.point_size,
                     &style,
                     &mut frame,
                     &mut depth,
                 )
                 .map_err(FrameError::Render)?;
+            if l.point_size > 0 {
+                drawn += renderer
+                    .draw_points(
+                        &object,
+                        &mut scratch,
+                        l.point_size,
+                        &style,
+                        &mut frame,
+                        &mut depth,
+                    )
+                    .map_err(FrameError::Render)?;
             }
         }
         Ok(drawn)
@@ -2273,9 +2284,11 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let scene = load_scene(&args.scene)?;
     let lined = scene.objects.iter().any(|o| o.wireframe.is_some()) || !scene.lines.is_empty();
     if lined && (args.visibility.0 != Some(Visibility::ZBuffer) || args.bands.is_some()) {
-        return Err("wireframes and [[lines]] are drawn through the whole-frame z-buffer: \
+        return Err(
+            "wireframes and [[lines]] are drawn through the whole-frame z-buffer: \
                     --visibility zbuffer without --bands"
-            .into());
+                .into(),
+        );
     }
     if args.visibility.0.is_none() {
         return finish_auto(&args, &scene);
