@@ -24,8 +24,9 @@
 //! up, clears again, then measures one call between the region markers.
 use zscan::internals::{DivisionWalker, IncrementalWalker};
 use zscan::output::Framebuffer;
+use zscan::raster::depth_line::Walk;
 use zscan::raster::triangle::ShadeMode;
-use zscan::render::PreparedVertex;
+use zscan::render::{PreparedVertex, Wireframe};
 
 /// Framebuffer width of every case.
 pub const WIDTH: u16 = 320;
@@ -55,6 +56,9 @@ pub struct Storage {
     /// The planner's facts of the standard meshes, computed once here (an application keeps
     /// them in flash beside the mesh).
     pub facts: scene::KeptFacts,
+    /// The edge tables of the cube, sphere and bunny (`Mesh::edges`), computed once here (an
+    /// application keeps them in flash beside the mesh).
+    pub edges: scene::KeptEdges,
 }
 
 impl Storage {
@@ -69,6 +73,7 @@ impl Storage {
             normals: [zscan::visibility::Normal::DEFAULT; scene::MAX_STORED],
             compact: scene::CompactMemory::new(),
             facts: scene::KeptFacts::new(),
+            edges: scene::KeptEdges::new(),
         }
     }
 }
@@ -375,6 +380,50 @@ pub const CASES: &[Case] = &[
         name: "shadow_map_bunny_point",
         run: |fb, st| scene::shadow_map(fb, st, &scene::BUNNY, true),
     },
+    Case {
+        name: "wire_cube_all",
+        run: |fb, st| scene::wire(fb, st, scene::CUBE_ID, Wireframe::All, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_cube_front",
+        run: |fb, st| scene::wire(fb, st, scene::CUBE_ID, Wireframe::Front, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_cube_hidden",
+        run: |fb, st| scene::wire(fb, st, scene::CUBE_ID, Wireframe::Hidden, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_sphere_all",
+        run: |fb, st| scene::wire(fb, st, scene::SPHERE_ID, Wireframe::All, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_sphere_front",
+        run: |fb, st| scene::wire(fb, st, scene::SPHERE_ID, Wireframe::Front, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_sphere_hidden",
+        run: |fb, st| scene::wire(fb, st, scene::SPHERE_ID, Wireframe::Hidden, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_bunny_all",
+        run: |fb, st| scene::wire(fb, st, scene::BUNNY_ID, Wireframe::All, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_bunny_front",
+        run: |fb, st| scene::wire(fb, st, scene::BUNNY_ID, Wireframe::Front, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_bunny_hidden",
+        run: |fb, st| scene::wire(fb, st, scene::BUNNY_ID, Wireframe::Hidden, Walk::OneEnded),
+    },
+    Case {
+        name: "wire_sphere_all_two_ended",
+        run: |fb, st| scene::wire(fb, st, scene::SPHERE_ID, Wireframe::All, Walk::TwoEnded),
+    },
+    Case {
+        name: "wire_bunny_all_two_ended",
+        run: |fb, st| scene::wire(fb, st, scene::BUNNY_ID, Wireframe::All, Walk::TwoEnded),
+    },
 ];
 
 /// FNV-1a (32-bit) of a byte slice: the framebuffer checksum every platform prints.
@@ -555,6 +604,75 @@ pub mod scene {
             Ok(()) => stats.0.pixels_covered,
             Err(_) => 0,
         }
+    }
+
+    /// The edge tables ([`Mesh::edges`]) of the cube, sphere and bunny, computed once (each
+    /// buffer holds one entry per corner while the edges are sorted; the edges take the first
+    /// `counts[k]`).
+    pub struct KeptEdges {
+        cube: [[u16; 2]; 36],
+        sphere: [[u16; 2]; 2880],
+        bunny: [[u16; 2]; 3 * MAX_POLYGONS],
+        counts: [usize; 3],
+    }
+
+    impl KeptEdges {
+        /// The three meshes' edges (run once, outside the measured regions).
+        pub fn new() -> KeptEdges {
+            let mut k = KeptEdges {
+                cube: [[0; 2]; 36],
+                sphere: [[0; 2]; 2880],
+                bunny: [[0; 2]; 3 * MAX_POLYGONS],
+                counts: [0; 3],
+            };
+            k.counts[0] = CUBE.mesh.edges(&mut k.cube).unwrap_or(0);
+            k.counts[1] = SPHERE.mesh.edges(&mut k.sphere).unwrap_or(0);
+            k.counts[2] = BUNNY.mesh.edges(&mut k.bunny).unwrap_or(0);
+            k
+        }
+
+        /// Mesh `which`'s edges ([`CUBE_ID`], [`SPHERE_ID`], [`BUNNY_ID`]; none for others).
+        pub fn of(&self, which: usize) -> &[[u16; 2]] {
+            match which {
+                CUBE_ID => &self.cube[..self.counts[0]],
+                SPHERE_ID => &self.sphere[..self.counts[1]],
+                BUNNY_ID => &self.bunny[..self.counts[2]],
+                _ => &[],
+            }
+        }
+    }
+
+    impl Default for KeptEdges {
+        fn default() -> KeptEdges {
+            KeptEdges::new()
+        }
+    }
+
+    /// The standard scene `which` ([`STANDARD`]) as a wireframe in `mode` (palette index 255,
+    /// the default depth offset, the lines walked as `walk`), through the cleared 16-bit depth
+    /// buffer; returns the pixels drawn.
+    pub fn wire(
+        fb: &mut Framebuffer<'_>,
+        st: &mut Storage,
+        which: usize,
+        mode: zscan::render::Wireframe,
+        walk: zscan::raster::depth_line::Walk,
+    ) -> u32 {
+        let Ok(mut zb) = DepthBuffer::new(&mut st.depth, super::WIDTH, super::HEIGHT) else {
+            return 0;
+        };
+        zb.clear();
+        fb.clear(0);
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        let mut style = zscan::render::LineStyle::new(255);
+        style.walk = walk;
+        let object = object(STANDARD[which], ShadeMode::GouraudExact);
+        let edges = st.edges.of(which);
+        r.draw_wireframe(&object, edges, mode, &mut st.vertices, &style, fb, &mut zb)
+            .unwrap_or(0)
     }
 
     /// The planner's facts of the standard meshes (indexed as [`STANDARD`]), computed once by

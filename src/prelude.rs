@@ -58,6 +58,9 @@ pub use crate::render::{
 };
 pub use crate::render::{BandSink, DisplaySink, DoubleBands};
 
+// Lines and points in space: wireframes, line lists, points.
+pub use crate::render::{LineStyle, Wireframe};
+
 // The planner: a plan within a memory budget, drawn from memory it sizes.
 pub use crate::render::{CompactVertex, PolygonTop};
 pub use crate::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};

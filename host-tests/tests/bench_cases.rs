@@ -165,3 +165,26 @@ fn planned_frames_are_the_z_buffer_frames() {
         assert!(pixels.iter().all(|&p| p == 0), "{name} draws nothing");
     }
 }
+
+/// The wireframe cases draw, and the two-ended walk draws the one-ended picture.
+#[test]
+fn wireframe_cases_draw_and_both_walks_agree() {
+    for mesh in ["cube", "sphere", "bunny"] {
+        let count = |mode: &str| {
+            let (px, pixels) = draw(case(&format!("wire_{mesh}_{mode}")));
+            let set = pixels.iter().filter(|&&p| p != 0).count() as u32;
+            assert!(px >= set && set > 0, "wire_{mesh}_{mode}: {px} {set}");
+            set
+        };
+        let (all, front, hidden) = (count("all"), count("front"), count("hidden"));
+        assert!(
+            hidden <= front && front <= all,
+            "{mesh}: {all} {front} {hidden}"
+        );
+    }
+    for mesh in ["sphere", "bunny"] {
+        let one = draw(case(&format!("wire_{mesh}_all")));
+        let two = draw(case(&format!("wire_{mesh}_all_two_ended")));
+        assert!(one == two, "{mesh}");
+    }
+}

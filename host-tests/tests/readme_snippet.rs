@@ -65,10 +65,11 @@ mod both_preludes {
         BandScratch as _, BandSink as _, BinaryAngle as _, Camera as _, CompactVertex as _,
         Cone as _, Coord as _, DepthBuffer as _, DepthValue as _, DisplaySink as _,
         DoubleBands as _, Error as _, FovAxis as _, Framebuffer as _, Intensities as _, Lens as _,
-        Light as _, LuminanceRamp as _, Lut as _, Material as _, Mesh as _, MeshFacts as _,
-        Object as _, PlanMemory as _, PlanSizes as _, PolygonRows as _, PolygonSizes as _,
-        PolygonTop as _, PreparedVertex as _, RenderStats as _, Renderer as _, Scene as _,
-        ShadeMode as _, StatsSink as _, StatsWithoutWritten as _, Vec3 as _, Viewport as _,
+        Light as _, LineStyle as _, LuminanceRamp as _, Lut as _, Material as _, Mesh as _,
+        MeshFacts as _, Object as _, PlanMemory as _, PlanSizes as _, PolygonRows as _,
+        PolygonSizes as _, PolygonTop as _, PreparedVertex as _, RenderStats as _, Renderer as _,
+        Scene as _, ShadeMode as _, StatsSink as _, StatsWithoutWritten as _, Vec3 as _,
+        Viewport as _, Wireframe as _,
     };
 
     /// The names above, as `src/prelude.rs` exports them.
@@ -103,6 +104,7 @@ mod both_preludes {
         "Intensities",
         "Lens",
         "Light",
+        "LineStyle",
         "Lut",
         "LuminanceRamp",
         "Material",
@@ -119,6 +121,7 @@ mod both_preludes {
         "StatsWithoutWritten",
         "Vec3",
         "Viewport",
+        "Wireframe",
         "CompactVertex",
         "MeshFacts",
         "PlanMemory",

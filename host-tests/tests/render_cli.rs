@@ -647,3 +647,49 @@ fn a_spot_lights_a_cone_of_what_a_point_lights() {
     assert!(darker > 10_000, "{darker}");
     assert!(lit_equal > 1_000, "{lit_equal}");
 }
+
+/// The wireframe scenes: each mode's picture is the one in `docs/images` (looked at), the
+/// hidden-line picture lies inside the front edges', which lies inside every edge's; bands and
+/// other visibility methods are refused in words.
+#[test]
+fn wireframe_scenes_render_their_modes() {
+    let dir = out_dir("wireframe");
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/images");
+    let mut lit = Vec::new();
+    for mode in ["all", "front", "hidden"] {
+        let scene = scenes().join(format!("wireframe_{mode}.toml"));
+        let png = dir.join(format!("{mode}.png"));
+        let out = zscan(&[&scene, Path::new("-o"), &png]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let img = read_png_rgb(&png).unwrap();
+        let golden = read_png_rgb(&docs.join(format!("wireframe_{mode}.png"))).unwrap();
+        assert!(img.data == golden.data, "{mode}: differs from docs/images");
+        let set: Vec<bool> = img.data.chunks_exact(3).map(|p| p != [0, 0, 0]).collect();
+        lit.push(set);
+    }
+    let inside = |a: &[bool], b: &[bool]| a.iter().zip(b).all(|(&x, &y)| !x || y);
+    let count = |a: &[bool]| a.iter().filter(|&&x| x).count();
+    assert!(inside(&lit[2], &lit[1]) && inside(&lit[1], &lit[0]));
+    assert!(count(&lit[2]) < count(&lit[1]) && count(&lit[1]) < count(&lit[0]));
+    let scene = scenes().join("wireframe_hidden.toml");
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .arg("render")
+        .arg(&scene)
+        .args([
+            "-o",
+            dir.join("bands.png").to_str().unwrap(),
+            "--bands",
+            "8",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("whole-frame z-buffer"),
+        "{err}"
+    );
+}

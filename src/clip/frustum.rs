@@ -225,6 +225,38 @@ pub fn clip_to_plane<const A: usize, const N: usize>(
     Ok(())
 }
 
+/// Clips the segment `p`–`q` to the inside of the six `planes` (a 3D line of
+/// `render::lines`): `None` when no part of it is inside. Each plane one of its ends is
+/// outside of moves that end to the intersection, computed from the inside end by the
+/// polygons' own `intersect` (module doc): on the near plane exactly (`z ≥ near` always
+/// holds), on an oblique side plane within one raw unit, which the guard band absorbs. `code`
+/// gives the outcode of a point against the same planes (bit `i` for plane `i`).
+pub(crate) fn clip_segment(
+    planes: &[Plane; 6],
+    code: impl Fn(Vec3) -> u8,
+    p: Vec3,
+    q: Vec3,
+) -> Option<(Vec3, Vec3)> {
+    let (cp, cq) = (code(p), code(q));
+    if cp & cq != 0 {
+        return None;
+    }
+    let (mut a, mut b) = (ClipVertex::new(p, []), ClipVertex::new(q, []));
+    for (i, plane) in planes.iter().enumerate() {
+        if (cp | cq) & (1 << i) == 0 {
+            continue;
+        }
+        let (da, db) = (plane.distance(a.pos), plane.distance(b.pos));
+        match (da >= 0, db >= 0) {
+            (true, true) => {}
+            (false, false) => return None,
+            (true, false) => b = intersect::<0>(&a, &b, da, db, false),
+            (false, true) => a = intersect::<0>(&b, &a, db, da, false),
+        }
+    }
+    Some((a.pos, b.pos))
+}
+
 /// The view volume: near, far and four guard-band side planes (see the module doc).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Frustum {

@@ -54,6 +54,8 @@ pub enum MeshTable {
     VertexNormals,
     /// One intensity level per vertex or per polygon (the lighting functions' output).
     Levels,
+    /// The undirected edges ([`Mesh::edges`]).
+    Edges,
 }
 
 impl core::fmt::Display for MeshTable {
@@ -64,6 +66,7 @@ impl core::fmt::Display for MeshTable {
             MeshTable::FaceNormals => "face normal table",
             MeshTable::VertexNormals => "vertex normal table",
             MeshTable::Levels => "level table",
+            MeshTable::Edges => "edge table",
         })
     }
 }
@@ -458,6 +461,41 @@ impl<'a> Mesh<'a> {
                 .unwrap_or(Vec3::ZERO);
         }
         Ok(())
+    }
+}
+
+impl Mesh<'_> {
+    /// The mesh's undirected edges, each once (`[a, b]` with `a < b`, sorted), into `out`:
+    /// returns how many. `out` must hold one entry per polygon corner (the mesh's index
+    /// count) while they are sorted; the edges take its first entries.
+    ///
+    /// Errors: [`MeshError::OutputTooSmall`] when `out` is shorter than the index count.
+    pub fn edges(&self, out: &mut [[u16; 2]]) -> Result<usize, MeshError> {
+        let (needed, given) = (self.indices().len(), out.len());
+        let table = out.get_mut(..needed).ok_or(MeshError::OutputTooSmall {
+            table: MeshTable::Edges,
+            given,
+            needed,
+        })?;
+        let mut k = 0;
+        for poly in self.polygons() {
+            for (c, &i) in poly.iter().enumerate() {
+                let j = poly[(c + 1) % poly.len()];
+                table[k] = [i.min(j), i.max(j)];
+                k += 1;
+            }
+        }
+        table.sort_unstable();
+        // Keep the first of each run of equal edges (and no degenerate [i, i]).
+        let mut kept = 0;
+        for r in 0..needed {
+            let e = table[r];
+            if e[0] != e[1] && (kept == 0 || table[kept - 1] != e) {
+                table[kept] = e;
+                kept += 1;
+            }
+        }
+        Ok(kept)
     }
 }
 

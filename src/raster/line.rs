@@ -63,9 +63,33 @@
 //!   Then `n, a ≤ 2^31`, and the largest set-up product, `2·n·k` with `k ≤ a`, is at most
 //!   `2^63`, which fits `u64`; `2ta + c ≤ 2^63 + 2^31` as well. Window bounds may be any `i32`
 //!   (they enter only through `i64` differences).
+//!
+//! ## Sub-pixel end points (the 3D lines' pixels)
+//! [`SubpixelLine::new`] draws the exact segment between end points given in units of `2^-S`
+//! pixel (`U = 2^S` units to a pixel), as the 3D pipeline projects them. The definition is the
+//! one above with the end points no longer on the lattice: the major axis is `x` when
+//! `|dx| ≥ |dy|` (sub-pixel deltas); the line has **one pixel per integer major coordinate `m`
+//! whose pixel centre `m·U` lies on the closed segment's major extent**, and its minor
+//! coordinate is the exact minor value of the segment at `m·U`, divided by `U`, **rounded to
+//! nearest, ties toward the smaller coordinate**. On the lattice (`S = 0`, or end points
+//! that are multiples of `U`) these are exactly the pixels of [`Bresenham::new`] (tested). The
+//! definition does not depend on the direction of travel, so a shared edge drawn from either
+//! end covers the same pixels. A segment whose major extent holds no pixel centre draws
+//! nothing; a segment of zero length draws its point's pixel when it is a pixel centre along
+//! the major axis (`x`), else nothing.
+//!
+//! The walk is the same midpoint iteration: with `n = |major delta|` and `a = |minor delta|`
+//! in sub-pixel units, the minor pixel at step `t` is `⌊(N₀ + 2Ua·t) / 2Un⌋` (or its
+//! negation) for an `N₀` fixed at set-up; the remainder of that division is constant modulo
+//! `2U` (every step adds a multiple of `2U`), so its quotient by `2U` decides the minor moves
+//! alone: the [`Bresenham`] state with error steps `a` and `n` (error in `[−n, 0)`). Clipping
+//! to the window is exact and O(1), as for lattice lines: the first and last steps inside come
+//! from a few `i128` divisions at set-up. Range: `|x|, |y| ≤ `[`MAX_COORD`] sub-pixel units
+//! for both ends (then `n, a ≤ 2^31`; the set-up products stay below `2^100` in `i128`).
 
 use super::outcode::Outcode;
 use crate::output::Framebuffer;
+use crate::raster::SubpixelPoint;
 use crate::raster::Window;
 use embedded_graphics_core::geometry::Point;
 
@@ -366,6 +390,178 @@ impl Bresenham {
             self.steps_left as u64 + 1
         }
     }
+}
+
+/// A line between sub-pixel end points, clipped to a window: its pixels as a [`Bresenham`]
+/// state, and where they fall along the segment (for the depth walker of 3D lines). See the
+/// [module documentation](self), "Sub-pixel end points".
+#[derive(Debug, Clone)]
+pub struct SubpixelLine {
+    /// The pixels inside the window, in order from the first end point.
+    pub(crate) pixels: Bresenham,
+    /// The same pixels walked from the last one back to the first (the two-ended walk).
+    pub(crate) back: Bresenham,
+    /// Major distance from the first end point to the first pixel's centre, sub-pixel units.
+    pub(crate) travel: u64,
+    /// Major distance from the first end point to the last pixel's centre, sub-pixel units.
+    pub(crate) travel_last: u64,
+    /// `|major delta|` in sub-pixel units (0 for a point).
+    pub(crate) length: u64,
+    /// Sub-pixel units per pixel (`2^S`).
+    pub(crate) unit: u64,
+}
+
+impl SubpixelLine {
+    /// The pixels of the exact segment `p0`–`p1` (both ends included where they are pixel
+    /// centres along the major axis) that `window` holds, or `None` when it holds none.
+    ///
+    /// Errors when a coordinate of `p0` or `p1` is beyond `±`[`MAX_COORD`] sub-pixel units.
+    pub fn new<const S: u32>(
+        p0: SubpixelPoint<S>,
+        p1: SubpixelPoint<S>,
+        window: &Window,
+    ) -> Result<Option<SubpixelLine>, LineError> {
+        for p in [p0, p1] {
+            if p.x.unsigned_abs() > MAX_COORD as u32 || p.y.unsigned_abs() > MAX_COORD as u32 {
+                return Err(LineError::CoordinateOutOfRange {
+                    point: Point::new(p.x, p.y),
+                });
+            }
+        }
+        if window.is_empty() {
+            return Ok(None);
+        }
+        Ok(Self::clipped(p0, p1, window))
+    }
+
+    /// The set-up (module doc); coordinates checked by the caller.
+    fn clipped<const S: u32>(
+        p0: SubpixelPoint<S>,
+        p1: SubpixelPoint<S>,
+        window: &Window,
+    ) -> Option<SubpixelLine> {
+        let unit = 1i128 << S;
+        let (dx, dy) = (p1.x as i64 - p0.x as i64, p1.y as i64 - p0.y as i64);
+        let x_major = dx.unsigned_abs() >= dy.unsigned_abs();
+        let (m0, m1, mu0, mu1) = if x_major {
+            (p0.x as i128, p1.x as i128, p0.y as i128, p1.y as i128)
+        } else {
+            (p0.y as i128, p1.y as i128, p0.x as i128, p1.x as i128)
+        };
+        let sigma: i128 = if m1 >= m0 { 1 } else { -1 };
+        // A point (n = 0) takes the increasing form: its minor value rounded at set-up.
+        let tau: i128 = if mu1 > mu0 || m1 == m0 { 1 } else { -1 };
+        let (n, a) = ((m1 - m0).abs(), (mu1 - mu0).abs());
+        // The pixel centres on the major extent, in the direction of travel.
+        let (first, last) = if sigma > 0 {
+            (ceil_div(m0, unit), m1.div_euclid(unit))
+        } else {
+            (m0.div_euclid(unit), ceil_div(m1, unit))
+        };
+        let count = sigma * (last - first) + 1;
+        if count <= 0 {
+            return None;
+        }
+        let travel = sigma * (first * unit - m0); // in [0, U)
+        let (xs, ys) = (
+            (window.x0 as i64, window.x1 as i64 - 1),
+            (window.y0 as i64, window.y1 as i64 - 1),
+        );
+        let (major_win, minor_win) = if x_major { (xs, ys) } else { (ys, xs) };
+        let (tm_lo, tm_hi) = signed_range(first as i64, major_win, sigma as i32);
+        // The minor pixel at step t is ±q(t), q(t) = ⌊(N₀ + t·B) / C⌋ (module doc).
+        let (c, b) = (2 * unit * n.max(1), 2 * unit * a);
+        let n0 = if n == 0 {
+            // A point: ⌈(2μ₀ − U) / 2U⌉, its minor coordinate rounded, ties toward the smaller.
+            2 * mu0 + unit - 1
+        } else if tau > 0 {
+            2 * mu0 * n + 2 * travel * a + unit * n - 1
+        } else {
+            2 * travel * a - 2 * mu0 * n + unit * n
+        };
+        let (q_lo, q_hi) = if tau > 0 {
+            (minor_win.0 as i128, minor_win.1 as i128)
+        } else {
+            (-(minor_win.1 as i128), -(minor_win.0 as i128))
+        };
+        let (tk_lo, tk_hi) = if b == 0 {
+            let q = n0.div_euclid(c);
+            if q < q_lo || q > q_hi {
+                return None;
+            }
+            (0, count - 1)
+        } else {
+            (
+                ceil_div(q_lo * c - n0, b),
+                ceil_div((q_hi + 1) * c - n0, b) - 1,
+            )
+        };
+        let t_first = (tm_lo as i128).max(tk_lo).max(0);
+        let t_last = (tm_hi as i128).min(tk_hi).min(count - 1);
+        if t_first > t_last {
+            return None;
+        }
+        let axis = |major: i128, minor: i128| {
+            if x_major {
+                Point::new(major as i32, minor as i32)
+            } else {
+                Point::new(minor as i32, major as i32)
+            }
+        };
+        let (major_step, minor_step) = (axis(sigma, 0), axis(0, tau));
+        // The pixel at step t and its error r_hi − n (r_hi = remainder / 2U).
+        let at = |t: i128| {
+            let num = n0 + t * b;
+            let (q, r) = (num.div_euclid(c), num.rem_euclid(c));
+            let point = axis(first + sigma * t, tau * q);
+            (point, (r / (2 * unit) - n) as i64)
+        };
+        let ((p_first, e_first), (p_last, e_last)) = (at(t_first), at(t_last));
+        let steps_left = (t_last - t_first) as u32; // ≤ 2^31
+        let (a, n) = (a as i64, n as i64);
+        let pixels = Bresenham {
+            point: p_first,
+            major_step,
+            minor_step,
+            error: e_first,
+            error_step_major: a,
+            error_step_minor: n,
+            steps_left,
+            done: false,
+            last: p_last,
+        };
+        // Walked backwards the error becomes g = −n − 1 − e: the same iteration (module doc
+        // of the depth walker, `raster::depth_line`).
+        let back = Bresenham {
+            point: p_last,
+            major_step: Point::zero() - major_step,
+            minor_step: Point::zero() - minor_step,
+            error: -n - 1 - e_last,
+            error_step_major: a,
+            error_step_minor: n,
+            steps_left,
+            done: false,
+            last: p_first,
+        };
+        Some(SubpixelLine {
+            pixels,
+            back,
+            travel: (travel + t_first * unit) as u64,
+            travel_last: (travel + t_last * unit) as u64,
+            length: n as u64,
+            unit: unit as u64,
+        })
+    }
+
+    /// The pixels, in order from the first end point.
+    pub fn pixels(&self) -> Bresenham {
+        self.pixels.clone()
+    }
+}
+
+/// `⌈p / q⌉` for `q > 0`.
+fn ceil_div(p: i128, q: i128) -> i128 {
+    -(-p).div_euclid(q)
 }
 
 /// The steps `t` with `lo ≤ origin + sign·t ≤ hi`, as a closed `i64` range (possibly empty or

@@ -10,12 +10,14 @@
 //! - **Spans are half-open**: a [`Span`] covers `x0 ≤ x < x1` on row `y`.
 //! - **Sub-pixel vertices**: [`SubpixelPoint<S>`] holds coordinates in units of `2^-S` pixel.
 //!
-//! Modules: [`line`](mod@line) (Bresenham), [`circle`] (midpoint circle), `edge_walker` (TIPE's
+//! Modules: [`line`](mod@line) (Bresenham, lattice and sub-pixel end points),
+//! [`depth_line`] (3D lines: exact depth along a line, depth-tested), [`circle`] (midpoint circle), `edge_walker` (TIPE's
 //! `Parcours`: exact edge stepping by Euclidean division; crate-private), [`polygon`] (TIPE's `Remplissage`
 //! for arbitrary polygons), [`triangle`] (the fast path with the same coverage).
 
 pub mod circle;
 pub mod convex_window;
+pub mod depth_line;
 pub mod line;
 pub(crate) mod outcode;
 pub mod polygon;

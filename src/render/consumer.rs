@@ -20,7 +20,9 @@
 use super::{PreparedVertex, RenderError};
 use crate::geometry::vector::Vec3;
 use crate::output::DepthValue;
+use crate::raster::triangle::setup::TriangleSetup;
 use crate::raster::triangle::Bayer4;
+use crate::raster::triangle::{draw_depth_only, DepthTarget};
 use crate::raster::triangle::{draw_in_range, RasterTarget, WrittenCount};
 use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};
 use crate::raster::SubpixelPoint;
@@ -125,5 +127,25 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 3>
         };
         let corners = [corner(&c[0]), corner(&c[1]), corner(&c[2])];
         draw_phong_on(self.target, corners, &self.context).map_err(RenderError::Draw)
+    }
+}
+
+/// The depth-only consumer (a hidden-line wireframe's first pass): each triangle's exact depth
+/// plane into the z-buffer alone, through the writer's depth-only kind ([`draw_depth_only`]),
+/// with the vertex depths clamped as [`LevelWriter`]'s are (so that a face stores the depths
+/// it would store drawn shaded). Returns the samples covered, none counted as written.
+pub(crate) struct DepthOnlyWriter<'a, 't, D> {
+    /// The z-buffer's samples.
+    pub(crate) target: &'a mut DepthTarget<'t, D>,
+}
+
+impl<D: DepthValue, const S: u32, const N: usize> TriangleConsumer<S, N>
+    for DepthOnlyWriter<'_, '_, D>
+{
+    #[inline(always)]
+    fn triangle(&mut self, _: usize, c: [Corner<S, N>; 3]) -> Result<(u32, u32), RenderError> {
+        let t = TriangleSetup::in_range(c.map(|c| c.screen));
+        let depths = c.map(|c| c.depth.min(D::MAX_DEPTH32));
+        Ok((draw_depth_only(self.target, &t, depths), 0))
     }
 }

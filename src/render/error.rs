@@ -135,6 +135,24 @@ pub enum RenderError {
         /// The vertex's index in its mesh.
         vertex: usize,
     },
+    /// A 3D line list's segment names a vertex its object's mesh has not
+    /// ([`Renderer::draw_lines`](super::Renderer::draw_lines), a wireframe's edge table).
+    SegmentOutOfRange {
+        /// The segment's index in the list.
+        segment: usize,
+        /// The vertex index it names.
+        vertex: u16,
+        /// Vertices in the mesh.
+        vertices: usize,
+    },
+    /// [`Renderer::draw_points`](super::Renderer::draw_points) was asked for squares of
+    /// `size` pixels, outside `1..=max`.
+    PointSizeOutOfRange {
+        /// The side asked for.
+        size: u8,
+        /// The largest side ([`MAX_POINT_SIZE`](super::MAX_POINT_SIZE)).
+        max: u8,
+    },
     /// [`draw_plan`](crate::visibility::draw_plan) was given a plan whose method and depth
     /// width the planner never makes together (a `Plan` built by hand).
     NotPlanned {
@@ -324,6 +342,19 @@ impl core::fmt::Display for RenderError {
                 "vertex {vertex} of object {object} needs clipping or leaves the 16-bit screen \
                  range: compact bands need every vertex inside the guard band \
                  (use render_in_bands)"
+            ),
+            RenderError::SegmentOutOfRange {
+                segment,
+                vertex,
+                vertices,
+            } => write!(
+                f,
+                "segment {segment} names vertex {vertex}, but the mesh has {vertices} vertices \
+                 (indices 0 to {vertices} − 1)"
+            ),
+            RenderError::PointSizeOutOfRange { size, max } => write!(
+                f,
+                "points of {size} × {size} pixels: the side must be 1 to {max}"
             ),
             RenderError::NotPlanned {
                 method,

@@ -127,7 +127,7 @@ impl<const S: u32> Renderer<S> {
 
     /// The polygon stage of `object` over the rows `rows.0 .. rows.1` (with its band table,
     /// if any).
-    fn stage<'r, 'o>(
+    pub(super) fn stage<'r, 'o>(
         &'r self,
         object: &'r Object<'o>,
         prepared: &'r [PreparedVertex<S>],
@@ -189,7 +189,7 @@ impl<const S: u32> Renderer<S> {
 }
 
 /// The prepared vertices of `object` in `scratch`, once its tables are checked long enough.
-fn checked_scratch<'s, const S: u32>(
+pub(super) fn checked_scratch<'s, const S: u32>(
     object: &Object<'_>,
     scratch: &'s [PreparedVertex<S>],
 ) -> Result<&'s [PreparedVertex<S>], RenderError> {

@@ -12,7 +12,8 @@
 //! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
 //! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]`, `toward = [x,y,z]` or `spot = [x,y,z]` with `axis = [x,y,z]` and `cone = [inner, outer]` (half-angles in degrees), `attenuation = [c, l, q]` for a point or spot, and `intensity` `0..=255` |
 //! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
-//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither` |
+//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `wireframe` = `"all"` \| `"front"` \| `"hidden"` (drawn as lines instead of shaded: every edge, the front faces' edges, hidden lines removed through the depth buffer), `line_index` the lines' palette index (the ramp's brightest) |
+//! | `[[lines]]` | a 3D line list in world coordinates: `points` = `[[x,y,z], ...]`, `segments` = `[[i, j], ...]` (indices into `points`), `index` palette index (255), `point_size` (0: no points; 1 to 16: each point a square of that side) |
 //!
 //! Generators (the core's [`zscan::geometry::generators`], buffers allocated here):
 //! `"cube"` (the unit cube `[0,1]³`, no parameters; `center = true` makes it `[−½,½]³`),
@@ -28,6 +29,12 @@
 //! (degrees, right-hand rule; SCENES.md's cube is `rotate_deg = [20, 30, 0]`), then
 //! `translate = T`. The placement is done here in `f64` and the world positions are rounded
 //! once to the core's I16F16 (the object's core transform is the identity).
+//!
+//! ## Wireframes, lines and points
+//! Wireframe objects and `[[lines]]` are drawn after the shaded objects, in the file's order,
+//! through the same whole-frame z-buffer (the core's `Renderer::draw_wireframe`,
+//! `draw_lines`, `draw_points`, at the default depth offset): `--visibility zbuffer` only, not
+//! in `--bands`; other methods and bands are refused in words.
 //!
 //! ## Lighting
 //! Two sources, chosen per object by its `material`:
@@ -76,10 +83,11 @@ use zscan::geometry::vector::Vec3;
 use zscan::lighting::{
     Attenuation, Cone, Illumination, Light, Material, MAX_LIGHTS, MAX_SHININESS,
 };
-use zscan::output::{DepthValue, Framebuffer, Lut};
+use zscan::output::{DepthBuffer, DepthValue, Framebuffer, Lut};
 use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
-    BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
+    BandScratch, LineStyle, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
+    Wireframe,
 };
 use zscan::scene::{Intensities, Object, Scene};
 
@@ -183,6 +191,52 @@ pub struct SceneFile {
     /// `[[object]]` entries.
     #[serde(default, rename = "object")]
     pub objects: Vec<Spanned<ObjectSection>>,
+    /// `[[lines]]` entries.
+    #[serde(default, rename = "lines")]
+    pub lines: Vec<LinesSection>,
+}
+
+/// One `[[lines]]`: a 3D line list (and its points) in world coordinates.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinesSection {
+    /// World positions.
+    pub points: Vec<[f64; 3]>,
+    /// Segments, as pairs of indices into `points`.
+    #[serde(default)]
+    pub segments: Vec<[u16; 2]>,
+    /// Palette index (255).
+    #[serde(default = "default_line_index")]
+    pub index: u8,
+    /// Side of each point's square (0: points not drawn).
+    #[serde(default)]
+    pub point_size: u8,
+}
+
+fn default_line_index() -> u8 {
+    255
+}
+
+/// `wireframe` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WireKey {
+    /// Every edge once.
+    All,
+    /// The front faces' edges.
+    Front,
+    /// Hidden lines removed through the depth buffer.
+    Hidden,
+}
+
+impl WireKey {
+    fn mode(self) -> Wireframe {
+        match self {
+            WireKey::All => Wireframe::All,
+            WireKey::Front => Wireframe::Front,
+            WireKey::Hidden => Wireframe::Hidden,
+        }
+    }
 }
 
 /// `[camera]`: a look-at camera.
@@ -760,6 +814,10 @@ pub struct ObjectSection {
     pub cull: Option<bool>,
     /// Ordered dithering (default `[render] dither`).
     pub dither: Option<bool>,
+    /// Drawn as a wireframe instead of shaded.
+    pub wireframe: Option<WireKey>,
+    /// The wireframe's palette index (default: the ramp's brightest).
+    pub line_index: Option<u8>,
 }
 
 /// A mesh in `f64` on the host: positions and polygons (counter-clockwise outward).
@@ -796,6 +854,23 @@ pub struct PreparedObject {
     pub cull: bool,
     /// Ordered dithering.
     pub dither: bool,
+    /// Drawn as a wireframe in this mode instead of shaded.
+    pub wireframe: Option<Wireframe>,
+    /// The wireframe's palette index.
+    pub line_index: u8,
+}
+
+/// A `[[lines]]` list ready for the core.
+#[derive(Debug, Clone)]
+pub struct PreparedLines {
+    /// World positions, I16F16.
+    pub points: Vec<Vec3>,
+    /// Segments.
+    pub segments: Vec<[u16; 2]>,
+    /// Palette index.
+    pub index: u8,
+    /// Side of each point's square (0: none).
+    pub point_size: u8,
 }
 
 impl PreparedObject {
@@ -844,6 +919,8 @@ pub struct LoadedScene {
     pub triangles_in: u64,
     /// `[camera]` as the file gave it (to say why a picture came out empty).
     pub view: CameraSection,
+    /// The `[[lines]]` lists.
+    pub lines: Vec<PreparedLines>,
 }
 
 /// Line numbers of a scene file's text: the byte offsets of its line breaks, found once, so
@@ -1187,6 +1264,8 @@ struct Look {
     ramp: LuminanceRamp,
     cull: bool,
     dither: bool,
+    wireframe: Option<Wireframe>,
+    line_index: u8,
 }
 
 fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
@@ -1234,6 +1313,8 @@ fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
         ramp: look.ramp,
         cull: look.cull,
         dither: look.dither,
+        wireframe: look.wireframe,
+        line_index: look.line_index,
     };
     if o.lit.is_some() {
         let mut normals = vec![Vec3::ZERO; o.vertices.len()];
@@ -1515,8 +1596,36 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
             ramp,
             cull: o.cull.unwrap_or(file.render.cull),
             dither: o.dither.unwrap_or(file.render.dither),
+            wireframe: o.wireframe.map(WireKey::mode),
+            line_index: o.line_index.unwrap_or(
+                (ramp.first as u16 + ramp.levels as u16)
+                    .saturating_sub(1)
+                    .min(255) as u8,
+            ),
         };
         objects.push(prepare(&mesh, look).map_err(err)?);
+    }
+    let mut lines = Vec::new();
+    for (k, l) in file.lines.iter().enumerate() {
+        let err = |e: String| format!("{name}: lines {}: {e}", k + 1);
+        let mut points = Vec::with_capacity(l.points.len());
+        for v in &l.points {
+            if !finite(v) || v.iter().any(|c| c.abs() > 1024.0) {
+                return Err(err(format!(
+                    "point {v:?} outside the core's mesh range (|coordinate| ≤ 1024)"
+                )));
+            }
+            points.push(Vec3::new(coord(v[0]), coord(v[1]), coord(v[2])));
+        }
+        if points.len() > 65_536 {
+            return Err(err(format!("{} points: at most 65536", points.len())));
+        }
+        lines.push(PreparedLines {
+            points,
+            segments: l.segments.clone(),
+            index: l.index,
+            point_size: l.point_size,
+        });
     }
     let (ambient, lights) = match &file.lighting {
         Some(l) => (l.ambient, lights(l).map_err(|e| format!("{name}: {e}"))?),
@@ -1532,6 +1641,7 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
         depth_bits: file.render.depth_bits,
         view: file.camera.clone(),
         triangles_in,
+        lines,
     })
 }
 
@@ -1646,7 +1756,25 @@ impl LoadedScene {
         let vp = *self.camera.viewport();
         let (w, h) = (vp.width, vp.height);
         super::check_picture_size("[viewport] width × height", w, h).map_err(FrameError::Setup)?;
-        let objects = self.core_objects(only).map_err(FrameError::Setup)?;
+        let lined = self.objects.iter().any(|o| o.wireframe.is_some()) || !self.lines.is_empty();
+        if lined && (visibility != Visibility::ZBuffer || band_rows.is_some()) {
+            return Err(FrameError::Setup(format!(
+                "wireframes and [[lines]] are drawn through the whole-frame z-buffer: \
+                 --visibility zbuffer without --bands (asked: --visibility {visibility}{})",
+                band_rows.map_or(String::new(), |b| format!(", --bands {b}"))
+            )));
+        }
+        let all = self.core_objects(only).map_err(FrameError::Setup)?;
+        let kept: Vec<usize> = (0..self.objects.len())
+            .filter(|k| only.is_none_or(|o| o == *k))
+            .collect();
+        // Shaded objects through the frame's method; wireframes after them, as lines.
+        let objects: Vec<_> = all
+            .iter()
+            .zip(&kept)
+            .filter(|(_, &k)| self.objects[k].wireframe.is_none())
+            .map(|(o, _)| *o)
+            .collect();
         let scene = self.core_scene(&objects);
         let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
             .map_err(|e| FrameError::Setup(format!("camera: {}", render_error_words(&e))))?;
@@ -1689,6 +1817,25 @@ impl LoadedScene {
             },
         )
         .map_err(FrameError::Render)?;
+        let (mut pixels, mut depth, mut stats) = (pixels, depth, stats);
+        if lined {
+            let wires: Vec<_> = all
+                .iter()
+                .zip(&kept)
+                .filter_map(|(o, &k)| self.objects[k].wireframe.map(|m| (o, m, &self.objects[k])))
+                .collect();
+            let lines = if only.is_none() { &self.lines[..] } else { &[] };
+            let drawn = self.draw_lines::<D>(
+                renderer.renderer(),
+                (w, h),
+                &wires,
+                lines,
+                &mut pixels,
+                &mut depth,
+            )?;
+            stats.pixels_written = stats.pixels_written.saturating_add(drawn);
+            stats.pixels_covered = stats.pixels_covered.saturating_add(drawn);
+        }
         let bands = band_count(h, band_rows.unwrap_or(h));
         Ok(Frame {
             pixels,
@@ -1696,6 +1843,79 @@ impl LoadedScene {
             stats,
             bands,
         })
+    }
+}
+
+impl LoadedScene {
+    /// The wireframes `wires` and the line lists `lines` into the finished picture, through
+    /// its depth (module doc, "Wireframes, lines and points"). Returns the pixels drawn.
+    fn draw_lines<D: DepthValue>(
+        &self,
+        renderer: &Renderer<SUBPIXEL_BITS>,
+        (w, h): (u16, u16),
+        wires: &[(&Object<'_>, Wireframe, &PreparedObject)],
+        lines: &[PreparedLines],
+        pixels: &mut [u8],
+        depth: &mut [D],
+    ) -> Result<u32, FrameError> {
+        let mut frame = Framebuffer::new(pixels, w, h)
+            .map_err(|e| FrameError::Setup(format!("frame: {e:?}")))?;
+        let mut depth = DepthBuffer::new(depth, w, h)
+            .map_err(|e| FrameError::Setup(format!("depth buffer: {e:?}")))?;
+        let mut drawn = 0;
+        for (object, mode, prepared) in wires {
+            let mesh = object.mesh;
+            let mut edges = vec![[0u16; 2]; mesh.indices().len()];
+            let k = match mode {
+                Wireframe::All => mesh
+                    .edges(&mut edges)
+                    .map_err(|e| FrameError::Setup(format!("edges: {}", mesh_error_words(e))))?,
+                _ => 0,
+            };
+            let mut scratch = vec![PreparedVertex::default(); mesh.vertices().len()];
+            let style = LineStyle::new(prepared.line_index);
+            drawn += renderer
+                .draw_wireframe(
+                    object,
+                    &edges[..k],
+                    *mode,
+                    &mut scratch,
+                    &style,
+                    &mut frame,
+                    &mut depth,
+                )
+                .map_err(FrameError::Render)?;
+        }
+        for l in lines {
+            let mesh = Mesh::new(&l.points, &[], PolygonSizes::Uniform(3))
+                .map_err(|e| FrameError::Setup(format!("lines: {}", mesh_error_words(e))))?;
+            let object = Object::new(mesh);
+            let mut scratch = vec![PreparedVertex::default(); l.points.len()];
+            let style = LineStyle::new(l.index);
+            drawn += renderer
+                .draw_lines(
+                    &object,
+                    &l.segments,
+                    &mut scratch,
+                    &style,
+                    &mut frame,
+                    &mut depth,
+                )
+                .map_err(FrameError::Render)?;
+            if l.point_size > 0 {
+                drawn += renderer
+                    .draw_points(
+                        &object,
+                        &mut scratch,
+                        l.point_size,
+                        &style,
+                        &mut frame,
+                        &mut depth,
+                    )
+                    .map_err(FrameError::Render)?;
+            }
+        }
+        Ok(drawn)
     }
 }
 
@@ -2159,6 +2379,14 @@ pub fn summary(output: &Path, w: u16, h: u16, stats: &RenderStats) -> String {
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
     check_options(&args)?;
     let scene = load_scene(&args.scene)?;
+    let lined = scene.objects.iter().any(|o| o.wireframe.is_some()) || !scene.lines.is_empty();
+    if lined && (args.visibility.0 != Some(Visibility::ZBuffer) || args.bands.is_some()) {
+        return Err(
+            "wireframes and [[lines]] are drawn through the whole-frame z-buffer: \
+                    --visibility zbuffer without --bands"
+                .into(),
+        );
+    }
     if args.visibility.0.is_none() {
         return finish_auto(&args, &scene);
     }

@@ -87,6 +87,17 @@ impl<'t, D: DepthValue> DepthTarget<'t, D> {
             targets: DepthTargets::new(samples, width as usize),
         }
     }
+
+    /// Borrows the samples of the z-buffer `depth` (a whole frame's or a band's) for drawing
+    /// depths into the pixels it holds that `frame` holds too (the hidden-line pass of a
+    /// wireframe: faces into depth only, then edges).
+    pub(crate) fn of_buffer(frame: &Framebuffer<'_>, depth: &'t mut DepthBuffer<'_, D>) -> Self {
+        let window = drawable_window(frame, depth);
+        let (stride, top) = (depth.width() as usize, depth.top());
+        let mut targets = DepthTargets::new(depth.samples_mut(), stride);
+        targets.top = top;
+        DepthTarget { window, targets }
+    }
 }
 
 /// The pixels both buffers hold (a band's rows, the frame's width).
@@ -189,13 +200,19 @@ impl<D: DepthValue> SpanTarget for Targets<'_, D> {
 pub(crate) struct DepthTargets<'t, D> {
     depths: &'t mut [D],
     stride: usize,
+    /// The absolute row of the first sample row (0 for a shadow map; a band's `top`).
+    top: i32,
 }
 
 impl<'t, D: DepthValue> DepthTargets<'t, D> {
     /// The samples `depths`, `stride` to a row.
     #[inline(always)]
     pub(crate) fn new(depths: &'t mut [D], stride: usize) -> Self {
-        DepthTargets { depths, stride }
+        DepthTargets {
+            depths,
+            stride,
+            top: 0,
+        }
     }
 }
 
@@ -205,7 +222,7 @@ impl<D: DepthValue> SpanTarget for DepthTargets<'_, D> {
     #[inline(always)]
     fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
         let len = s.x1.wrapping_sub(s.x0) as usize;
-        let at = (s.y as usize)
+        let at = (s.y.wrapping_sub(self.top) as usize)
             .wrapping_mul(self.stride)
             .wrapping_add(s.x0 as usize);
         Some((&mut [], self.depths.get_mut(at..at.wrapping_add(len))?))
