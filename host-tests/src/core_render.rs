@@ -19,8 +19,9 @@ use zscan::render::{
 };
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::visibility::{
-    render_back_faces, render_painter, render_scan_lines, render_warnock, Area, Normal,
-    PainterMemory, ScanLineMemory, SplitPolicy, StoredTriangle, Visibility, WarnockMemory,
+    render_back_faces, render_painter, render_reverse_painter, render_scan_lines, render_warnock,
+    Area, Convexity, MeshFacts, Normal, PainterMemory, ReverseError, ScanLineMemory, SplitPolicy,
+    StoredTriangle, Visibility, WarnockMemory,
 };
 
 use crate::scenes::Scene;
@@ -322,6 +323,7 @@ pub fn ram_bytes<const SB: u32>(
     scratch
         + match visibility {
             Visibility::BackFace => frame,
+            Visibility::ReversePainter => frame + 4 * zscan::output::mask_words_needed(w, h),
             Visibility::Painter => {
                 let pieces = m.pieces as usize;
                 frame
@@ -384,6 +386,17 @@ pub fn render_visible_at<D: DepthValue, const SB: u32>(
             measured(|| render_back_faces(renderer, &mut frame, &mut scratch, &mut stats))?;
             Ok((pixels, stats))
         }
+        Visibility::ReversePainter => {
+            // A refused scene (outside the planner's rule 1) has no `RenderError` of its own:
+            // it comes back as `NotPlanned`; `reverse_picture` gives the refusal in words.
+            reverse_picture(renderer, (w, h)).map_err(|e| match e {
+                ReverseError::Render(e) => e,
+                ReverseError::Refused(_) => RenderError::NotPlanned {
+                    method: Visibility::ReversePainter.name(),
+                    depth_bytes: 0,
+                },
+            })
+        }
         Visibility::Painter => {
             let mut pixels = vec![0u8; total];
             let mut frame = whole_frame(&mut pixels, w, h)?;
@@ -444,6 +457,52 @@ pub fn render_visible_at<D: DepthValue, const SB: u32>(
             Ok((pixels, stats))
         }
     }
+}
+
+/// The whole `w × h` picture of `scene` by the reverse painter
+/// ([`render_reverse_painter`]): each mesh's facts computed here, a mask of
+/// `mask_words_needed(w, h)` words. A scene outside the planner's rule 1 is
+/// [`ReverseError::Refused`], naming why.
+pub fn reverse_picture<const SB: u32>(
+    renderer: &SceneRenderer<'_, SB>,
+    (w, h): (u16, u16),
+) -> Result<(Vec<u8>, RenderStats), ReverseError> {
+    let scene = renderer.scene();
+    let largest = scene.objects.iter().map(|o| o.mesh.vertices().len()).max();
+    let mut scratch = vec![PreparedVertex::default(); largest.unwrap_or(0).max(1)];
+    let mut words: Vec<Vec<u32>> = scene
+        .objects
+        .iter()
+        .map(|o| vec![0u32; MeshFacts::words_needed(&o.mesh)])
+        .collect();
+    let facts: Vec<MeshFacts<'_>> = scene
+        .objects
+        .iter()
+        .zip(words.iter_mut())
+        .map(|(o, w)| {
+            MeshFacts::of(&o.mesh, w).unwrap_or(MeshFacts {
+                convexity: Convexity::NotConvex,
+                bounds: [[i32::MIN; 3], [i32::MAX; 3]],
+            })
+        })
+        .collect();
+    let mut order = vec![0u16; scene.objects.len()];
+    let mut pixels = vec![0u8; w as usize * h as usize];
+    let mut frame = whole_frame(&mut pixels, w, h)?;
+    let mut mask = vec![0u32; zscan::output::mask_words_needed(w, h)];
+    let mut stats = RenderStats::default();
+    measured(|| {
+        render_reverse_painter(
+            renderer,
+            &facts,
+            &mut order,
+            &mut frame,
+            &mut mask,
+            &mut scratch,
+            &mut stats,
+        )
+    })?;
+    Ok((pixels, stats))
 }
 
 /// [`render_visible_at`]'s scan-line: bands of `band_rows` rows (depth samples `D`),

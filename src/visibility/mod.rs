@@ -12,6 +12,7 @@
 //! | [`Visibility`] | memory beside the frame | correct for |
 //! |---|---|---|
 //! | [`BackFace`](Visibility::BackFace) (`backface.rs`) | none | one closed convex mesh; objects drawn back to front that a plane separates |
+//! | [`ReversePainter`](Visibility::ReversePainter) (`reverse.rs`) | a bit per pixel (`⌈w·h/32⌉` words) | as back faces alone: culled convex objects apart in depth where they overlap on screen, drawn near to far |
 //! | [`Painter`](Visibility::Painter) (`painter.rs`) | a stored triangle and an index per front triangle, plus pieces | any scene (Newell's tests, splitting where they fail) |
 //! | [`ScanLine`](Visibility::ScanLine) (`scanline.rs`) | a stored triangle and an index per front triangle, a band of rows and its depth | any scene (the z-buffer's picture at the depth width of its band) |
 //! | [`Warnock`](Visibility::Warnock) (`warnock.rs`) | a stored triangle per front triangle, stacks of candidate indices and of windows | any scene (the 32-bit z-buffer's depths and tie rule, decided per window) |
@@ -84,6 +85,7 @@ mod painter;
 mod plan;
 mod plane;
 mod planned;
+mod reverse;
 mod scanline;
 mod store;
 mod warnock;
@@ -98,6 +100,7 @@ pub use plan::{
     PlanError, DEPTH_MARGIN, SCREEN_MARGIN,
 };
 pub use planned::{plan_frame, BackFaceFrame, PlannedFrame};
+pub use reverse::{render_reverse_painter, ReverseError};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 pub use warnock::{render_warnock, Area, WarnockMemory};
@@ -109,6 +112,9 @@ pub enum Visibility {
     BackFace,
     /// Depth-sort painter (Newell, Newell and Sancha 1972) with the survey's six tests.
     Painter,
+    /// The reverse painter (course ch. 3, algorithm 3.2): separable convex objects near to
+    /// far, a mask of one bit per pixel, each pixel painted once (`reverse.rs`).
+    ReversePainter,
     /// Scan-line: a triangle table by first row, an active list, a band of depth rows.
     ScanLine,
     /// Warnock's area subdivision: windows drawn when simple, else split, down to a pixel.
@@ -119,8 +125,9 @@ pub enum Visibility {
 
 impl Visibility {
     /// Every method, cheapest first.
-    pub const ALL: [Visibility; 5] = [
+    pub const ALL: [Visibility; 6] = [
         Visibility::BackFace,
+        Visibility::ReversePainter,
         Visibility::Painter,
         Visibility::ScanLine,
         Visibility::Warnock,
@@ -132,6 +139,7 @@ impl Visibility {
         match self {
             Visibility::BackFace => "backface",
             Visibility::Painter => "painter",
+            Visibility::ReversePainter => "reverse-painter",
             Visibility::ScanLine => "scanline",
             Visibility::Warnock => "warnock",
             Visibility::ZBuffer => "zbuffer",

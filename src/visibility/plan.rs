@@ -710,7 +710,7 @@ fn compact_fits<const S: u32>(
 /// then the objects' separation, then the per-view check of each mesh,
 /// in reverse drawing order (with `lent`, its vertex stage: the object drawn first is the one
 /// whose vertices the scratch keeps).
-fn back_faces_allowed<const S: u32>(
+pub(super) fn back_faces_allowed<const S: u32>(
     scene: &Scene<'_>,
     facts: &[MeshFacts<'_>],
     view: &Placing<'_, S>,

@@ -1556,6 +1556,20 @@ impl LoadedScene {
         let scene = self.core_scene(&objects);
         let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
             .map_err(|e| FrameError::Setup(format!("camera: {}", render_error_words(&e))))?;
+        if visibility == Visibility::ReversePainter {
+            let (pixels, stats) =
+                crate::core_render::reverse_picture(&renderer, (w, h)).map_err(|e| match e {
+                    zscan::visibility::ReverseError::Render(e) => FrameError::Render(e),
+                    refused => FrameError::Setup(refused.to_string()),
+                })?;
+            let depth = vec![D::FAR; w as usize * h as usize];
+            return Ok(Frame {
+                pixels,
+                depth,
+                stats,
+                bands: 1,
+            });
+        }
         if visibility != Visibility::ZBuffer {
             let band = band_rows.unwrap_or(1);
             let (pixels, stats) = crate::core_render::render_visible_at::<D, SUBPIXEL_BITS>(
@@ -1788,7 +1802,9 @@ fn finish<D: DepthValue + Into<u64>>(
                 "stack_peak": m.stack_peak,
                 "stored": m.stored,
             }),
-            Visibility::BackFace | Visibility::ZBuffer => serde_json::json!({}),
+            Visibility::BackFace | Visibility::ReversePainter | Visibility::ZBuffer => {
+                serde_json::json!({})
+            }
         };
         let json = stats_json(
             scene,
