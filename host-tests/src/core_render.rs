@@ -659,7 +659,7 @@ pub struct PlannedFrame {
 
 /// Plans the renderer's scene within `budget` bytes and draws it so
 /// ([`zscan::visibility::plan_frame`]: a plan of back faces alone draws with the vertices its
-/// view check prepared; a z-buffer plan is drawn by [`draw_plan`]).
+/// view check prepared; a z-buffer or reverse painter plan is drawn by [`draw_plan`]).
 pub fn render_planned<const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     facts: &[zscan::visibility::MeshFacts<'_>],
@@ -683,7 +683,9 @@ pub fn render_planned<const SB: u32>(
             frame.render(&mut fb, &mut stats).map_err(render_words)?;
             (pixels, stats)
         }
-        Planned::ZBuffer(plan) => draw_plan(renderer, &plan, &order).map_err(render_words)?,
+        Planned::ZBuffer(plan) | Planned::ReversePainter(plan) => {
+            draw_plan(renderer, &plan, &order).map_err(render_words)?
+        }
     };
     Ok(PlannedFrame {
         plan,
@@ -719,6 +721,7 @@ pub fn draw_plan<const SB: u32>(
     let mut polygons = vec![PolygonRows::default(); n.polygons];
     let mut compact_vertices = vec![CompactVertex::default(); n.compact_vertices];
     let (mut levels, mut tops) = (vec![0; n.levels], vec![PolygonTop::default(); n.tops]);
+    let mut mask = vec![0u32; n.mask];
     let memory = PlanMemory {
         pixels: &mut pixels,
         depth16: &mut depth16,
@@ -728,6 +731,7 @@ pub fn draw_plan<const SB: u32>(
         compact_vertices: &mut compact_vertices,
         levels: &mut levels,
         tops: &mut tops,
+        mask: &mut mask,
     };
     let mut picture = vec![scene.background; w * vp.height as usize];
     let mut stats = RenderStats::default();

@@ -106,9 +106,11 @@ pub struct RenderArgs {
     pub bands: Option<u16>,
     /// Hidden-surface method: auto (zscan::visibility::plan: back faces alone for convex,
     /// separable objects, else the z-buffer in the layout and depth width that fit
-    /// --ram-budget; the plan and its reasons are printed), backface, painter, scanline,
-    /// warnock or zbuffer. Back faces alone, the painter and Warnock's subdivision need no
-    /// depth buffer and draw the whole frame at once (no --depth-out, no --bands); the
+    /// --ram-budget; the plan and its reasons are printed), backface, reverse-painter,
+    /// painter, scanline, warnock or zbuffer. Back faces alone, the reverse painter (a bit per
+    /// pixel; culled convex objects apart in depth where they overlap on screen, else refused
+    /// in words), the painter and Warnock's subdivision need no depth buffer and draw the
+    /// whole frame at once (no --depth-out, no --bands); the
     /// scan-line draws in bands of --bands rows (default 1) through one band of depth (no
     /// --depth-out).
     #[arg(long, value_name = "METHOD", default_value = "zbuffer", value_parser = parse_visibility)]
