@@ -18,7 +18,9 @@
 //! | [`Warnock`](Visibility::Warnock) (`warnock.rs`) | a stored triangle per front triangle, stacks of candidate indices and of windows | any scene (the 32-bit z-buffer's depths and tie rule, decided per window) |
 //! | [`ZBuffer`](Visibility::ZBuffer) (`render/`) | a depth sample per pixel (or per band pixel) | any scene |
 //!
-//! Where each breaks: back faces alone draws the last of two overlapping front faces (the
+//! Where each breaks: the reverse painter is refused in words outside back faces alone's
+//! scenes ([`ReverseError::Refused`], the planner's reason); back faces alone draws the last
+//! of two overlapping front faces (the
 //! bunny: 279 wrong pixels); the painter without test 6 draws a cycle or interpenetration in
 //! the wrong order (101 and 514 wrong pixels in `tests/visibility.rs`), and with it judges each
 //! piece by its own outline and draws them right (the bunny: 2 splits; a piece may be cut as
@@ -54,8 +56,10 @@
 //! computed once, `facts.rs`), the objects' depth ranges and screen boxes. Culled, separable
 //! objects whose drawn faces cover each pixel at most once in this view (an exact check on
 //! the rounded screen positions, `facts.rs`) need no depth buffer
-//! ([`render_back_faces_in_order`], far to near); other scenes take the z-buffer, whole or in
-//! bands, 32-bit unless only 16-bit fits. [`plan_frame`] plans and draws as one entry
+//! ([`render_back_faces_in_order`], far to near), or, when a Phong object lies behind a nearer
+//! one on screen, the reverse painter ([`render_reverse_painter`], near to far through a bit
+//! per pixel, each pixel lit once); other scenes take the z-buffer, whole or in bands, 32-bit
+//! unless only 16-bit fits. [`plan_frame`] plans and draws as one entry
 //! (`planned.rs`): the per-view check of a mesh runs the renderer's vertex stage into the
 //! caller's scratch, and a plan of back faces alone comes back as a [`BackFaceFrame`] that draws
 //! from those prepared vertices instead of running the vertex stage again. Any plan draws

@@ -24,8 +24,8 @@ use crate::lighting::{Illumination, Material};
 /// and colour (no plane: [`TriangleSpans::constant`]), [`FlatKind`], [`ExactKind`],
 /// [`FastKind`], [`DepthOnlyKind`] and [`PhongKind`].
 pub(crate) trait SpanKind<const N: usize> {
-    /// Writes the span (`colours`, `depths`: its pixels) starting at pixel `(x, y)`; `attrs[0]`
-    /// is the depth. Returns the pixels written (0 when `count` does not count them).
+    /// Writes the span (`colours`: its pixels, `depths`: their test, [`SpanTest`]) starting at
+    /// pixel `(x, y)`; `attrs[0]` is the depth. Returns the pixels written (0 when `count` does not count them).
     fn write<G: SpanTest, I: Interpolant, St: SpanStarts<N>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
