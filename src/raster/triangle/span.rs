@@ -5,8 +5,8 @@
 //! the pixel's test, index, stores. The test is the seam a visibility method plugs into
 //! ([`SpanTest`]): the depth test (a span of depth samples: strict, nearer wins, see
 //! [`DepthValue`]; the depth stored), or the reverse painter's mask (`mask_span`: a pixel
-//! passes the first time, its bit set). Measured on the host, the seam left every existing
-//! bench case's instructions and checksum as they were (the same code once inlined). A [`Quantizer`]
+//! passes the first time, its bit set). The depth test through the seam inlines to the loop
+//! it was (every bench case's checksum unchanged; `frame_bunny` 2,443,804 host instructions). A [`Quantizer`]
 //! maps luminance to an index ([`LuminanceRamp`], or a dithered ramp), and [`WrittenCount`]
 //! says at compile time whether written pixels are counted. `Targets` (`slices`) hands the
 //! writers each span's pixels of the frame and depth buffer as two slices.
