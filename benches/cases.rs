@@ -59,6 +59,8 @@ pub struct Storage {
     /// The edge tables of the cube, sphere and bunny (`Mesh::edges`), computed once here (an
     /// application keeps them in flash beside the mesh).
     pub edges: scene::KeptEdges,
+    /// The reverse painter's mask of painted pixels, a bit per pixel (2,400 words).
+    pub mask: [u32; zscan::output::mask_words_needed(WIDTH, HEIGHT)],
 }
 
 impl Storage {
@@ -74,6 +76,7 @@ impl Storage {
             compact: scene::CompactMemory::new(),
             facts: scene::KeptFacts::new(),
             edges: scene::KeptEdges::new(),
+            mask: [0; zscan::output::mask_words_needed(WIDTH, HEIGHT)],
         }
     }
 }
@@ -255,6 +258,18 @@ pub const CASES: &[Case] = &[
     Case {
         name: "frame_sphere_planned",
         run: scene::planned::<{ scene::SPHERE_ID }>,
+    },
+    Case {
+        name: "frame_quad_reverse",
+        run: scene::reverse::<{ scene::QUAD_ID }>,
+    },
+    Case {
+        name: "frame_cube_reverse",
+        run: scene::reverse::<{ scene::CUBE_ID }>,
+    },
+    Case {
+        name: "frame_sphere_reverse",
+        run: scene::reverse::<{ scene::SPHERE_ID }>,
     },
     Case {
         name: "frame_quad_painter",
@@ -787,6 +802,27 @@ pub mod scene {
                 Err(_) => 0,
             },
             _ => 0,
+        }
+    }
+
+    /// The standard frame of scene `WHICH` ([`STANDARD`]) by the reverse painter
+    /// ([`render_reverse_painter`](zscan::visibility::render_reverse_painter): its rule checked
+    /// as the planner's, then drawn near to far through the harness's mask of painted pixels;
+    /// the picture and checksum are the z-buffer's `frame_*`); returns the pixels covered, 0
+    /// when refused.
+    pub fn reverse<const WHICH: usize>(fb: &mut Framebuffer<'_>, st: &mut Storage) -> u32 {
+        use zscan::visibility::render_reverse_painter;
+        let Some(camera) = camera() else { return 0 };
+        let objects = [object(STANDARD[WHICH], ShadeMode::GouraudExact)];
+        let Ok(r) = Renderer::for_scene(&core_scene(camera, &objects)) else {
+            return 0;
+        };
+        let (facts, mut order) = ([st.facts.facts(WHICH)], [0u16]);
+        let mut stats = StatsWithoutWritten::default();
+        let (mask, vertices) = (&mut st.mask, &mut st.vertices);
+        match render_reverse_painter(&r, &facts, &mut order, fb, mask, vertices, &mut stats) {
+            Ok(()) => stats.0.pixels_covered,
+            Err(_) => 0,
         }
     }
 

@@ -36,6 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         compact_vertices: &mut vec![CompactVertex::default(); n.compact_vertices],
         levels: &mut vec![0; n.levels],
         tops: &mut vec![PolygonTop::default(); n.tops],
+        mask: &mut vec![0; n.mask],
     };
     let (renderer, mut stats) = (Renderer::for_scene(&scene)?, RenderStats::default());
     let mut display = vec![0u8; 160 * 120];

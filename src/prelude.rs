@@ -66,7 +66,9 @@ pub use crate::render::{CompactVertex, PolygonTop};
 pub use crate::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};
 
 // The target buffers, the palette and the display.
-pub use crate::output::{flush, shaded_index, DepthBuffer, DepthValue, Framebuffer, Lut};
+pub use crate::output::{
+    flush, mask_words_needed, shaded_index, DepthBuffer, DepthValue, Framebuffer, Lut,
+};
 
 // Errors.
 pub use crate::Error;

@@ -19,8 +19,9 @@ use zscan::render::{
 };
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::visibility::{
-    render_back_faces, render_painter, render_scan_lines, render_warnock, Area, Normal,
-    PainterMemory, ScanLineMemory, SplitPolicy, StoredTriangle, Visibility, WarnockMemory,
+    render_back_faces, render_painter, render_reverse_painter, render_scan_lines, render_warnock,
+    Area, Convexity, MeshFacts, Normal, PainterMemory, ReverseError, ScanLineMemory, SplitPolicy,
+    StoredTriangle, Visibility, WarnockMemory,
 };
 
 use crate::scenes::Scene;
@@ -322,6 +323,7 @@ pub fn ram_bytes<const SB: u32>(
     scratch
         + match visibility {
             Visibility::BackFace => frame,
+            Visibility::ReversePainter => frame + 4 * zscan::output::mask_words_needed(w, h),
             Visibility::Painter => {
                 let pieces = m.pieces as usize;
                 frame
@@ -384,6 +386,17 @@ pub fn render_visible_at<D: DepthValue, const SB: u32>(
             measured(|| render_back_faces(renderer, &mut frame, &mut scratch, &mut stats))?;
             Ok((pixels, stats))
         }
+        Visibility::ReversePainter => {
+            // A refused scene (outside the planner's rule 1) has no `RenderError` of its own:
+            // it comes back as `NotPlanned`; `reverse_picture` gives the refusal in words.
+            reverse_picture(renderer, (w, h)).map_err(|e| match e {
+                ReverseError::Render(e) => e,
+                ReverseError::Refused(_) => RenderError::NotPlanned {
+                    method: Visibility::ReversePainter.name(),
+                    depth_bytes: 0,
+                },
+            })
+        }
         Visibility::Painter => {
             let mut pixels = vec![0u8; total];
             let mut frame = whole_frame(&mut pixels, w, h)?;
@@ -444,6 +457,52 @@ pub fn render_visible_at<D: DepthValue, const SB: u32>(
             Ok((pixels, stats))
         }
     }
+}
+
+/// The whole `w × h` picture of `scene` by the reverse painter
+/// ([`render_reverse_painter`]): each mesh's facts computed here, a mask of
+/// `mask_words_needed(w, h)` words. A scene outside the planner's rule 1 is
+/// [`ReverseError::Refused`], naming why.
+pub fn reverse_picture<const SB: u32>(
+    renderer: &SceneRenderer<'_, SB>,
+    (w, h): (u16, u16),
+) -> Result<(Vec<u8>, RenderStats), ReverseError> {
+    let scene = renderer.scene();
+    let largest = scene.objects.iter().map(|o| o.mesh.vertices().len()).max();
+    let mut scratch = vec![PreparedVertex::default(); largest.unwrap_or(0).max(1)];
+    let mut words: Vec<Vec<u32>> = scene
+        .objects
+        .iter()
+        .map(|o| vec![0u32; MeshFacts::words_needed(&o.mesh)])
+        .collect();
+    let facts: Vec<MeshFacts<'_>> = scene
+        .objects
+        .iter()
+        .zip(words.iter_mut())
+        .map(|(o, w)| {
+            MeshFacts::of(&o.mesh, w).unwrap_or(MeshFacts {
+                convexity: Convexity::NotConvex,
+                bounds: [[i32::MIN; 3], [i32::MAX; 3]],
+            })
+        })
+        .collect();
+    let mut order = vec![0u16; scene.objects.len()];
+    let mut pixels = vec![0u8; w as usize * h as usize];
+    let mut frame = whole_frame(&mut pixels, w, h)?;
+    let mut mask = vec![0u32; zscan::output::mask_words_needed(w, h)];
+    let mut stats = RenderStats::default();
+    measured(|| {
+        render_reverse_painter(
+            renderer,
+            &facts,
+            &mut order,
+            &mut frame,
+            &mut mask,
+            &mut scratch,
+            &mut stats,
+        )
+    })?;
+    Ok((pixels, stats))
 }
 
 /// [`render_visible_at`]'s scan-line: bands of `band_rows` rows (depth samples `D`),
@@ -600,7 +659,7 @@ pub struct PlannedFrame {
 
 /// Plans the renderer's scene within `budget` bytes and draws it so
 /// ([`zscan::visibility::plan_frame`]: a plan of back faces alone draws with the vertices its
-/// view check prepared; a z-buffer plan is drawn by [`draw_plan`]).
+/// view check prepared; a z-buffer or reverse painter plan is drawn by [`draw_plan`]).
 pub fn render_planned<const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     facts: &[zscan::visibility::MeshFacts<'_>],
@@ -624,7 +683,9 @@ pub fn render_planned<const SB: u32>(
             frame.render(&mut fb, &mut stats).map_err(render_words)?;
             (pixels, stats)
         }
-        Planned::ZBuffer(plan) => draw_plan(renderer, &plan, &order).map_err(render_words)?,
+        Planned::ZBuffer(plan) | Planned::ReversePainter(plan) => {
+            draw_plan(renderer, &plan, &order).map_err(render_words)?
+        }
     };
     Ok(PlannedFrame {
         plan,
@@ -660,6 +721,7 @@ pub fn draw_plan<const SB: u32>(
     let mut polygons = vec![PolygonRows::default(); n.polygons];
     let mut compact_vertices = vec![CompactVertex::default(); n.compact_vertices];
     let (mut levels, mut tops) = (vec![0; n.levels], vec![PolygonTop::default(); n.tops]);
+    let mut mask = vec![0u32; n.mask];
     let memory = PlanMemory {
         pixels: &mut pixels,
         depth16: &mut depth16,
@@ -669,6 +731,7 @@ pub fn draw_plan<const SB: u32>(
         compact_vertices: &mut compact_vertices,
         levels: &mut levels,
         tops: &mut tops,
+        mask: &mut mask,
     };
     let mut picture = vec![scene.background; w * vp.height as usize];
     let mut stats = RenderStats::default();

@@ -118,6 +118,7 @@ fn planned_from_its_facts_it_draws_frame_bunny() {
             compact_vertices: &mut vec![CompactVertex::default(); n.compact_vertices],
             levels: &mut vec![0; n.levels],
             tops: &mut vec![PolygonTop::default(); n.tops],
+            mask: &mut vec![0; n.mask],
         };
         let mut picture = vec![0u8; cases::FB_LEN];
         let w = cases::WIDTH as usize;

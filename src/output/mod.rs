@@ -18,6 +18,7 @@ mod depth;
 mod flush;
 mod framebuffer;
 mod lut;
+mod mask;
 mod palette_index;
 mod window;
 
@@ -25,6 +26,7 @@ pub use depth::{DepthBuffer, DepthValue, NoDepth};
 pub use flush::flush;
 pub use framebuffer::Framebuffer;
 pub use lut::{shaded_index, Lut, LutError};
+pub use mask::{mask_words_needed, PaintedMask};
 pub use palette_index::PaletteIndex;
 pub use window::Window;
 

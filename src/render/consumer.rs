@@ -23,7 +23,7 @@ use crate::output::DepthValue;
 use crate::raster::triangle::setup::TriangleSetup;
 use crate::raster::triangle::Bayer4;
 use crate::raster::triangle::{draw_depth_only, DepthTarget};
-use crate::raster::triangle::{draw_in_range, RasterTarget, WrittenCount};
+use crate::raster::triangle::{draw_in_range, RasterTarget, SpanTarget, WrittenCount};
 use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};
 use crate::raster::SubpixelPoint;
 use crate::scene::Object;
@@ -81,15 +81,15 @@ impl<T: TriangleConsumer<S, N>, const S: u32, const N: usize> TriangleConsumer<S
 /// The z-buffer consumer of luminance triangles (flat or Gouraud, plain or dithered): corners
 /// whose one attribute is a level, clamped to `0..=255` (clipped corners are interpolated),
 /// drawn at once into a [`RasterTarget`] prepared once per object.
-pub(crate) struct LevelWriter<'a, 't, 'o, D, C> {
-    /// The object's frame and depth buffer.
-    pub(crate) target: &'a mut RasterTarget<'t, D, C>,
+pub(crate) struct LevelWriter<'a, 't, 'o, D, C, T> {
+    /// The object's frame and depth buffer (or mask).
+    pub(crate) target: &'a mut RasterTarget<'t, D, C, T>,
     /// The object (its ramp, dither and shading mode).
     pub(crate) object: &'a Object<'o>,
 }
 
-impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 1>
-    for LevelWriter<'_, '_, '_, D, C>
+impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> TriangleConsumer<S, 1>
+    for LevelWriter<'_, '_, '_, D, C, T>
 {
     #[inline(always)]
     fn triangle(&mut self, _: usize, c: [Corner<S, 1>; 3]) -> Result<(u32, u32), RenderError> {
@@ -107,15 +107,15 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 1>
 /// The z-buffer consumer of Phong triangles: corners whose three attributes are the
 /// observer-frame normal, lit per pixel ([`draw_phong_on`]), drawn at once into a
 /// [`RasterTarget`] prepared once per object.
-pub(crate) struct PhongWriter<'a, 't, D, C> {
-    /// The object's frame and depth buffer.
-    pub(crate) target: &'a mut RasterTarget<'t, D, C>,
+pub(crate) struct PhongWriter<'a, 't, D, C, T> {
+    /// The object's frame and depth buffer (or mask).
+    pub(crate) target: &'a mut RasterTarget<'t, D, C, T>,
     /// Lights, material, ramp and dither.
     pub(crate) context: PhongContext<'a>,
 }
 
-impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 3>
-    for PhongWriter<'_, '_, D, C>
+impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> TriangleConsumer<S, 3>
+    for PhongWriter<'_, '_, D, C, T>
 {
     #[inline(always)]
     fn triangle(&mut self, _: usize, c: [Corner<S, 3>; 3]) -> Result<(u32, u32), RenderError> {

@@ -183,6 +183,9 @@ pub enum BandPart {
     PreparedVertices,
     /// The polygon rows of [`render_in_bands`](super::render_in_bands) (a plan's polygon table).
     PolygonRows,
+    /// The reverse painter's mask of painted pixels (`u32` words,
+    /// [`mask_words_needed`](crate::output::mask_words_needed)).
+    MaskWords,
 }
 
 impl core::fmt::Display for BandPart {
@@ -195,6 +198,7 @@ impl core::fmt::Display for BandPart {
             BandPart::Polygons => "polygon table entries",
             BandPart::PreparedVertices => "prepared vertices",
             BandPart::PolygonRows => "polygon rows",
+            BandPart::MaskWords => "mask words",
         })
     }
 }

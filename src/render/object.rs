@@ -10,9 +10,9 @@ use super::{
 };
 use crate::geometry::vector::Vec3;
 use crate::lighting::light_polygon;
-use crate::output::{DepthBuffer, DepthValue, Framebuffer};
+use crate::output::{DepthBuffer, DepthValue, Framebuffer, PaintedMask};
 use crate::raster::triangle::PhongContext;
-use crate::raster::triangle::{RasterTarget, ShadeMode};
+use crate::raster::triangle::{RasterTarget, ShadeMode, SpanTarget};
 use crate::scene::{Intensities, Object};
 
 impl<const S: u32> Renderer<S> {
@@ -67,16 +67,50 @@ impl<const S: u32> Renderer<S> {
         depth: &mut DepthBuffer<'_, D>,
         stats: &mut T,
     ) -> Result<(), RenderError> {
-        let stats = stats.counts();
         self.check_targets(frame, depth)?;
-        let prepared = checked_scratch(object, scratch)?;
         let rows = (frame.top().max(depth.top()), {
             let f = frame.top() + frame.height() as i32;
             f.min(depth.top() + depth.height() as i32)
         });
-        let stage = self.stage(object, prepared, rows, table);
         // The buffers prepared once for the object.
-        let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
+        let target = RasterTarget::with_count(frame, depth, T::Count::default());
+        self.rasterize_on(object, scratch, table, rows, target, stats)
+    }
+
+    /// [`rasterize`](Self::rasterize) through the reverse painter's mask instead of a depth
+    /// buffer (`visibility/reverse.rs`): a pixel is written by the first triangle that reaches
+    /// it, and never again. `mask` holds `frame`'s rows (`PaintedMask::for_frame`).
+    pub(crate) fn rasterize_masked<T: StatsSink>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        frame: &mut Framebuffer<'_>,
+        mask: &mut PaintedMask<'_>,
+        stats: &mut T,
+    ) -> Result<(), RenderError> {
+        self.check_frame(frame)?;
+        let rows = (frame.top().max(mask.top()), {
+            let f = frame.top() + frame.height() as i32;
+            f.min(mask.top() + mask.height() as i32)
+        });
+        let target = RasterTarget::masked(frame, mask, T::Count::default());
+        self.rasterize_on(object, scratch, None, rows, target, stats)
+    }
+
+    /// The polygon stage of `object` over `rows`, its triangles drawn into `target` (a depth
+    /// buffer's or a mask's).
+    fn rasterize_on<D: DepthValue, T: StatsSink, G: SpanTarget<Depth = D>>(
+        &self,
+        object: &Object<'_>,
+        scratch: &[PreparedVertex<S>],
+        table: Option<&[PolygonRows]>,
+        rows: (i32, i32),
+        mut target: RasterTarget<'_, D, T::Count, G>,
+        stats: &mut T,
+    ) -> Result<(), RenderError> {
+        let stats = stats.counts();
+        let prepared = checked_scratch(object, scratch)?;
+        let stage = self.stage(object, prepared, rows, table);
         if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
             (object.intensities, object.shade)
         {

@@ -19,6 +19,9 @@
 //! - [`Visibility::BackFace`]: the whole frame, no depth, objects in the plan's `order`
 //!   ([`render_back_faces_in_order`](super::render_back_faces_in_order)); the callback gets
 //!   the frame once.
+//! - [`Visibility::ReversePainter`]: the whole frame, no depth, the mask of painted pixels
+//!   ([`PlanMemory::mask`]), objects in the plan's `order` (near to far); the callback gets
+//!   the frame once.
 //! - [`Visibility::ZBuffer`] at [`DepthWidth::U16`] or [`DepthWidth::U32`]: the layout
 //!   ([`LayoutReason`]) picks [`render_in_compact_bands`] for compact bands, else
 //!   [`render_in_bands`], whose scratch decides the vertex stage: every object's vertices and
@@ -37,8 +40,9 @@
 
 use super::backface::render_back_faces_in_order;
 use super::plan::{DepthWidth, LayoutReason, Plan};
+use super::reverse::draw_front_to_back;
 use super::Visibility;
-use crate::output::{DepthBuffer, DepthValue, Framebuffer};
+use crate::output::{mask_words_needed, DepthBuffer, DepthValue, Framebuffer};
 use crate::render::{
     render_in_bands, render_in_compact_bands, BandPart, BandScratch, CompactBandScratch,
     CompactSizes, CompactVertex, PolygonRows, PolygonTop, PreparedVertex, RenderError,
@@ -67,6 +71,9 @@ pub struct PlanMemory<'m, const S: u32 = 4> {
     pub levels: &'m mut [u8],
     /// Compact bands' polygon tops.
     pub tops: &'m mut [PolygonTop],
+    /// The reverse painter's mask of painted pixels
+    /// ([`mask_words_needed`](crate::output::mask_words_needed) words).
+    pub mask: &'m mut [u32],
 }
 
 /// Elements of each [`PlanMemory`] slice a plan draws with (0 for the slices it does not
@@ -89,6 +96,8 @@ pub struct PlanSizes {
     pub levels: usize,
     /// [`PlanMemory::tops`].
     pub tops: usize,
+    /// [`PlanMemory::mask`].
+    pub mask: usize,
 }
 
 impl PlanSizes {
@@ -121,6 +130,9 @@ impl PlanSizes {
             }
             _ => sizes.vertices = largest.unwrap_or(0),
         }
+        if plan.visibility == Visibility::ReversePainter {
+            sizes.mask = mask_words_needed(vp.width, vp.height);
+        }
         sizes
     }
 
@@ -137,6 +149,7 @@ impl PlanSizes {
             (self.compact_vertices, size_of::<CompactVertex>()),
             (self.levels, 1),
             (self.tops, size_of::<PolygonTop>()),
+            (self.mask, 4),
         ]
         .iter()
         .fold(0usize, |sum, &(n, b)| {
@@ -159,7 +172,8 @@ fn cut<T>(slice: &mut [T], needed: usize, part: BandPart) -> Result<&mut [T], Re
 
 /// Draws the scene of `renderer` as `plan` says (the module doc's dispatch), with `memory`
 /// (each slice at least [`PlanSizes::of`] long) and the drawing order `order` the planner
-/// wrote (read by back faces alone; the z-buffer draws in scene order). `band_done` receives
+/// wrote (read by back faces alone and the reverse painter; the z-buffer draws in scene
+/// order). `band_done` receives
 /// each finished band, top to bottom (for a whole-frame plan, the frame once): flush it to the
 /// display there. Errors: the frame's ([`RenderError`], through `E`: a slice shorter than
 /// the plan needs names the part and both sizes; a hand-made plan the planner never makes is
@@ -220,6 +234,20 @@ pub fn draw_plan<E: From<RenderError>, const S: u32>(
                     needed: sizes.pixels,
                 })?;
             render_back_faces_in_order(renderer, order, &mut frame, vertices, stats)?;
+            band_done(&mut frame)
+        }
+        (Visibility::ReversePainter, DepthWidth::None) => {
+            let pixels = cut(memory.pixels, sizes.pixels, BandPart::Pixels)?;
+            let vertices = cut(memory.vertices, sizes.vertices, BandPart::PreparedVertices)?;
+            let mask = cut(memory.mask, sizes.mask, BandPart::MaskWords)?;
+            let given = pixels.len();
+            let mut frame =
+                Framebuffer::new(pixels, w, h).map_err(|_| RenderError::BandMemoryTooSmall {
+                    part: BandPart::Pixels,
+                    given,
+                    needed: sizes.pixels,
+                })?;
+            draw_front_to_back(renderer, order, &mut frame, mask, vertices, stats)?;
             band_done(&mut frame)
         }
         (Visibility::ZBuffer, DepthWidth::U16) => {

@@ -12,12 +12,15 @@
 //! | [`Visibility`] | memory beside the frame | correct for |
 //! |---|---|---|
 //! | [`BackFace`](Visibility::BackFace) (`backface.rs`) | none | one closed convex mesh; objects drawn back to front that a plane separates |
+//! | [`ReversePainter`](Visibility::ReversePainter) (`reverse.rs`) | a bit per pixel (`⌈w·h/32⌉` words) | as back faces alone: culled convex objects apart in depth where they overlap on screen, drawn near to far |
 //! | [`Painter`](Visibility::Painter) (`painter.rs`) | a stored triangle and an index per front triangle, plus pieces | any scene (Newell's tests, splitting where they fail) |
 //! | [`ScanLine`](Visibility::ScanLine) (`scanline.rs`) | a stored triangle and an index per front triangle, a band of rows and its depth | any scene (the z-buffer's picture at the depth width of its band) |
 //! | [`Warnock`](Visibility::Warnock) (`warnock.rs`) | a stored triangle per front triangle, stacks of candidate indices and of windows | any scene (the 32-bit z-buffer's depths and tie rule, decided per window) |
 //! | [`ZBuffer`](Visibility::ZBuffer) (`render/`) | a depth sample per pixel (or per band pixel) | any scene |
 //!
-//! Where each breaks: back faces alone draws the last of two overlapping front faces (the
+//! Where each breaks: the reverse painter is refused in words outside back faces alone's
+//! scenes ([`ReverseError::Refused`], the planner's reason); back faces alone draws the last
+//! of two overlapping front faces (the
 //! bunny: 279 wrong pixels); the painter without test 6 draws a cycle or interpenetration in
 //! the wrong order (101 and 514 wrong pixels in `tests/visibility.rs`), and with it judges each
 //! piece by its own outline and draws them right (the bunny: 2 splits; a piece may be cut as
@@ -53,8 +56,10 @@
 //! computed once, `facts.rs`), the objects' depth ranges and screen boxes. Culled, separable
 //! objects whose drawn faces cover each pixel at most once in this view (an exact check on
 //! the rounded screen positions, `facts.rs`) need no depth buffer
-//! ([`render_back_faces_in_order`], far to near); other scenes take the z-buffer, whole or in
-//! bands, 32-bit unless only 16-bit fits. [`plan_frame`] plans and draws as one entry
+//! ([`render_back_faces_in_order`], far to near), or, when a Phong object lies behind a nearer
+//! one on screen, the reverse painter ([`render_reverse_painter`], near to far through a bit
+//! per pixel, each pixel lit once); other scenes take the z-buffer, whole or in bands, 32-bit
+//! unless only 16-bit fits. [`plan_frame`] plans and draws as one entry
 //! (`planned.rs`): the per-view check of a mesh runs the renderer's vertex stage into the
 //! caller's scratch, and a plan of back faces alone comes back as a [`BackFaceFrame`] that draws
 //! from those prepared vertices instead of running the vertex stage again. Any plan draws
@@ -84,6 +89,7 @@ mod painter;
 mod plan;
 mod plane;
 mod planned;
+mod reverse;
 mod scanline;
 mod store;
 mod warnock;
@@ -98,6 +104,7 @@ pub use plan::{
     PlanError, DEPTH_MARGIN, SCREEN_MARGIN,
 };
 pub use planned::{plan_frame, BackFaceFrame, PlannedFrame};
+pub use reverse::{render_reverse_painter, ReverseError};
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 pub use warnock::{render_warnock, Area, WarnockMemory};
@@ -109,6 +116,9 @@ pub enum Visibility {
     BackFace,
     /// Depth-sort painter (Newell, Newell and Sancha 1972) with the survey's six tests.
     Painter,
+    /// The reverse painter (course ch. 3, algorithm 3.2): separable convex objects near to
+    /// far, a mask of one bit per pixel, each pixel painted once (`reverse.rs`).
+    ReversePainter,
     /// Scan-line: a triangle table by first row, an active list, a band of depth rows.
     ScanLine,
     /// Warnock's area subdivision: windows drawn when simple, else split, down to a pixel.
@@ -119,8 +129,9 @@ pub enum Visibility {
 
 impl Visibility {
     /// Every method, cheapest first.
-    pub const ALL: [Visibility; 5] = [
+    pub const ALL: [Visibility; 6] = [
         Visibility::BackFace,
+        Visibility::ReversePainter,
         Visibility::Painter,
         Visibility::ScanLine,
         Visibility::Warnock,
@@ -132,6 +143,7 @@ impl Visibility {
         match self {
             Visibility::BackFace => "backface",
             Visibility::Painter => "painter",
+            Visibility::ReversePainter => "reverse-painter",
             Visibility::ScanLine => "scanline",
             Visibility::Warnock => "warnock",
             Visibility::ZBuffer => "zbuffer",

@@ -31,6 +31,22 @@
 //!    one's (a triangle's depth at a pixel lies between its corners' depths), the z-buffer
 //!    keeps it, and drawn last it stays. The frame must be whole (objects draw over each
 //!    other in any rows), so this needs the budget for a whole frame.
+//!
+//!    **Rule 1b, the reverse painter** ([`Visibility::ReversePainter`], `reverse.rs`, course
+//!    ch. 3 algorithm 3.2) instead of back faces alone, when rule 1 holds, an object lit per
+//!    pixel (Phong) has its screen box overlapping that of a nearer object, and the budget
+//!    holds the mask too
+//!    (`⌈w·h/32⌉` words, counted in [`Buffers::tables`]). Objects are drawn near to far
+//!    (`order`), each pixel painted by the first object that reaches it: the same pixels as
+//!    rule 1's, by the same argument read backwards (the nearer object's pixel comes first and
+//!    its bit keeps it). Where it pays: back faces alone shade every covered pixel of every
+//!    object, the hidden ones included; the reverse painter tests and sets a bit per covered
+//!    pixel (and clears a word per 32 pixels per frame) and shades only the pixels it keeps.
+//!    Per-pixel lighting costs of the order of a thousand Cortex-M4 instructions a pixel
+//!    (`lit_sphere_phong` in `docs/BENCHMARKS.md`), far above a bit's test, so any overlap of
+//!    a Phong object by a nearer one pays; for flat and Gouraud objects a hidden pixel costs
+//!    about what the mask costs every covered pixel (`frame_*_reverse` against
+//!    `frame_*_backface`), so back faces alone stay. The sort is the same for both (rule 1's).
 //! 2. Otherwise the **z-buffer**, in the first layout that fits the budget, tried in this
 //!    order: the whole frame; bands of `H` rows (`H` as tall as fits) with the vertex stage
 //!    run once per frame and the polygon table ([`BandScratch`](crate::render::BandScratch)
@@ -77,10 +93,12 @@ use super::Visibility;
 use crate::clip::frustum::Frustum;
 use crate::geometry::fixed::Coord;
 use crate::geometry::vector::Vec3;
+use crate::output::mask_words_needed;
 use crate::project::{require_perspective, Projector};
+use crate::raster::triangle::ShadeMode;
 use crate::render::compact::compact_draws;
 use crate::render::{CompactSizes, PolygonRows, PreparedVertex, RenderError, Renderer};
-use crate::scene::{Object, Scene};
+use crate::scene::{Intensities, Object, Scene};
 
 /// Units of the 2^32 depth range each object's depth range is widened by on each side.
 pub const DEPTH_MARGIN: u32 = 16;
@@ -123,7 +141,8 @@ pub struct Buffers {
     /// Polygon table ([`PolygonRows`], 4 bytes each; for compact bands
     /// [`PolygonTop`](crate::render::PolygonTop)s, 1 byte each).
     pub polygons: usize,
-    /// A method's own tables (none for the methods planned today).
+    /// A method's own tables: the reverse painter's mask of painted pixels (a bit per pixel,
+    /// [`mask_words_needed`](crate::output::mask_words_needed) words); none for the others.
     pub tables: usize,
 }
 
@@ -171,6 +190,15 @@ pub enum MethodReason {
         a: usize,
         /// The other.
         b: usize,
+    },
+    /// Rule 1 holds and `object`, lit per pixel (Phong), lies behind `nearer` where their
+    /// screen boxes overlap: back faces alone would light the pixels `nearer` then covers, the
+    /// reverse painter lights each pixel once (rule 1b).
+    HiddenPixelsLitPerPixel {
+        /// The object lit per pixel, farther.
+        object: usize,
+        /// The nearer object whose screen box overlaps its.
+        nearer: usize,
     },
     /// Back faces alone would do but need a whole frame: these bytes, over the budget.
     WholeFrameOverBudget {
@@ -354,6 +382,11 @@ impl core::fmt::Display for MethodReason {
             MethodReason::ObjectsOverlap { a, b } => {
                 write!(f, "objects {a} and {b} overlap on screen and in depth")
             }
+            MethodReason::HiddenPixelsLitPerPixel { object, nearer } => write!(
+                f,
+                "as back faces alone, and object {object} is lit per pixel (Phong) behind object \
+                 {nearer} where they overlap on screen: the reverse painter lights each pixel once"
+            ),
             MethodReason::WholeFrameOverBudget { needed } => write!(
                 f,
                 "back faces alone would do but need a whole frame ({needed} bytes)"
@@ -429,8 +462,9 @@ struct Placed {
 
 /// The plan of `scene` at `S` sub-pixel bits within `budget` bytes, given `facts[i]` for
 /// object `i`'s mesh; `order[..objects]` receives the drawing order (far to near for back
-/// faces alone, the scene's order otherwise). It draws nothing and needs no scratch: the
-/// per-view check of a mesh places the vertices it looks at itself. To draw the plan,
+/// faces alone, near to far for the reverse painter, the scene's order otherwise). It draws
+/// nothing and needs no scratch: the per-view check of a mesh places the vertices it looks at
+/// itself. To draw the plan,
 /// [`plan_frame`](super::plan_frame) makes the same plan and keeps the vertex stage it ran for
 /// that check for the frame.
 pub fn plan<const S: u32>(
@@ -523,6 +557,24 @@ pub(super) fn plan_with<const S: u32>(
                 ..Buffers::default()
             };
             if buffers.total() <= budget {
+                let reverse = Buffers {
+                    tables: mask_words_needed(vp.width, vp.height).saturating_mul(4),
+                    ..buffers
+                };
+                let hidden = hidden_lit_per_pixel(scene, facts, view.projector, &order[..n]);
+                if let (Some(reason), true) = (hidden, reverse.total() <= budget) {
+                    order[..n].reverse(); // near to far
+                    return Ok(Plan {
+                        visibility: Visibility::ReversePainter,
+                        depth: DepthWidth::None,
+                        band_rows: h as u16,
+                        vertex_stage_once: false,
+                        buffers: reverse,
+                        method_reason: reason,
+                        depth_reason: DepthReason::NoDepthBuffer,
+                        layout_reason: LayoutReason::WholeFrame,
+                    });
+                }
                 return Ok(Plan {
                     visibility: Visibility::BackFace,
                     depth: DepthWidth::None,
@@ -710,7 +762,7 @@ fn compact_fits<const S: u32>(
 /// then the objects' separation, then the per-view check of each mesh,
 /// in reverse drawing order (with `lent`, its vertex stage: the object drawn first is the one
 /// whose vertices the scratch keeps).
-fn back_faces_allowed<const S: u32>(
+pub(super) fn back_faces_allowed<const S: u32>(
     scene: &Scene<'_>,
     facts: &[MeshFacts<'_>],
     view: &Placing<'_, S>,
@@ -756,6 +808,38 @@ fn back_faces_allowed<const S: u32>(
         }
     }
     Ok(MethodReason::ConvexAndSeparable)
+}
+
+/// Rule 1b: in a scene where rule 1 holds (`order` far to near), the first object lit per
+/// pixel (Phong) whose screen box overlaps that of an object drawn after it (nearer), as
+/// [`MethodReason::HiddenPixelsLitPerPixel`]; `None` when there is none.
+fn hidden_lit_per_pixel<const S: u32>(
+    scene: &Scene<'_>,
+    facts: &[MeshFacts<'_>],
+    projector: &Projector<S>,
+    order: &[u16],
+) -> Option<MethodReason> {
+    let placed = |i: usize| place(&scene.objects[i], &facts[i], scene, projector);
+    for (a, &i) in order.iter().enumerate() {
+        let object = &scene.objects[i as usize];
+        let lit_per_pixel = object.shade == ShadeMode::Phong
+            && matches!(object.intensities, Intensities::Lit { .. });
+        if !lit_per_pixel {
+            continue;
+        }
+        let Some(p) = placed(i as usize) else {
+            continue;
+        };
+        for &j in &order[a + 1..] {
+            if placed(j as usize).is_some_and(|q| !screens_apart(&p, &q)) {
+                return Some(MethodReason::HiddenPixelsLitPerPixel {
+                    object: i as usize,
+                    nearer: j as usize,
+                });
+            }
+        }
+    }
+    None
 }
 
 /// Sorts `order` far to near by the far end of each object's depth range, and checks that

@@ -40,6 +40,9 @@ pub enum PlannedFrame<'f, 'a, const S: u32 = 4> {
     /// [`render_in_compact_bands`](crate::render::render_in_compact_bands) and buffers of the
     /// plan's sizes, in scene order. Nothing prepared while planning is reused.
     ZBuffer(Plan),
+    /// The reverse painter ([`Visibility::ReversePainter`]): draw it with
+    /// [`draw_plan`](super::draw_plan) and the plan's order (near to far) and mask.
+    ReversePainter(Plan),
 }
 
 impl<const S: u32> PlannedFrame<'_, '_, S> {
@@ -47,7 +50,7 @@ impl<const S: u32> PlannedFrame<'_, '_, S> {
     pub fn plan(&self) -> &Plan {
         match self {
             PlannedFrame::BackFace(f) => &f.plan,
-            PlannedFrame::ZBuffer(p) => p,
+            PlannedFrame::ZBuffer(p) | PlannedFrame::ReversePainter(p) => p,
         }
     }
 }
@@ -154,8 +157,10 @@ pub fn plan_frame<'f, 'a, const S: u32>(
         &view,
         Some(&mut lent),
     )?;
-    if plan.visibility != Visibility::BackFace {
-        return Ok(PlannedFrame::ZBuffer(plan));
+    match plan.visibility {
+        Visibility::BackFace => {}
+        Visibility::ReversePainter => return Ok(PlannedFrame::ReversePainter(plan)),
+        _ => return Ok(PlannedFrame::ZBuffer(plan)),
     }
     let order = &order[..renderer.scene().objects.len()];
     let first_prepared = lent.holds.is_some() && lent.holds == order.first().map(|&i| i as usize);

@@ -116,9 +116,11 @@ pub struct RenderArgs {
     pub bands: Option<u16>,
     /// Hidden-surface method: auto (zscan::visibility::plan: back faces alone for convex,
     /// separable objects, else the z-buffer in the layout and depth width that fit
-    /// --ram-budget; the plan and its reasons are printed), backface, painter, scanline,
-    /// warnock or zbuffer. Back faces alone, the painter and Warnock's subdivision need no
-    /// depth buffer and draw the whole frame at once (no --depth-out, no --bands); the
+    /// --ram-budget; the plan and its reasons are printed), backface, reverse-painter,
+    /// painter, scanline, warnock or zbuffer. Back faces alone, the reverse painter (a bit per
+    /// pixel; culled convex objects apart in depth where they overlap on screen, else refused
+    /// in words), the painter and Warnock's subdivision need no depth buffer and draw the
+    /// whole frame at once (no --depth-out, no --bands); the
     /// scan-line draws in bands of --bands rows (default 1) through one band of depth (no
     /// --depth-out).
     #[arg(long, value_name = "METHOD", default_value = "zbuffer", value_parser = parse_visibility)]
@@ -1790,6 +1792,20 @@ impl LoadedScene {
         let scene = self.core_scene(&objects);
         let renderer = Renderer::<SUBPIXEL_BITS>::for_scene(&scene)
             .map_err(|e| FrameError::Setup(format!("camera: {}", render_error_words(&e))))?;
+        if visibility == Visibility::ReversePainter {
+            let (pixels, stats) =
+                crate::core_render::reverse_picture(&renderer, (w, h)).map_err(|e| match e {
+                    zscan::visibility::ReverseError::Render(e) => FrameError::Render(e),
+                    refused => FrameError::Setup(refused.to_string()),
+                })?;
+            let depth = vec![D::FAR; w as usize * h as usize];
+            return Ok(Frame {
+                pixels,
+                depth,
+                stats,
+                bands: 1,
+            });
+        }
         if visibility != Visibility::ZBuffer {
             let band = band_rows.unwrap_or(1);
             let (pixels, stats) = crate::core_render::render_visible_at::<D, SUBPIXEL_BITS>(
@@ -2117,7 +2133,9 @@ fn finish<D: DepthValue + Into<u64>>(
                 "stack_peak": m.stack_peak,
                 "stored": m.stored,
             }),
-            Visibility::BackFace | Visibility::ZBuffer => serde_json::json!({}),
+            Visibility::BackFace | Visibility::ReversePainter | Visibility::ZBuffer => {
+                serde_json::json!({})
+            }
         };
         let json = stats_json(
             scene,

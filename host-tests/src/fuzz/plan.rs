@@ -156,6 +156,7 @@ pub(super) fn run(seed: u64) -> Result<Outcome, String> {
         compact_vertices: memory(&mut rng, sizes.compact_vertices),
         levels: memory(&mut rng, sizes.levels),
         tops: memory(&mut rng, sizes.tops),
+        mask: memory(&mut rng, sizes.mask),
     };
     let enough = [
         (n.pixels, sizes.pixels),
@@ -166,6 +167,7 @@ pub(super) fn run(seed: u64) -> Result<Outcome, String> {
         (n.compact_vertices, sizes.compact_vertices),
         (n.levels, sizes.levels),
         (n.tops, sizes.tops),
+        (n.mask, sizes.mask),
     ]
     .iter()
     .all(|(given, needed)| given >= needed);
@@ -179,6 +181,7 @@ pub(super) fn run(seed: u64) -> Result<Outcome, String> {
     let mut polygons = vec![PolygonRows::default(); n.polygons];
     let mut compact_vertices = vec![CompactVertex::default(); n.compact_vertices];
     let (mut levels, mut tops) = (vec![junk; n.levels], vec![PolygonTop::default(); n.tops]);
+    let mut mask = vec![junk as u32; n.mask];
     let mem = PlanMemory {
         pixels: &mut pixels,
         depth16: &mut depth16,
@@ -188,6 +191,7 @@ pub(super) fn run(seed: u64) -> Result<Outcome, String> {
         compact_vertices: &mut compact_vertices,
         levels: &mut levels,
         tops: &mut tops,
+        mask: &mut mask,
     };
     let (vw, vh) = world.size();
     let mut picture = vec![scene.background; vw as usize * vh as usize];

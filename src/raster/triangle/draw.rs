@@ -40,7 +40,7 @@
 use super::interpolants::Constant;
 use super::kinds::{DepthOnlyKind, ExactKind, FastKind, FlatKind, PhongKind, SpanKind};
 use super::setup::TriangleSetup;
-use super::slices::{DepthTarget, RasterTarget};
+use super::slices::{DepthTarget, RasterTarget, SpanTarget};
 use super::span::{Direct, LuminanceRamp, Quantizer, SkipWritten, WrittenCount};
 use super::spans::TriangleSpans;
 use super::tiny::TinyTriangle;
@@ -239,8 +239,14 @@ pub(crate) const fn tiny_kind(kind: Kind, direct_ramp: bool) -> Tiny {
 /// [`DrawError::Fill`] with [`FillError::CoordinateOutOfRange`], checked here once, before any
 /// arithmetic (the plane set-up and the fill that follow rely on it and do not check again).
 /// Any triangle within the range is drawn, whatever its size.
-pub(crate) fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+pub(crate) fn draw_triangle_on<
+    D: DepthValue,
+    Q: Quantizer,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     v: [SubpixelPoint<S>; 3],
     values: [[u32; 2]; 3],
     mode: ShadeMode,
@@ -255,8 +261,14 @@ pub(crate) fn draw_triangle_on<D: DepthValue, Q: Quantizer, C: WrittenCount, con
 /// writer kept).
 #[cold]
 #[inline(never)]
-fn draw_clamped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+fn draw_clamped<
+    D: DepthValue,
+    Q: Quantizer,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     v: [SubpixelPoint<S>; 3],
     values: [[u32; 2]; 3],
     mode: ShadeMode,
@@ -274,8 +286,14 @@ fn draw_clamped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
 /// The one place that decides which path draws a triangle: its set-up, the span kind
 /// ([`span_kind`]), the tiny writer where it applies ([`tiny_kind`], [`draw_tiny`]), else
 /// the plane of the kind ([`draw_general`]).
-pub(crate) fn draw_in_range<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+pub(crate) fn draw_in_range<
+    D: DepthValue,
+    Q: Quantizer,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     v: [SubpixelPoint<S>; 3],
     values: [[u32; 2]; 3],
     mode: ShadeMode,
@@ -330,8 +348,14 @@ fn flat_luminance(values: &[[u32; 2]; 3]) -> u32 {
 /// The tiny-triangle writer for a kind that may take it, as [`tiny_kind`] says, or `None`
 /// where it does not apply (the general path draws the triangle then).
 #[inline(always)]
-fn draw_tiny<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+fn draw_tiny<
+    D: DepthValue,
+    Q: Quantizer,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     t: &TriangleSetup<S>,
     values: [[u32; 2]; 3],
     kind: Kind,
@@ -359,8 +383,14 @@ fn draw_tiny<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
 /// The general path of [`draw_in_range`]: the span loop of `kind` over the fill, with the plane
 /// the kind needs.
 #[inline(always)]
-fn draw_general<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+fn draw_general<
+    D: DepthValue,
+    Q: Quantizer,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     t: &TriangleSetup<S>,
     values: [[u32; 2]; 3],
     kind: Kind,
@@ -411,9 +441,10 @@ pub(crate) fn draw_general_exact<
     C: WrittenCount,
     K: SpanKind<N>,
     const N: usize,
+    T: SpanTarget<Depth = D>,
     const S: u32,
 >(
-    target: &mut RasterTarget<'_, D, C>,
+    target: &mut RasterTarget<'_, D, C, T>,
     t: &TriangleSetup<S>,
     values: [[u32; N]; 3],
     kind: K,
@@ -432,8 +463,14 @@ pub(crate) fn draw_general_exact<
 /// second set-up inlined into [`draw_in_range`] cost its 256-level path registers
 /// (measured on the Cortex-M4: the standard bunny frame +1.4 %).
 #[inline(never)]
-fn tiny_mapped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+fn tiny_mapped<
+    D: DepthValue,
+    Q: Quantizer,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     t: TriangleSetup<S>,
     values: [[u32; 2]; 3],
     quantizer_at: &impl Fn(i32, i32) -> Q,
@@ -446,8 +483,14 @@ fn tiny_mapped<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
 /// with `values` drawn into `target` by the tiny writer (`None` where it does not apply), or
 /// by the general path's exact planes (`TriangleSpans::planar` with [`ExactKind`]).
 #[cfg(test)]
-pub(crate) fn draw_tiny_or_planar<D: DepthValue, Q: Quantizer, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+pub(crate) fn draw_tiny_or_planar<
+    D: DepthValue,
+    Q: Quantizer,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     t: TriangleSetup<S>,
     values: [[u32; 2]; 3],
     quantizer_at: impl Fn(i32, i32) -> Q,
@@ -545,8 +588,13 @@ pub fn draw_triangle_phong<D: DepthValue, const S: u32>(
 
 /// [`draw_triangle_phong`] into a prepared [`RasterTarget`] (the renderer's form: one target
 /// per object and band), counting written pixels as the target says.
-pub(crate) fn draw_phong_on<D: DepthValue, C: WrittenCount, const S: u32>(
-    target: &mut RasterTarget<'_, D, C>,
+pub(crate) fn draw_phong_on<
+    D: DepthValue,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
     corners: [PhongVertex<S>; 3],
     ctx: &PhongContext<'_>,
 ) -> Result<(u32, u32), DrawError> {

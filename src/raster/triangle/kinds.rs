@@ -14,23 +14,22 @@ use super::dither::Bayer4;
 use super::draw::PhongContext;
 use super::interpolants::{Constant, Interpolant, SpanStarts};
 use super::span::{
-    depth_only_span, depth_span, Gouraud, InRange, Quantizer, Shading, WrittenCount,
+    depth_only_span, depth_span, Gouraud, InRange, Quantizer, Shading, SpanTest, WrittenCount,
 };
 use crate::lighting::phong;
 use crate::lighting::{Illumination, Material};
-use crate::output::DepthValue;
 
 /// What one span of a triangle writes, given its `N` exact interpolants at the span start:
 /// chosen once per triangle, so the span loop holds one kind only. The kinds: constant depth
 /// and colour (no plane: [`TriangleSpans::constant`]), [`FlatKind`], [`ExactKind`],
 /// [`FastKind`], [`DepthOnlyKind`] and [`PhongKind`].
 pub(crate) trait SpanKind<const N: usize> {
-    /// Writes the span (`colours`, `depths`: its pixels) starting at pixel `(x, y)`; `attrs[0]`
-    /// is the depth. Returns the pixels written (0 when `count` does not count them).
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<N>, C: WrittenCount>(
+    /// Writes the span (`colours`: its pixels, `depths`: their test, [`SpanTest`]) starting at
+    /// pixel `(x, y)`; `attrs[0]` is the depth. Returns the pixels written (0 when `count` does not count them).
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<N>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
-        depths: &mut [D],
+        depths: G,
         attrs: [I; N],
         starts: &St,
         at: (i32, i32),
@@ -46,10 +45,10 @@ pub(super) struct FlatKind<QF> {
 
 impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<1> for FlatKind<QF> {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<1>, C: WrittenCount>(
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<1>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
-        depths: &mut [D],
+        depths: G,
         [z]: [I; 1],
         _: &St,
         (x, y): (i32, i32),
@@ -68,10 +67,10 @@ pub(super) struct ExactKind<QF>(pub(super) QF);
 
 impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for ExactKind<QF> {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>, C: WrittenCount>(
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<2>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
-        depths: &mut [D],
+        depths: G,
         [z, luminance]: [I; 2],
         _: &St,
         (x, y): (i32, i32),
@@ -91,10 +90,10 @@ pub(super) struct FastKind<QF>(pub(super) QF);
 
 impl<Q: Quantizer, QF: Fn(i32, i32) -> Q> SpanKind<2> for FastKind<QF> {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<2>, C: WrittenCount>(
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<2>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
-        depths: &mut [D],
+        depths: G,
         [z, _]: [I; 2],
         starts: &St,
         (x, y): (i32, i32),
@@ -116,10 +115,10 @@ pub(super) struct DepthOnlyKind;
 
 impl SpanKind<1> for DepthOnlyKind {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<1>, C: WrittenCount>(
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<1>, C: WrittenCount>(
         &self,
         _: &mut [u8],
-        depths: &mut [D],
+        depths: G,
         [z]: [I; 1],
         _: &St,
         _: (i32, i32),
@@ -172,10 +171,10 @@ pub(super) struct PhongKind<'c, 'a>(pub(super) &'c PhongContext<'a>);
 
 impl SpanKind<7> for PhongKind<'_, '_> {
     #[inline(always)]
-    fn write<D: DepthValue, I: Interpolant, St: SpanStarts<7>, C: WrittenCount>(
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<7>, C: WrittenCount>(
         &self,
         colours: &mut [u8],
-        depths: &mut [D],
+        depths: G,
         [z, attrs @ ..]: [I; 7],
         _: &St,
         (x, y): (i32, i32),

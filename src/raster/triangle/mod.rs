@@ -14,6 +14,7 @@
 //! | tiny writer | `tiny` | small triangles' set-up, edges and both planes in one place |
 //! | spans | `spans` | one triangle's spans: the plane of its kind, the loop over the fill's spans |
 //! | span kinds | `kinds` | what a span writes: flat, exact or fast Gouraud, depth only, Phong |
+//! | mask | `mask_span` | the reverse painter's per-pixel test: a span's bits of the mask of painted pixels, in place of the depth test |
 //! | span loop | `span` | the per-pixel loop: depth test, palette index, stores; luminance → index ([`LuminanceRamp`], the `Quantizer`s) |
 //! | dither | `dither` | the 4×4 ordered-dither quantizer |
 //! | slices | `slices` | the frame's and depth buffer's rows handed to each span as slices |
@@ -33,6 +34,7 @@ pub(crate) mod edge_walker;
 pub mod fill;
 mod interpolants;
 mod kinds;
+mod mask_span;
 pub(crate) mod plane;
 pub(crate) mod setup;
 mod slices;
@@ -53,5 +55,5 @@ pub(crate) use dither::Bayer4;
 #[cfg(test)]
 pub(crate) use draw::draw_tiny_or_planar;
 pub(crate) use draw::{draw_depth_only, draw_in_range, draw_phong_on};
-pub(crate) use slices::{drawable_window, DepthTarget, RasterTarget};
+pub(crate) use slices::{drawable_window, DepthTarget, RasterTarget, SpanTarget};
 pub(crate) use span::{CountWritten, SkipWritten, WrittenCount};

@@ -11,7 +11,7 @@
 //! skipped, never a panic); rows are absolute picture rows (a band's buffers start at their
 //! `top`); the window is half-open, as [`Window`].
 
-use super::span::{CountWritten, WrittenCount};
+use super::span::{CountWritten, SpanTest, WrittenCount};
 use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::raster::{Span, Window};
 
@@ -20,13 +20,18 @@ use crate::raster::{Span, Window};
 /// recompute them.
 /// `C` says whether triangles drawn into it count their written pixels ([`WrittenCount`]).
 #[derive(Debug)]
-pub(crate) struct RasterTarget<'t, D, C = CountWritten> {
+///
+/// `T` is how each span's pixels are handed out and tested ([`SpanTarget`]): the frame and its
+/// depth buffer ([`Targets`], the depth test), or the frame and the reverse painter's mask
+/// (`MaskTargets`, `mask_span.rs`); `D` is its depth type.
+pub(crate) struct RasterTarget<'t, D, C = CountWritten, T = Targets<'t, D>> {
     /// Where triangles are drawn: the buffers' window, or part of it ([`Self::restrict`]).
     pub(super) window: Window,
     /// The window both buffers hold.
     buffers: Window,
-    pub(super) targets: Targets<'t, D>,
+    pub(super) targets: T,
     pub(super) count: C,
+    pub(super) depth: core::marker::PhantomData<&'t D>,
 }
 
 impl<'t, D: DepthValue> RasterTarget<'t, D> {
@@ -44,16 +49,26 @@ impl<'t, D: DepthValue, C: WrittenCount> RasterTarget<'t, D, C> {
         count: C,
     ) -> Self {
         let buffers = drawable_window(frame, depth);
+        RasterTarget::over(buffers, Targets::new(frame, depth), count)
+    }
+}
+
+impl<'t, D, C, T> RasterTarget<'t, D, C, T> {
+    /// Draws into `targets`, whose buffers hold `buffers`, counting written pixels as `count`
+    /// says.
+    #[inline(always)]
+    pub(crate) fn over(buffers: Window, targets: T, count: C) -> Self {
         RasterTarget {
             window: buffers,
             buffers,
-            targets: Targets::new(frame, depth),
+            targets,
             count,
+            depth: core::marker::PhantomData,
         }
     }
 }
 
-impl<D, C> RasterTarget<'_, D, C> {
+impl<D, C, T> RasterTarget<'_, D, C, T> {
     /// Draws from now on only inside `window` ∩ the buffers' window: the pixels a triangle
     /// then writes are exactly those of the whole triangle inside it (the fill clips spans to
     /// the window, the tiny writer declines a triangle whose columns leave it). The visibility
@@ -144,16 +159,6 @@ impl<'t, D: DepthValue> Targets<'t, D> {
         }
     }
 
-    /// The `len` pixels from `(x, y)` in both buffers.
-    #[inline(always)]
-    pub(crate) fn span_at(&mut self, x: i32, y: i32, len: usize) -> Option<(&mut [u8], &mut [D])> {
-        self.span(&Span {
-            y,
-            x0: x,
-            x1: x + len as i32,
-        })
-    }
-
     /// The pixels of span `s` (inside the drawable window) in both buffers.
     #[inline(always)]
     pub(crate) fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
@@ -177,14 +182,32 @@ impl<'t, D: DepthValue> Targets<'t, D> {
 /// shaded kinds; [`DepthTargets`] (depth samples alone, no colours: an empty colour slice) for
 /// the depth-only kind, whose span ignores the colours.
 pub(crate) trait SpanTarget {
-    /// The depth samples' type.
+    /// The depth type of its test.
     type Depth: DepthValue;
-    /// The pixels of span `s` (inside the drawable window): colours and depth samples.
-    fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [Self::Depth])>;
+    /// A span's per-pixel test ([`SpanTest`]): its depth samples, or its mask bits.
+    type Test<'s>: SpanTest<Depth = Self::Depth>
+    where
+        Self: 's;
+    /// The pixels of span `s` (inside the drawable window): colours and their test.
+    fn span(&mut self, s: &Span) -> Option<(&mut [u8], Self::Test<'_>)>;
+
+    /// The `len` pixels from `(x, y)`.
+    #[inline(always)]
+    fn span_at(&mut self, x: i32, y: i32, len: usize) -> Option<(&mut [u8], Self::Test<'_>)> {
+        self.span(&Span {
+            y,
+            x0: x,
+            x1: x + len as i32,
+        })
+    }
 }
 
 impl<D: DepthValue> SpanTarget for Targets<'_, D> {
     type Depth = D;
+    type Test<'s>
+        = &'s mut [D]
+    where
+        Self: 's;
 
     #[inline(always)]
     fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {
@@ -218,6 +241,10 @@ impl<'t, D: DepthValue> DepthTargets<'t, D> {
 
 impl<D: DepthValue> SpanTarget for DepthTargets<'_, D> {
     type Depth = D;
+    type Test<'s>
+        = &'s mut [D]
+    where
+        Self: 's;
 
     #[inline(always)]
     fn span(&mut self, s: &Span) -> Option<(&mut [u8], &mut [D])> {

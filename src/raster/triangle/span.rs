@@ -2,7 +2,11 @@
 //!
 //! Role in the pipeline: the innermost step of the raster stage. [`depth_span`] walks one
 //! span's pixels with a depth interpolant and a [`Shading`] (the palette index at each pixel):
-//! depth test (strict, nearer wins, see [`DepthValue`]), index, two stores. A [`Quantizer`]
+//! the pixel's test, index, stores. The test is the seam a visibility method plugs into
+//! ([`SpanTest`]): the depth test (a span of depth samples: strict, nearer wins, see
+//! [`DepthValue`]; the depth stored), or the reverse painter's mask (`mask_span`: a pixel
+//! passes the first time, its bit set). The depth test through the seam inlines to the loop
+//! it was (every bench case's checksum unchanged; `frame_bunny` 2,443,804 host instructions). A [`Quantizer`]
 //! maps luminance to an index ([`LuminanceRamp`], or a dithered ramp), and [`WrittenCount`]
 //! says at compile time whether written pixels are counted. `Targets` (`slices`) hands the
 //! writers each span's pixels of the frame and depth buffer as two slices.
@@ -214,41 +218,95 @@ impl WrittenCount for SkipWritten {
     const COUNTS: bool = false;
 }
 
-/// Writes one span with a depth test: every pixel of `colours`/`depths` (two row slices of
-/// equal length, the span's pixels), with depth `z` and colour `shading` at the first pixel.
-/// Returns the number of pixels written (that passed the test), counted as `C` says (0 when
-/// it does not count).
+/// The per-pixel test of a span and its record: what decides whether a pixel of a triangle is
+/// written, and remembers that it was. The seam a visibility method plugs into the one span
+/// loop ([`span_core`]): the depth test (a span of depth samples, `&mut [D]`: strict, nearer
+/// wins, the depth stored) and the reverse painter's mask (`MaskSpan`, `mask_span.rs`: a pixel
+/// passes once, the first time, and its bit is set). The loop, the shading and the stores are
+/// the same for both.
+pub(crate) trait SpanTest {
+    /// The depth the span's interpolant is converted to ([`DepthValue::from_depth32`]); a
+    /// test that ignores depths takes [`NoDepth`](crate::output::NoDepth), whose one value
+    /// makes every triangle's depth constant (no depth plane).
+    type Depth: DepthValue;
+    /// One pixel's test.
+    type Pixel: PixelTest<Self::Depth>;
+    /// The span's pixels' tests, left to right.
+    fn pixels(self) -> impl Iterator<Item = Self::Pixel>;
+    /// The span at constant depth `d` and colour `index` into `colours` (the span's pixels):
+    /// the pixels written, counted as `C` says.
+    fn constant<C: WrittenCount>(self, colours: &mut [u8], d: Self::Depth, index: u8) -> u32;
+}
+
+/// One pixel's test of a [`SpanTest`]: passes (and records the pixel) or not.
+pub(crate) trait PixelTest<D> {
+    /// Whether a surface at depth `d` is written here; when it is, the test records it.
+    fn pass(self, d: D) -> bool;
+}
+
+/// The depth test: strict, nearer wins, the nearer depth stored ([`DepthValue::nearer`]).
+impl<D: DepthValue> PixelTest<D> for &mut D {
+    #[inline(always)]
+    fn pass(self, d: D) -> bool {
+        if d.nearer(*self) {
+            *self = d;
+            true
+        } else {
+            false
+        }
+    }
+}
+
+/// A span of depth samples: the z-buffer's per-pixel test.
+impl<'s, D: DepthValue> SpanTest for &'s mut [D] {
+    type Depth = D;
+    type Pixel = &'s mut D;
+
+    #[inline(always)]
+    fn pixels(self) -> impl Iterator<Item = &'s mut D> {
+        self.iter_mut()
+    }
+
+    #[inline(always)]
+    fn constant<C: WrittenCount>(self, colours: &mut [u8], d: D, index: u8) -> u32 {
+        // A sample of no bits (`NoDepth`) has one value: the test is the same at every pixel
+        // and nothing is stored, so the span is one fill, inline (out of line, the call cost
+        // the back-face frames about 9 instructions a span on the host).
+        if D::BITS == 0 {
+            if !d.nearer(d) {
+                return 0;
+            }
+            colours.fill(index);
+            return colours.len() as u32 * C::COUNTS as u32;
+        }
+        constant_span::<D, C>(colours, self, d, index)
+    }
+}
+
+/// Writes one span through its per-pixel test `tests` ([`SpanTest`]: the depth test, or the
+/// reverse painter's mask): every pixel of `colours` (the span's pixels, as many as the
+/// tests), with depth `z` and colour `shading` at the first pixel. Returns the number of
+/// pixels written (that passed the test), counted as `C` says (0 when it does not count).
 #[inline(always)]
-pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
+pub fn depth_span<G: SpanTest, Z: Interpolant, Sh: Shading, C: WrittenCount>(
     colours: &mut [u8],
-    depths: &mut [D],
+    tests: G,
     z: Z,
     shading: Sh,
     count: C,
 ) -> u32 {
     if Z::IS_CONSTANT && Sh::IS_CONSTANT {
-        // A sample of no bits (`NoDepth`) has one value: the test is the same at every pixel
-        // and nothing is stored, so the span is one fill, inline (out of line, the call cost
-        // the back-face frames about 9 instructions a span on the host).
-        if D::BITS == 0 {
-            let d = D::from_depth32(z.value());
-            if !d.nearer(d) {
-                return 0;
-            }
-            colours.fill(shading.index());
-            return colours.len() as u32 * C::COUNTS as u32;
-        }
-        return constant_span::<D, C>(colours, depths, D::from_depth32(z.value()), shading.index());
+        return tests.constant::<C>(colours, G::Depth::from_depth32(z.value()), shading.index());
     }
-    span_core(colours.iter_mut(), depths, z, shading, count)
+    span_core(colours.iter_mut(), tests, z, shading, count)
 }
 
 /// The depth-only span: every sample of `depths` (the span's samples) replaced by the depth
 /// `z` steps to where it is nearer, no colour stored ([`span_core`] with [`NoColour`]): the
 /// shadow map's pass 1. Returns the samples written, counted as `C` says.
 #[inline(always)]
-pub(crate) fn depth_only_span<D: DepthValue, Z: Interpolant, C: WrittenCount>(
-    depths: &mut [D],
+pub(crate) fn depth_only_span<G: SpanTest, Z: Interpolant, C: WrittenCount>(
+    depths: G,
     z: Z,
     count: C,
 ) -> u32 {
@@ -291,13 +349,13 @@ impl Shading for NoColour {
 }
 
 /// The one per-pixel loop of [`depth_span`] and [`depth_only_span`]: each pixel of `colours`
-/// (one [`ColourPixel`] per depth sample, or an endless run of `()` for no colour) zipped with
-/// `depths`, with depth `z` and colour `shading` at the first pixel: depth test, then the depth
-/// and the index stored where it passes.
+/// (one [`ColourPixel`] per test, or an endless run of `()` for no colour) zipped with the
+/// span's [`SpanTest`], with depth `z` and colour `shading` at the first pixel: the test, then
+/// the index stored where it passes.
 #[inline(always)]
-fn span_core<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount, P: ColourPixel>(
+fn span_core<G: SpanTest, Z: Interpolant, Sh: Shading, C: WrittenCount, P: ColourPixel>(
     colours: impl Iterator<Item = P>,
-    depths: &mut [D],
+    tests: G,
     mut z: Z,
     mut shading: Sh,
     _: C,
@@ -305,10 +363,8 @@ fn span_core<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount, P: Col
     let mut written = 0u32;
     // A shading constant along the span (flat) is mapped to its index once.
     let constant_index = shading.index();
-    for (c, stored) in colours.zip(depths.iter_mut()) {
-        let d = D::from_depth32(z.value());
-        if d.nearer(*stored) {
-            *stored = d;
+    for (c, test) in colours.zip(tests.pixels()) {
+        if test.pass(G::Depth::from_depth32(z.value())) {
             c.store(if Sh::IS_CONSTANT {
                 constant_index
             } else {

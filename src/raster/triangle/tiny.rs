@@ -52,11 +52,10 @@
 //! - Both attributes round half up, `A0 + ⌊(2M + D) / 2D⌋`, as [`Exact`] everywhere.
 
 use super::interpolants::Exact;
-use super::slices::Targets;
+use super::slices::SpanTarget;
 use super::small_plane::small_bits;
 use super::span::{depth_span, in_range, Quantizer, WrittenCount};
 use crate::arith::euclid::div_floor_i32;
-use crate::output::DepthValue;
 use crate::raster::triangle::setup::TriangleSetup;
 use crate::raster::{SubpixelPoint, Window};
 use core::num::NonZeroU32;
@@ -206,9 +205,9 @@ impl<const S: u32> TinyTriangle<S> {
     /// kinds do); returns the pixels covered and written (0 written when `count` does not
     /// count).
     #[inline(always)]
-    pub(crate) fn draw<D: DepthValue, C: WrittenCount, Q: Quantizer>(
+    pub(crate) fn draw<T: SpanTarget, C: WrittenCount, Q: Quantizer>(
         &self,
-        targets: &mut Targets<'_, D>,
+        targets: &mut T,
         count: C,
         quantizer_at: &impl Fn(i32, i32) -> Q,
     ) -> (u32, u32) {
@@ -238,9 +237,9 @@ impl<const S: u32> TinyTriangle<S> {
     /// loop, whose edges keep six values live, its starts and pixel loop spill more (measured
     /// inlined: Cortex-M4 bunny frame +3.8 %, sphere +5.4 %).
     #[inline(never)]
-    fn span<D: DepthValue, C: WrittenCount, Q: Quantizer>(
+    fn span<T: SpanTarget, C: WrittenCount, Q: Quantizer>(
         &self,
-        targets: &mut Targets<'_, D>,
+        targets: &mut T,
         x0: u32,
         x1: u32,
         y: i32,
