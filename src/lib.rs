@@ -97,6 +97,7 @@ pub mod raster;
 pub mod render;
 pub mod scene;
 pub mod shadow;
+pub mod texture;
 pub(crate) mod stats;
 #[cfg(test)]
 mod test_rng;

@@ -1,0 +1,234 @@
+//! Textured triangles against the exact rational reference
+//! (`zscan_host::reference::exact_texture`): the exact mode shows, at every covered pixel, the
+//! texel the definition gives (0 differences), on random triangles of every size class (a few
+//! pixels to the raster's whole range), weights from equal to `2^16 : 1` apart (near-plane
+//! clipped corners), coordinates up to the ends of Q8.8, and textures that wrap and clamp,
+//! from one texel to 256 wide. Coverage is the exact fill reference's.
+//!
+//! Every texture here gives each texel a distinct value, so a pixel's value names its texel.
+
+use zscan::output::{DepthBuffer, Framebuffer};
+use zscan::raster::triangle::draw_triangle_textured;
+use zscan::raster::SubpixelPoint;
+use zscan::texture::{ShadeTable, Texture, TextureError, TextureMode, TextureTable, Texturing};
+use zscan_host::reference::exact_fill;
+use zscan_host::reference::exact_texture::{fold, texel_at, weights};
+use zscan_host::test_rng::XorShift as Rng;
+
+const W: usize = 48;
+const H: usize = 40;
+const S: u32 = 4;
+
+/// A texture of `w × h` texels whose texel `(i, j)` is `j·w + i` (distinct while `w·h ≤ 256`).
+fn numbered(w: u16, h: u16) -> Vec<u8> {
+    (0..w as usize * h as usize).map(|k| k as u8).collect()
+}
+
+/// One random triangle's vertices: `class` picks the reach beyond the window.
+fn triangle(rng: &mut Rng, class: usize) -> [(i64, i64); 3] {
+    let reach = [24i64, 400, 4000, 1 << 20, (1 << 28) - 1][class % 5];
+    let lim = (1i64 << 28) - 1;
+    [0; 3].map(|_| {
+        let mut c = |n: usize| {
+            rng.range(-reach, ((n as i64) << S) + reach)
+                .clamp(-lim, lim)
+        };
+        (c(W), c(H))
+    })
+}
+
+/// Random raw weights: equal, a few bits apart, or up to 2^16 apart, at scales up to 2^34.
+fn raw_weights(rng: &mut Rng) -> [u64; 3] {
+    match rng.below(4) {
+        0 => [1 << 20; 3],
+        1 => [0; 3].map(|_| rng.range(1 << 30, 1 << 34) as u64),
+        2 => [0; 3].map(|_| rng.range(1, 1 << 16) as u64),
+        _ => {
+            let mut w = [0; 3].map(|_| rng.range(1 << 18, 1 << 34) as u64);
+            w[rng.below(3) as usize] >>= 16;
+            w
+        }
+    }
+}
+
+/// Random Q8.8 coordinates: near `[0, 1]`, a few repeats, or anywhere in the format.
+fn raw_uvs(rng: &mut Rng) -> [[i16; 2]; 3] {
+    let reach = [256i64, 2048, 32767][rng.below(3) as usize];
+    [0; 3].map(|_| [0; 2].map(|_| rng.range(-reach, reach) as i16))
+}
+
+/// Draws triangles in `mode` and returns `(texels compared, texels differing from the
+/// reference)`, asserting the coverage is the exact fill's.
+fn compare(mode: TextureMode, count: usize, seed: u64) -> (u64, u64) {
+    let mut rng = Rng::new(seed);
+    let sizes: [(u16, u16); 6] = [(16, 16), (10, 7), (256, 1), (1, 256), (1, 1), (4, 64)];
+    let (mut compared, mut differing) = (0u64, 0u64);
+    for n in 0..count {
+        let v = triangle(&mut rng, n);
+        let raw = raw_weights(&mut rng);
+        let uv = raw_uvs(&mut rng);
+        let (tw, th) = sizes[n % sizes.len()];
+        let texels = numbered(tw, th);
+        let texturing = Texturing {
+            texture: Texture::new(&texels, tw, th).unwrap(),
+            mode,
+            shades: None,
+        };
+        let mut px = [0u8; W * H];
+        let mut zs = [0u32; W * H];
+        let mut fb = Framebuffer::new(&mut px, W as u16, H as u16).unwrap();
+        let mut zb = DepthBuffer::new(&mut zs, W as u16, H as u16).unwrap();
+        zb.clear();
+        let points = v.map(|(x, y)| SubpixelPoint::<S>::new(x as i32, y as i32));
+        let depths = [0; 3].map(|_| rng.below(1 << 31) as u32);
+        let values = depths.map(|d| [d, 0]);
+        let (covered, _) =
+            draw_triangle_textured(&mut fb, &mut zb, points, values, uv, raw, &texturing).unwrap();
+        let q = if mode == TextureMode::Affine {
+            [1; 3]
+        } else {
+            weights(raw)
+        };
+        let verts: Vec<(i64, i64)> = v.to_vec();
+        let mut want_covered = 0;
+        for y in 0..H as i64 {
+            for x in 0..W as i64 {
+                let inside = exact_fill::covered(&verts, S, x, y);
+                let drawn = zb.get(x as i32, y as i32) != Some(u32::MAX);
+                assert_eq!(inside, drawn, "coverage at ({x},{y}) of {v:?}");
+                if !inside {
+                    continue;
+                }
+                want_covered += 1;
+                let (i, j) = texel_at(v, S, uv, q, (tw, th), (x, y)).unwrap();
+                let want = (fold(j, th) * tw as i64 + fold(i, tw)) as u8;
+                compared += 1;
+                if fb.pixel(x as i32, y as i32) != Some(want) {
+                    differing += 1;
+                    assert!(
+                        mode != TextureMode::Exact,
+                        "pixel ({x},{y}) shows {:?}, texel {want} expected: {v:?} {uv:?} {raw:?} \
+                         {tw}x{th}",
+                        fb.pixel(x as i32, y as i32)
+                    );
+                }
+            }
+        }
+        assert_eq!(covered, want_covered, "{v:?}");
+    }
+    (compared, differing)
+}
+
+#[test]
+fn exact_mode_shows_the_reference_texel_at_every_pixel() {
+    let (compared, differing) = compare(TextureMode::Exact, 3000, 0x7E47_0001);
+    assert_eq!(differing, 0);
+    assert!(compared > 1_000_000, "{compared}");
+}
+
+#[test]
+fn fast_modes_differ_from_the_exact_one_on_perspective_triangles() {
+    // A floor receding from the eye: weights 16 : 1, coordinates over 8 repeats.
+    let v = [(0i64, 0i64), ((W as i64) << S, 0), (0, (H as i64) << S)];
+    let uv = [[0i16, 0], [8 * 256, 0], [0, 8 * 256]];
+    let raw = [1u64 << 20, 1 << 24, 1 << 24];
+    let texels = numbered(16, 16);
+    let mut shown = Vec::new();
+    for mode in [
+        TextureMode::Exact,
+        TextureMode::Subdivided16,
+        TextureMode::Subdivided8,
+        TextureMode::Affine,
+    ] {
+        let texturing = Texturing {
+            texture: Texture::new(&texels, 16, 16).unwrap(),
+            mode,
+            shades: None,
+        };
+        let mut px = [0u8; W * H];
+        let mut zs = [0u16; W * H];
+        let mut fb = Framebuffer::new(&mut px, W as u16, H as u16).unwrap();
+        let mut zb = DepthBuffer::new(&mut zs, W as u16, H as u16).unwrap();
+        zb.clear();
+        let points = v.map(|(x, y)| SubpixelPoint::<S>::new(x as i32, y as i32));
+        draw_triangle_textured(&mut fb, &mut zb, points, [[5, 0]; 3], uv, raw, &texturing)
+            .unwrap();
+        shown.push(px);
+    }
+    let differ = |a: &[u8; W * H], b: &[u8; W * H]| a.iter().zip(b).filter(|(x, y)| x != y).count();
+    let (sub16, sub8, affine) = (
+        differ(&shown[0], &shown[1]),
+        differ(&shown[0], &shown[2]),
+        differ(&shown[0], &shown[3]),
+    );
+    assert!(affine > 100, "{affine}");
+    assert!(sub8 <= sub16 && sub16 < affine, "{sub8} {sub16} {affine}");
+}
+
+/// A lit texture goes through the shade table: row `⌊l·levels/256⌋`, column the texel.
+#[test]
+fn lit_texels_go_through_the_shade_table() {
+    let texels = numbered(16, 16);
+    // 4 levels; entry (row, t) = t ^ (row << 6): distinct per row for a given texel.
+    let table: Vec<u8> = (0..4 * 256).map(|k| ((k % 256) ^ ((k / 256) << 6)) as u8).collect();
+    let shades = ShadeTable::new(&table, 4).unwrap();
+    let texturing = Texturing {
+        texture: Texture::new(&texels, 16, 16).unwrap(),
+        mode: TextureMode::Exact,
+        shades: Some(shades),
+    };
+    let v = [(0i64, 0i64), (30 << S, 2 << S), (5 << S, 35 << S)];
+    let uv = [[0i16, 0], [700, -90], [-300, 1000]];
+    let raw = [1u64 << 30, 3 << 29, 1 << 31];
+    for lum in [0u32, 63, 64, 200, 255, 1000] {
+        let mut px = [0u8; W * H];
+        let mut zs = [0u16; W * H];
+        let mut fb = Framebuffer::new(&mut px, W as u16, H as u16).unwrap();
+        let mut zb = DepthBuffer::new(&mut zs, W as u16, H as u16).unwrap();
+        zb.clear();
+        let points = v.map(|(x, y)| SubpixelPoint::<S>::new(x as i32, y as i32));
+        draw_triangle_textured(&mut fb, &mut zb, points, [[9, lum]; 3], uv, raw, &texturing)
+            .unwrap();
+        let row = (lum.min(255) * 4 / 256) as u8;
+        let verts = v.to_vec();
+        let mut n = 0;
+        for y in 0..H as i64 {
+            for x in 0..W as i64 {
+                if !exact_fill::covered(&verts, S, x, y) {
+                    continue;
+                }
+                let (i, j) = texel_at(v, S, uv, weights(raw), (16, 16), (x, y)).unwrap();
+                let t = (fold(j, 16) * 16 + fold(i, 16)) as u8;
+                assert_eq!(fb.pixel(x as i32, y as i32), Some(t ^ (row << 6)), "({x},{y}) {lum}");
+                n += 1;
+            }
+        }
+        assert!(n > 300, "{n}");
+    }
+}
+
+/// Bad input is refused in words naming the table and the limit.
+#[test]
+fn bad_textures_and_tables_are_refused() {
+    let texels = [0u8; 15];
+    let e = Texture::new(&texels, 4, 4).unwrap_err();
+    assert_eq!(
+        e,
+        TextureError::WrongLength {
+            table: TextureTable::Texels,
+            given: 15,
+            needed: 16
+        }
+    );
+    assert_eq!(e.to_string(), "texel table holds 15 entries, 16 needed");
+    let e = Texture::new(&texels, 0, 4).unwrap_err();
+    assert!(e.to_string().contains("1..=1024"), "{e}");
+    let e = Texture::new(&texels, 1025, 1).unwrap_err();
+    assert!(e.to_string().contains("1025"), "{e}");
+    let table = [0u8; 511];
+    let e = ShadeTable::new(&table, 2).unwrap_err();
+    assert_eq!(e.to_string(), "shade table holds 511 entries, 512 needed");
+    let e = ShadeTable::new(&table, 0).unwrap_err();
+    assert!(e.to_string().contains("1..=256"), "{e}");
+    assert!(ShadeTable::new(&[0u8; 256 * 257], 257).is_err());
+}
