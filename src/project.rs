@@ -168,7 +168,7 @@ impl<const S: u32> Projector<S> {
     /// The depth's `A` (module doc), from which a vertex's `K/z = A − D` is its perspective
     /// weight for textures; `None` for an orthographic camera (depth linear in `z`: every
     /// weight equal).
-    pub(crate) fn weight_origin(&self) -> Option<u64> {
+    pub fn weight_origin(&self) -> Option<u64> {
         match self.ortho {
             Some(_) => None,
             None => Some(self.depth_a),
