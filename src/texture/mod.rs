@@ -196,6 +196,15 @@ impl<'a> Texture<'a> {
     }
 }
 
+impl Texture<'_> {
+    /// The texel at `k = row · width + column` (0 past the table, which [`Texture::new`]
+    /// rules out for `k < width · height`).
+    #[inline(always)]
+    pub(crate) fn texel_at(&self, k: usize) -> u8 {
+        self.texels.get(k).copied().unwrap_or(0)
+    }
+}
+
 /// Texel index `i` on a side of `n` texels: `i mod n` for a power of two, else clamped.
 #[inline(always)]
 fn fold(i: i32, n: u16) -> usize {

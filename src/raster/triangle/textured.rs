@@ -15,10 +15,11 @@
 //! `t_u = ⌊N_u / Q⌋` (`u` in Q8.8: `W·u/256` texels), the row `t_v = ⌊N_v / Q⌋`, both the
 //! floors of the exact perspective-correct coordinate at the pixel.
 //!
-//! - **Exact** ([`TextureMode::Exact`]): `Q` and `N` step by one add per pixel, and the floor
-//!   follows them: the remainder `r = N − Q·t` of the previous texel is tested against
-//!   `0 ≤ r < Q`; outside, `t` moves by one (one more compare) or, past that, by the Euclidean
-//!   quotient `⌊r / Q⌋`. Every pixel gets the exact floor.
+//! - **Exact** ([`TextureMode::Exact`]): `Q` steps by one add per pixel, and so does the
+//!   remainder `r = N − Q·t` of the previous texel `t` (by `dN − dQ·t`, kept beside it); `r` is
+//!   tested against `0 ≤ r < Q`; outside, `t` moves by one (one more compare) or, past that,
+//!   by the Euclidean quotient `⌊r / Q⌋` (minified texels, out of line). Every pixel gets the
+//!   exact floor, with no multiply and no division on the common path.
 //! - **Subdivided** (8 or 16 pixels) and **affine**: the exact value `⌊2^16·N / Q⌋` (texels
 //!   in 16.16) at a segment's ends, a 16.16 step between; affine objects take `q_i = 1`
 //!   (the planes of `u` and `v` themselves) and one segment per span.
@@ -108,8 +109,7 @@ impl Plane {
 /// and how the texel becomes an index.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TexturedKind<'a> {
-    texture: Texture<'a>,
-    shades: Option<ShadeTable<'a>>,
+    look: Lookup<'a>,
     mode: TextureMode,
     /// `Q = 256·D·q(p)`.
     q: Plane,
@@ -154,8 +154,7 @@ impl<'a> TexturedKind<'a> {
             nmax + qmax * (tmax + 2) < 1 << 62
         };
         Some(TexturedKind {
-            texture,
-            shades: texturing.shades,
+            look: Lookup::new(texture, texturing.shades),
             mode: texturing.mode,
             q: Plane::of(t, q.map(|w| w as i128), sign).times(256),
             n: [planes(0), planes(1)],
@@ -174,10 +173,7 @@ impl<'a> TexturedKind<'a> {
         (x, y): (i32, i32),
         count: C,
     ) -> u32 {
-        let look = Lookup {
-            texture: self.texture,
-            shades: self.shades,
-        };
+        let look = self.look;
         match (self.mode, self.wide) {
             (TextureMode::Exact, false) => {
                 let sh = ExactTexels::<i64, L>::start(self, look, lum, x, y);
@@ -228,17 +224,35 @@ impl SpanKind<2> for TexturedKind<'_> {
     }
 }
 
-/// Texel `(i, j)` → palette index: the texture, and the shade table when lit.
+/// Texel `(i, j)` → palette index: the texture (wrapped by masks when both sides are powers
+/// of two, else each side wrapped or clamped by [`Texture::texel`]), and the shade table
+/// when lit.
 #[derive(Debug, Clone, Copy)]
 struct Lookup<'a> {
     texture: Texture<'a>,
     shades: Option<ShadeTable<'a>>,
+    /// `Some((W − 1, H − 1, log2 W))` for power-of-two sides.
+    masks: Option<(i32, i32, u32)>,
 }
 
-impl Lookup<'_> {
+impl<'a> Lookup<'a> {
+    fn new(texture: Texture<'a>, shades: Option<ShadeTable<'a>>) -> Self {
+        let (w, h) = (texture.width(), texture.height());
+        let masks = (w.is_power_of_two() && h.is_power_of_two())
+            .then(|| (w as i32 - 1, h as i32 - 1, w.trailing_zeros()));
+        Lookup {
+            texture,
+            shades,
+            masks,
+        }
+    }
+
     #[inline(always)]
     fn index(&self, t: [i32; 2], lum: u32) -> u8 {
-        let texel = self.texture.texel(t[0], t[1]);
+        let texel = match self.masks {
+            Some((mw, mh, shift)) => self.texture.texel_at((((t[1] & mh) << shift) | (t[0] & mw)) as usize),
+            None => self.texture.texel(t[0], t[1]),
+        };
         match self.shades {
             Some(s) => s.shade(s.row(lum), texel),
             None => texel,
@@ -306,14 +320,16 @@ impl Wide for i128 {
     }
 }
 
-/// The exact mode's shading: `Q` and `N_u`, `N_v` at the current pixel with their steps,
-/// and the two texel floors.
+/// The exact mode's shading: `Q` at the current pixel and its step, and per coordinate the
+/// texel floor `t`, its remainder `r = N − Q·t` (`0 ≤ r < Q` at a covered pixel) and the
+/// remainder's step `e = dN − dQ·t` (so a pixel costs one add per coordinate, and a move of
+/// the texel one add to each of `r` and `e`).
 #[derive(Debug, Clone, Copy)]
 struct ExactTexels<'a, T, L> {
     q: T,
     dq: T,
-    n: [T; 2],
-    dn: [T; 2],
+    r: [T; 2],
+    e: [T; 2],
     t: [i32; 2],
     lum: L,
     look: Lookup<'a>,
@@ -326,11 +342,13 @@ impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
         let n = k.n.map(|p| p.at(x, y));
         // A covered pixel has Q > 0 (module doc).
         let t = n.map(|n| if q > 0 { n.div_euclid(q) as i32 } else { 0 });
+        let r = [0, 1].map(|i| T::from_wide(n[i] - q * t[i] as i128));
+        let e = [0, 1].map(|i| T::from_wide(k.n[i].gx - k.q.gx * t[i] as i128));
         ExactTexels {
             q: T::from_wide(q),
             dq: T::from_wide(k.q.gx),
-            n: n.map(T::from_wide),
-            dn: k.n.map(|p| T::from_wide(p.gx)),
+            r,
+            e,
             t,
             lum,
             look,
@@ -347,25 +365,45 @@ impl<T: Wide, L: Interpolant> Shading for ExactTexels<'_, T, L> {
     #[inline(always)]
     fn step(&mut self) {
         self.lum.step();
-        let q = self.q.add(self.dq);
+        let (q, dq) = (self.q.add(self.dq), self.dq);
         self.q = q;
         for k in 0..2 {
-            let n = self.n[k].add(self.dn[k]);
-            self.n[k] = n;
-            let r = n.sub(q.times(self.t[k]));
+            let r = self.r[k].add(self.e[k]);
+            self.r[k] = r;
             if r < T::ZERO {
-                if r.add(q) >= T::ZERO {
+                let up = r.add(q);
+                if up >= T::ZERO {
                     self.t[k] -= 1;
-                } else if q > T::ZERO {
-                    self.t[k] = self.t[k].wrapping_add(r.floor_div(q));
+                    self.r[k] = up;
+                    self.e[k] = self.e[k].add(dq);
+                } else {
+                    self.jump(k);
                 }
             } else if r >= q {
-                if r.sub(q) < q {
+                let down = r.sub(q);
+                if down < q {
                     self.t[k] += 1;
-                } else if q > T::ZERO {
-                    self.t[k] = self.t[k].wrapping_add(r.floor_div(q));
+                    self.r[k] = down;
+                    self.e[k] = self.e[k].sub(dq);
+                } else {
+                    self.jump(k);
                 }
             }
+        }
+    }
+}
+
+impl<T: Wide, L: Interpolant> ExactTexels<'_, T, L> {
+    /// The texel `k` moved by more than one: by the Euclidean quotient `m = ⌊r / Q⌋` (nothing
+    /// where `Q ≤ 0`, past a span's end).
+    #[cold]
+    #[inline(never)]
+    fn jump(&mut self, k: usize) {
+        if self.q > T::ZERO {
+            let m = self.r[k].floor_div(self.q);
+            self.t[k] = self.t[k].wrapping_add(m);
+            self.r[k] = self.r[k].sub(self.q.times(m));
+            self.e[k] = self.e[k].sub(self.dq.times(m));
         }
     }
 }
