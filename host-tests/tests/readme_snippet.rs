@@ -68,7 +68,9 @@ mod both_preludes {
         Material as _, Mesh as _, MeshFacts as _, Object as _, PlanMemory as _, PlanSizes as _,
         PolygonRows as _, PolygonSizes as _, PolygonTop as _, PreparedVertex as _,
         RenderStats as _, Renderer as _, Scene as _, ShadeMode as _, StatsSink as _,
-        StatsWithoutWritten as _, Vec3 as _, Viewport as _,
+        StatsWithoutWritten as _, Vec3 as _, Viewport as _, torus_uvs as _, uv_sphere_uvs as _,
+        TexCoord as _, shade_table as _, ShadeTable as _, Texture as _, TextureMode as _,
+        Texturing as _,
     };
 
     /// The names above, as `src/prelude.rs` exports them.
@@ -126,6 +128,14 @@ mod both_preludes {
         "plan",
         "triangle_indices",
         "vec3s_from_bits",
+        "torus_uvs",
+        "uv_sphere_uvs",
+        "TexCoord",
+        "shade_table",
+        "ShadeTable",
+        "Texture",
+        "TextureMode",
+        "Texturing",
     ];
 }
 

@@ -363,3 +363,121 @@ fn exact_mode_frames_show_the_reference_texel() {
     }
     assert!(views >= 30 && compared > 100_000, "{views} views, {compared} pixels");
 }
+
+/// A scene of a textured cube (exact, lit through a shade table) beside an untextured one,
+/// drawn whole and in bands of several heights (with and without the polygon table): the same
+/// picture; Warnock's subdivision (a method that stores triangles) refuses it naming the
+/// textured object.
+#[test]
+fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
+    use zscan::geometry::camera::{Camera, Lens, Viewport};
+    use zscan::geometry::fixed::Coord;
+    use zscan::geometry::generators::unit_cube;
+    use zscan::geometry::matrix::Affine3;
+    use zscan::geometry::trig::BinaryAngle;
+    use zscan::geometry::vector::Vec3;
+    use zscan::render::{
+        render_in_bands, render_scene, BandScratch, PolygonRows, PreparedVertex, RenderError,
+        RenderStats, Renderer,
+    };
+    use zscan::scene::{Object, Scene};
+    use zscan::visibility::{render_warnock, Area, StoredTriangle, WarnockMemory};
+
+    const VW: usize = 96;
+    const VH: usize = 72;
+    let texels = numbered(16, 16);
+    let table: Vec<u8> = (0..8 * 256).map(|k| ((k % 256) ^ (k / 256)) as u8).collect();
+    let mut textured = Object::new(unit_cube());
+    textured.transform = Affine3::builder()
+        .translate(Vec3::from_bits(-1 << 15, -1 << 15, -1 << 15))
+        .rotate_y(BinaryAngle::from_degrees(35))
+        .rotate_x(BinaryAngle::from_degrees(20))
+        .build()
+        .unwrap();
+    textured.texture = Some(Texturing {
+        texture: Texture::new(&texels, 16, 16).unwrap(),
+        mode: TextureMode::Exact,
+        shades: Some(ShadeTable::new(&table, 8).unwrap()),
+    });
+    textured.intensities = zscan::scene::Intensities::PerPolygon(&[40, 90, 140, 190, 230, 255]);
+    let mut plain = Object::new(unit_cube());
+    plain.transform = Affine3::builder()
+        .translate(Vec3::from_int(0, -1, 0))
+        .build()
+        .unwrap();
+    let objects = [plain, textured];
+    let lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+    let camera = Camera::look_at(
+        Vec3::from_bits(1 << 15, 1 << 16, 3 << 16),
+        Vec3::ZERO,
+        Vec3::from_int(0, 1, 0),
+        lens,
+        Viewport::new(VW as u16, VH as u16),
+    )
+    .unwrap();
+    let scene = Scene {
+        camera,
+        ambient: 255,
+        lights: &[],
+        objects: &objects,
+        background: 3,
+    };
+    let renderer = Renderer::for_scene(&scene).unwrap();
+    let mut whole = vec![0u8; VW * VH];
+    let mut zs = vec![0u16; VW * VH];
+    let mut scratch = vec![PreparedVertex::<4>::default(); 8];
+    {
+        let mut fb = Framebuffer::new(&mut whole, VW as u16, VH as u16).unwrap();
+        let mut zb = DepthBuffer::new(&mut zs, VW as u16, VH as u16).unwrap();
+        render_scene(&renderer, &mut fb, &mut zb, &mut scratch, &mut RenderStats::default())
+            .unwrap();
+    }
+    let textured_pixels = whole.iter().filter(|&&p| p != 3).count();
+    assert!(textured_pixels > 1000, "{textured_pixels}");
+    for (rows, table) in [(1u16, false), (7, true), (16, false), (72, true)] {
+        let mut banded = vec![0u8; VW * VH];
+        let mut px = vec![0u8; VW * rows as usize];
+        let mut ds = vec![0u16; VW * rows as usize];
+        let mut vertices = vec![PreparedVertex::<4>::default(); 16];
+        let mut polygons = vec![PolygonRows::NEVER; if table { 12 } else { 0 }];
+        let scratch = BandScratch {
+            vertices: &mut vertices,
+            polygons: &mut polygons,
+        };
+        render_in_bands(
+            &renderer,
+            (&mut px[..], &mut ds[..]),
+            (VW as u16, VH as u16, rows),
+            scratch,
+            &mut RenderStats::default(),
+            |band, _| -> Result<(), RenderError> {
+                for (y, row) in band.rows() {
+                    let at = y as usize * VW;
+                    banded[at..at + VW].copy_from_slice(row);
+                }
+                Ok(())
+            },
+        )
+        .unwrap();
+        assert!(banded == whole, "bands of {rows} rows, table {table}");
+    }
+    let mut fb_px = vec![0u8; VW * VH];
+    let mut fb = Framebuffer::new(&mut fb_px, VW as u16, VH as u16).unwrap();
+    let (mut t, mut c, mut w) = (
+        vec![StoredTriangle::default(); 64],
+        vec![0u32; 128],
+        vec![Area::DEFAULT; 32],
+    );
+    let memory = WarnockMemory {
+        triangles: &mut t,
+        candidates: &mut c,
+        windows: &mut w,
+    };
+    let e = render_warnock(&renderer, &mut fb, &mut scratch, memory, &mut RenderStats::default())
+        .unwrap_err();
+    assert!(
+        matches!(e, RenderError::TextureUnsupported { object: 1, .. }),
+        "{e:?}"
+    );
+    assert!(e.to_string().starts_with("object 1 is textured"), "{e}");
+}

@@ -505,6 +505,82 @@ mod tests {
     extern crate std;
     use super::*;
 
+    /// Twice the signed area of a polygon's texture coordinates (u right, v up).
+    fn uv_area(uvs: &[TexCoord]) -> i64 {
+        let n = uvs.len();
+        (0..n)
+            .map(|k| {
+                let (a, b) = (uvs[k], uvs[(k + 1) % n]);
+                a[0] as i64 * b[1] as i64 - b[0] as i64 * a[1] as i64
+            })
+            .sum()
+    }
+
+    /// Each cube face shows the texture once, counter-clockwise as its corners (whose order is
+    /// counter-clockwise from outside), and on the four side faces `(0, 0)` is a bottom corner
+    /// (`y = 0`) and `v` runs up (`v = y`).
+    #[test]
+    fn cube_faces_map_the_texture_once() {
+        let m = unit_cube();
+        assert_eq!(m.uvs().len(), 24);
+        for (f, (poly, uvs)) in m.polygons().zip(m.uvs().chunks(4)).enumerate() {
+            assert_eq!(uv_area(uvs), 2 * 256 * 256, "face {f}");
+            let side = f < 2 || f >= 4;
+            for (&i, uv) in poly.iter().zip(uvs) {
+                let y = (i >> 1 & 1) as i16 * 256;
+                if side {
+                    assert_eq!(uv[1], y, "face {f} vertex {i}");
+                }
+            }
+        }
+    }
+
+    /// The sphere's seam and poles: the north cap's first and last triangles, a band's
+    /// closing pair and the south cap's last triangle, typed in from the convention.
+    #[test]
+    fn sphere_uvs_close_the_ring_and_average_at_the_poles() {
+        let (_, ni) = uv_sphere_sizes(32, 16);
+        let mut uvs = [[0i16; 2]; 2880];
+        assert_eq!(ni, 2880);
+        uv_sphere_uvs(32, 16, &mut uvs).unwrap();
+        assert_eq!(uvs[0..3], [[4, 0], [0, 16], [8, 16]]);
+        assert_eq!(uvs[93..96], [[252, 0], [248, 16], [256, 16]]);
+        // Band k = 1, segment 31: (1, 31), (2, 31), (2, 32) and (1, 31), (2, 32), (1, 32).
+        let at = 96 + 6 * 31;
+        assert_eq!(
+            uvs[at..at + 6],
+            [[248, 16], [248, 32], [256, 32], [248, 16], [256, 32], [256, 16]]
+        );
+        assert_eq!(uvs[2877..2880], [[248, 240], [252, 256], [256, 240]]);
+        let mut short = [[0i16; 2]; 2879];
+        assert!(matches!(
+            uv_sphere_uvs(32, 16, &mut short),
+            Err(MeshError::OutputTooSmall { table: MeshTable::TexCoords, given: 2879, needed: 2880 })
+        ));
+    }
+
+    /// The torus and the prism: every face one whole cell of its grid (the torus's
+    /// `(1/rings) × (1/sides)`, the prism's `(1/sides) × 1`, rounded to Q8.8).
+    #[test]
+    fn torus_and_prism_uvs_tile_their_grids() {
+        let mut t = [[0i16; 2]; 4 * 8 * 4];
+        torus_uvs(8, 4, &mut t).unwrap();
+        for cell in t.chunks(4) {
+            assert_eq!(uv_area(cell).abs(), 2 * 32 * 64, "{cell:?}");
+        }
+        assert_eq!(t[4 * 4 * 7 + 4 * 3..][..4], [[224, 192], [256, 192], [256, 256], [224, 256]]);
+        let mut p = [[0i16; 2]; 16 * 6];
+        hollow_prism_uvs(6, &mut p).unwrap();
+        for q in p.chunks(4) {
+            let u = q.iter().map(|c| c[0] as i64);
+            let width = u.clone().max().unwrap() - u.min().unwrap();
+            assert!(width == 42 || width == 43, "{q:?}");
+            assert_eq!(uv_area(q).abs(), 2 * width * 256, "{q:?}");
+        }
+        assert!(hollow_prism_uvs(2, &mut p).is_err());
+    }
+
+
     /// Every face's normal points away from the given "inside" reference.
     fn outward(m: &Mesh, inside: impl Fn(Vec3) -> Vec3) {
         for p in m.polygons() {
