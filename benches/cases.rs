@@ -362,9 +362,7 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "frame_tex_floor",
-        run: |fb, st| {
-            scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Exact)
-        },
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Exact),
     },
     Case {
         name: "frame_tex_floor_sub16",
@@ -380,15 +378,11 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "frame_tex_floor_affine",
-        run: |fb, st| {
-            scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Affine)
-        },
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Affine),
     },
     Case {
         name: "frame_tex_cube",
-        run: |fb, st| {
-            scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Exact)
-        },
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Exact),
     },
     Case {
         name: "frame_tex_cube_sub16",
@@ -404,15 +398,11 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "frame_tex_cube_affine",
-        run: |fb, st| {
-            scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Affine)
-        },
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Affine),
     },
     Case {
         name: "frame_tex_sphere",
-        run: |fb, st| {
-            scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Exact)
-        },
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Exact),
     },
     Case {
         name: "frame_tex_sphere_sub16",
@@ -428,9 +418,7 @@ pub const CASES: &[Case] = &[
     },
     Case {
         name: "frame_tex_sphere_affine",
-        run: |fb, st| {
-            scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Affine)
-        },
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Affine),
     },
     Case {
         name: "shadow_map_cube",
@@ -1475,7 +1463,8 @@ pub mod scene {
             else {
                 return 0;
             };
-            let Ok(mut zb) = DepthBuffer::new(&mut st.depth, super::super::WIDTH, super::super::HEIGHT)
+            let Ok(mut zb) =
+                DepthBuffer::new(&mut st.depth, super::super::WIDTH, super::super::HEIGHT)
             else {
                 return 0;
             };

@@ -97,10 +97,10 @@ pub mod raster;
 pub mod render;
 pub mod scene;
 pub mod shadow;
-pub mod texture;
 pub(crate) mod stats;
 #[cfg(test)]
 mod test_rng;
+pub mod texture;
 pub mod visibility;
 
 pub use error::Error;

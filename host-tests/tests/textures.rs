@@ -151,8 +151,7 @@ fn fast_modes_differ_from_the_exact_one_on_perspective_triangles() {
         let mut zb = DepthBuffer::new(&mut zs, W as u16, H as u16).unwrap();
         zb.clear();
         let points = v.map(|(x, y)| SubpixelPoint::<S>::new(x as i32, y as i32));
-        draw_triangle_textured(&mut fb, &mut zb, points, [[5, 0]; 3], uv, raw, &texturing)
-            .unwrap();
+        draw_triangle_textured(&mut fb, &mut zb, points, [[5, 0]; 3], uv, raw, &texturing).unwrap();
         shown.push(px);
     }
     let differ = |a: &[u8; W * H], b: &[u8; W * H]| a.iter().zip(b).filter(|(x, y)| x != y).count();
@@ -170,7 +169,9 @@ fn fast_modes_differ_from_the_exact_one_on_perspective_triangles() {
 fn lit_texels_go_through_the_shade_table() {
     let texels = numbered(16, 16);
     // 4 levels; entry (row, t) = t ^ (row << 6): distinct per row for a given texel.
-    let table: Vec<u8> = (0..4 * 256).map(|k| ((k % 256) ^ ((k / 256) << 6)) as u8).collect();
+    let table: Vec<u8> = (0..4 * 256)
+        .map(|k| ((k % 256) ^ ((k / 256) << 6)) as u8)
+        .collect();
     let shades = ShadeTable::new(&table, 4).unwrap();
     let texturing = Texturing {
         texture: Texture::new(&texels, 16, 16).unwrap(),
@@ -199,7 +200,11 @@ fn lit_texels_go_through_the_shade_table() {
                 }
                 let (i, j) = texel_at(v, S, uv, weights(raw), (16, 16), (x, y)).unwrap();
                 let t = (fold(j, 16) * 16 + fold(i, 16)) as u8;
-                assert_eq!(fb.pixel(x as i32, y as i32), Some(t ^ (row << 6)), "({x},{y}) {lum}");
+                assert_eq!(
+                    fb.pixel(x as i32, y as i32),
+                    Some(t ^ (row << 6)),
+                    "({x},{y}) {lum}"
+                );
                 n += 1;
             }
         }
@@ -289,7 +294,9 @@ fn exact_mode_frames_show_the_reference_texel() {
         });
         let dist = rng.uniform(1.6, 4.0) as f32;
         let dir = [0; 3].map(|_| rng.uniform(-1.0, 1.0) as f32);
-        let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(0.1);
+        let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2])
+            .sqrt()
+            .max(0.1);
         let c = |x: f32| Coord::from_num(x / len * dist);
         let eye = Vec3::new(c(dir[0]), c(dir[1]), c(dir[2]));
         let lens = Lens {
@@ -320,13 +327,22 @@ fn exact_mode_frames_show_the_reference_texel() {
         let mut zb = DepthBuffer::new(&mut zs, VW as u16, VH as u16).unwrap();
         zb.clear();
         renderer
-            .draw_object(&object, &mut scratch, &mut fb, &mut zb, &mut RenderStats::default())
+            .draw_object(
+                &object,
+                &mut scratch,
+                &mut fb,
+                &mut zb,
+                &mut RenderStats::default(),
+            )
             .unwrap();
         if scratch.iter().any(|p| p.outcode != 0) {
             continue; // a clipped view: the clipper's corners are not in the scratch
         }
         views += 1;
-        let origin = Projector::<4>::new(&camera).unwrap().weight_origin().unwrap();
+        let origin = Projector::<4>::new(&camera)
+            .unwrap()
+            .weight_origin()
+            .unwrap();
         // The front triangles of the fans, with their reference data.
         let mut front = Vec::new();
         let mut at = 0;
@@ -350,18 +366,28 @@ fn exact_mode_frames_show_the_reference_texel() {
                     .iter()
                     .filter(|(v, _, _)| exact_fill::covered(&v.to_vec(), S, x, y));
                 let first = covering.next();
-                assert!(covering.next().is_none(), "two front triangles at ({x},{y})");
+                assert!(
+                    covering.next().is_none(),
+                    "two front triangles at ({x},{y})"
+                );
                 let drawn = zb.get(x as i32, y as i32) != Some(u32::MAX);
                 assert_eq!(first.is_some(), drawn, "coverage at ({x},{y}), view {n}");
                 let Some(&(v, uv, q)) = first else { continue };
                 let (i, j) = texel_at(v, S, uv, q, (16, 16), (x, y)).unwrap();
                 let want = (fold(j, 16) * 16 + fold(i, 16)) as u8;
-                assert_eq!(fb.pixel(x as i32, y as i32), Some(want), "({x},{y}), view {n}");
+                assert_eq!(
+                    fb.pixel(x as i32, y as i32),
+                    Some(want),
+                    "({x},{y}), view {n}"
+                );
                 compared += 1;
             }
         }
     }
-    assert!(views >= 30 && compared > 100_000, "{views} views, {compared} pixels");
+    assert!(
+        views >= 30 && compared > 100_000,
+        "{views} views, {compared} pixels"
+    );
 }
 
 /// A scene of a textured cube (exact, lit through a shade table) beside an untextured one,
@@ -386,7 +412,9 @@ fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
     const VW: usize = 96;
     const VH: usize = 72;
     let texels = numbered(16, 16);
-    let table: Vec<u8> = (0..8 * 256).map(|k| ((k % 256) ^ (k / 256)) as u8).collect();
+    let table: Vec<u8> = (0..8 * 256)
+        .map(|k| ((k % 256) ^ (k / 256)) as u8)
+        .collect();
     let mut textured = Object::new(unit_cube());
     textured.transform = Affine3::builder()
         .translate(Vec3::from_bits(-1 << 15, -1 << 15, -1 << 15))
@@ -406,7 +434,11 @@ fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
         .build()
         .unwrap();
     let objects = [plain, textured];
-    let lens = Lens::new(BinaryAngle::from_degrees(60), Coord::lit("0.5"), Coord::lit("20"));
+    let lens = Lens::new(
+        BinaryAngle::from_degrees(60),
+        Coord::lit("0.5"),
+        Coord::lit("20"),
+    );
     let camera = Camera::look_at(
         Vec3::from_bits(1 << 15, 1 << 16, 3 << 16),
         Vec3::ZERO,
@@ -429,8 +461,14 @@ fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
     {
         let mut fb = Framebuffer::new(&mut whole, VW as u16, VH as u16).unwrap();
         let mut zb = DepthBuffer::new(&mut zs, VW as u16, VH as u16).unwrap();
-        render_scene(&renderer, &mut fb, &mut zb, &mut scratch, &mut RenderStats::default())
-            .unwrap();
+        render_scene(
+            &renderer,
+            &mut fb,
+            &mut zb,
+            &mut scratch,
+            &mut RenderStats::default(),
+        )
+        .unwrap();
     }
     let textured_pixels = whole.iter().filter(|&&p| p != 3).count();
     assert!(textured_pixels > 1000, "{textured_pixels}");
@@ -473,8 +511,14 @@ fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
         candidates: &mut c,
         windows: &mut w,
     };
-    let e = render_warnock(&renderer, &mut fb, &mut scratch, memory, &mut RenderStats::default())
-        .unwrap_err();
+    let e = render_warnock(
+        &renderer,
+        &mut fb,
+        &mut scratch,
+        memory,
+        &mut RenderStats::default(),
+    )
+    .unwrap_err();
     assert!(
         matches!(e, RenderError::TextureUnsupported { object: 1, .. }),
         "{e:?}"

@@ -75,12 +75,30 @@ pub static UNIT_CUBE_UVS: [TexCoord; 24] = {
     const O: i16 = 0;
     const I: i16 = TEX_ONE as i16;
     [
-        [I, O], [I, I], [O, I], [O, O], // z = 0: vertex 1 is its lower left
-        [O, O], [I, O], [I, I], [O, I], // z = 1
-        [O, O], [I, O], [I, I], [O, I], // y = 0
-        [O, O], [I, O], [I, I], [O, I], // y = 1
-        [O, O], [I, O], [I, I], [O, I], // x = 0
-        [I, O], [I, I], [O, I], [O, O], // x = 1: vertex 5 is its lower left
+        [I, O],
+        [I, I],
+        [O, I],
+        [O, O], // z = 0: vertex 1 is its lower left
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // z = 1
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // y = 0
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // y = 1
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // x = 0
+        [I, O],
+        [I, I],
+        [O, I],
+        [O, O], // x = 1: vertex 5 is its lower left
     ]
 };
 
@@ -389,10 +407,22 @@ pub fn hollow_prism_uvs(sides: u16, out: &mut [TexCoord]) -> Result<(), MeshErro
     let corners = (0..sides as usize).flat_map(|j| {
         let j1 = j + 1;
         [
-            [j, 1], [j1, 1], [j1, 0], [j, 0], // outer side
-            [j, 1], [j, 0], [j1, 0], [j1, 1], // inner side
-            [j, 0], [j1, 0], [j1, 1], [j, 1], // top ring
-            [j, 0], [j, 1], [j1, 1], [j1, 0], // bottom ring
+            [j, 1],
+            [j1, 1],
+            [j1, 0],
+            [j, 0], // outer side
+            [j, 1],
+            [j, 0],
+            [j1, 0],
+            [j1, 1], // inner side
+            [j, 0],
+            [j1, 0],
+            [j1, 1],
+            [j, 1], // top ring
+            [j, 0],
+            [j, 1],
+            [j1, 1],
+            [j1, 0], // bottom ring
         ]
     });
     write_uvs(out, need.1, [sides as usize, 1], corners)
@@ -549,13 +579,24 @@ mod tests {
         let at = 96 + 6 * 31;
         assert_eq!(
             uvs[at..at + 6],
-            [[248, 16], [248, 32], [256, 32], [248, 16], [256, 32], [256, 16]]
+            [
+                [248, 16],
+                [248, 32],
+                [256, 32],
+                [248, 16],
+                [256, 32],
+                [256, 16]
+            ]
         );
         assert_eq!(uvs[2877..2880], [[248, 240], [252, 256], [256, 240]]);
         let mut short = [[0i16; 2]; 2879];
         assert!(matches!(
             uv_sphere_uvs(32, 16, &mut short),
-            Err(MeshError::OutputTooSmall { table: MeshTable::TexCoords, given: 2879, needed: 2880 })
+            Err(MeshError::OutputTooSmall {
+                table: MeshTable::TexCoords,
+                given: 2879,
+                needed: 2880
+            })
         ));
     }
 
@@ -568,7 +609,10 @@ mod tests {
         for cell in t.chunks(4) {
             assert_eq!(uv_area(cell).abs(), 2 * 32 * 64, "{cell:?}");
         }
-        assert_eq!(t[4 * 4 * 7 + 4 * 3..][..4], [[224, 192], [256, 192], [256, 256], [224, 256]]);
+        assert_eq!(
+            t[4 * 4 * 7 + 4 * 3..][..4],
+            [[224, 192], [256, 192], [256, 256], [224, 256]]
+        );
         let mut p = [[0i16; 2]; 16 * 6];
         hollow_prism_uvs(6, &mut p).unwrap();
         for q in p.chunks(4) {
@@ -579,7 +623,6 @@ mod tests {
         }
         assert!(hollow_prism_uvs(2, &mut p).is_err());
     }
-
 
     /// Every face's normal points away from the given "inside" reference.
     fn outward(m: &Mesh, inside: impl Fn(Vec3) -> Vec3) {

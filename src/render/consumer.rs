@@ -24,9 +24,9 @@ use crate::raster::triangle::Bayer4;
 use crate::raster::triangle::{draw_in_range, RasterTarget, WrittenCount};
 use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};
 use crate::raster::triangle::{draw_textured_on, TexCorner};
-use crate::texture::Texturing;
 use crate::raster::SubpixelPoint;
 use crate::scene::Object;
+use crate::texture::Texturing;
 
 /// One triangle corner handed to a consumer: screen position, depth, observer-frame position
 /// and `N` attributes (a level, or a normal), from the vertex stage or the clipper.
@@ -126,9 +126,7 @@ impl<D: DepthValue, C: WrittenCount, const S: u32> TriangleConsumer<S, 3>
         let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
         let corners = c.map(|c| TexCorner {
             uv: [c.attrs[1], c.attrs[2]],
-            weight: self
-                .origin
-                .map_or(1, |a| a.saturating_sub(c.depth as u64)),
+            weight: self.origin.map_or(1, |a| a.saturating_sub(c.depth as u64)),
         });
         Ok(draw_textured_on(
             self.target,

@@ -216,7 +216,9 @@ impl<const S: u32> Renderer<S> {
 
 /// The texture coordinates of a textured `object`: one per index, and not Phong-lit (its
 /// corners carry a level and the coordinates, no normals).
-fn textured_uvs<'a>(object: &Object<'a>) -> Result<&'a [crate::geometry::mesh::TexCoord], RenderError> {
+fn textured_uvs<'a>(
+    object: &Object<'a>,
+) -> Result<&'a [crate::geometry::mesh::TexCoord], RenderError> {
     let uvs = object.mesh.uvs();
     if uvs.len() != object.mesh.indices().len() {
         return Err(RenderError::TextureNotDrawable {

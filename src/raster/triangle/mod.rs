@@ -56,6 +56,6 @@ pub(crate) use dither::Bayer4;
 #[cfg(test)]
 pub(crate) use draw::draw_tiny_or_planar;
 pub(crate) use draw::{draw_depth_only, draw_in_range, draw_phong_on, draw_textured_on};
-pub(crate) use textured::TexCorner;
 pub(crate) use slices::{DepthTarget, RasterTarget};
 pub(crate) use span::{CountWritten, SkipWritten, WrittenCount};
+pub(crate) use textured::TexCorner;

@@ -250,7 +250,9 @@ impl<'a> Lookup<'a> {
     #[inline(always)]
     fn index(&self, t: [i32; 2], lum: u32) -> u8 {
         let texel = match self.masks {
-            Some((mw, mh, shift)) => self.texture.texel_at((((t[1] & mh) << shift) | (t[0] & mw)) as usize),
+            Some((mw, mh, shift)) => self
+                .texture
+                .texel_at((((t[1] & mh) << shift) | (t[0] & mw)) as usize),
             None => self.texture.texel(t[0], t[1]),
         };
         match self.shades {
@@ -465,8 +467,13 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
     fn exact(&self, i: u32) -> [i64; 2] {
         let (x, y) = (self.at.0.wrapping_add(i as i32), self.at.1);
         let q = self.q.at(x, y);
-        self.n
-            .map(|p| if q > 0 { ((p.at(x, y) << 16).div_euclid(q)) as i64 } else { 0 })
+        self.n.map(|p| {
+            if q > 0 {
+                ((p.at(x, y) << 16).div_euclid(q)) as i64
+            } else {
+                0
+            }
+        })
     }
 
     /// The segment from the current pixel: its end, the exact values there and the step.
