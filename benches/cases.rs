@@ -27,6 +27,7 @@ use zscan::output::Framebuffer;
 use zscan::raster::depth_line::Walk;
 use zscan::raster::triangle::ShadeMode;
 use zscan::render::{PreparedVertex, Wireframe};
+use zscan::texture::TextureMode;
 
 /// Framebuffer width of every case.
 pub const WIDTH: u16 = 320;
@@ -378,6 +379,66 @@ pub const CASES: &[Case] = &[
     Case {
         name: "lit_bunny_phong_dither",
         run: |fb, st| scene::lit(fb, st, &scene::BUNNY, ShadeMode::Phong, true),
+    },
+    Case {
+        name: "frame_tex_floor",
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Exact),
+    },
+    Case {
+        name: "frame_tex_floor_sub16",
+        run: |fb, st| {
+            scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Subdivided16)
+        },
+    },
+    Case {
+        name: "frame_tex_floor_sub8",
+        run: |fb, st| {
+            scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Subdivided8)
+        },
+    },
+    Case {
+        name: "frame_tex_floor_affine",
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::FLOOR, TextureMode::Affine),
+    },
+    Case {
+        name: "frame_tex_cube",
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Exact),
+    },
+    Case {
+        name: "frame_tex_cube_sub16",
+        run: |fb, st| {
+            scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Subdivided16)
+        },
+    },
+    Case {
+        name: "frame_tex_cube_sub8",
+        run: |fb, st| {
+            scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Subdivided8)
+        },
+    },
+    Case {
+        name: "frame_tex_cube_affine",
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::CUBE, TextureMode::Affine),
+    },
+    Case {
+        name: "frame_tex_sphere",
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Exact),
+    },
+    Case {
+        name: "frame_tex_sphere_sub16",
+        run: |fb, st| {
+            scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Subdivided16)
+        },
+    },
+    Case {
+        name: "frame_tex_sphere_sub8",
+        run: |fb, st| {
+            scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Subdivided8)
+        },
+    },
+    Case {
+        name: "frame_tex_sphere_affine",
+        run: |fb, st| scene::textured::frame(fb, st, &scene::textured::SPHERE, TextureMode::Affine),
     },
     Case {
         name: "shadow_map_cube",
@@ -1380,5 +1441,204 @@ pub mod scene {
             pair.copy_from_slice(&d.to_le_bytes());
         }
         w as u32 * h as u32
+    }
+
+    /// SCENES.md's textured scenes (`tex_floor`, `tex_cube`, `tex_sphere`): the 64 × 64 grid
+    /// texture given there as a formula, nearest sampling with wrapping, the standard camera,
+    /// and each pixel's luminance `round(t · I / 255)` through a 256-level grey shade table
+    /// (texel `t`, corner intensity `I` interpolated as in the untextured scenes).
+    pub mod textured {
+        use super::*;
+        use zscan::geometry::mesh::TexCoord;
+        use zscan::texture::{ShadeTable, Texture, TextureMode, Texturing};
+
+        /// SCENES.md's grid: `t = 0` on the lines (`i % 8 == 0` or `j % 8 == 0`), else 255 or
+        /// 96 by the parity of `(i >> 3) + (j >> 3)`; row `j` of 64, column `i`.
+        const fn grid() -> [u8; 64 * 64] {
+            let mut t = [0u8; 64 * 64];
+            let mut k = 0;
+            while k < 64 * 64 {
+                let (i, j) = (k % 64, k / 64);
+                t[k] = if i % 8 == 0 || j % 8 == 0 {
+                    0
+                } else if ((i >> 3) + (j >> 3)) % 2 == 0 {
+                    255
+                } else {
+                    96
+                };
+                k += 1;
+            }
+            t
+        }
+        static GRID: [u8; 64 * 64] = grid();
+
+        /// The grey shade table of 256 levels: row `I`, texel `t` → `round(t · I / 255)`.
+        const fn grey_shades() -> [u8; 256 * 256] {
+            let mut s = [0u8; 256 * 256];
+            let mut k = 0;
+            while k < 256 * 256 {
+                let (i, t) = ((k / 256) as u32, (k % 256) as u32);
+                s[k] = ((2 * t * i + 255) / 510) as u8;
+                k += 1;
+            }
+            s
+        }
+        static SHADES: [u8; 256 * 256] = grey_shades();
+
+        /// The cube's corners: each face (the vertex bit common to its triangle's three
+        /// corners: bit 0 `x`, bit 1 `y`, bit 2 `z`) maps the texture once, counter-clockwise
+        /// from outside, from the lower-left corner on the side faces (`v` up).
+        const fn cube_uvs<const K: usize>(tris: &[[u16; 3]]) -> [TexCoord; K] {
+            let mut out = [[0i16; 2]; K];
+            let mut t = 0;
+            while t < tris.len() {
+                let [a, b, c] = tris[t];
+                let (all, none) = (a & b & c, !(a | b | c) & 7);
+                let mut k = 0;
+                while k < 3 {
+                    let v = tris[t][k];
+                    let (x, y, z) = ((v & 1) as i16, (v >> 1 & 1) as i16, (v >> 2 & 1) as i16);
+                    let (u, w) = if (all | none) & 1 != 0 {
+                        (if all & 1 != 0 { 1 - z } else { z }, y) // x faces
+                    } else if (all | none) & 4 != 0 {
+                        (if all & 4 != 0 { x } else { 1 - x }, y) // z faces
+                    } else if all & 2 != 0 {
+                        (x, 1 - z) // top
+                    } else {
+                        (x, z) // bottom
+                    };
+                    out[3 * t + k] = [u * 256, w * 256];
+                    k += 1;
+                }
+                t += 1;
+            }
+            out
+        }
+
+        /// The sphere's corners: `u = j / 32` (a triangle closing the ring takes 1 at its
+        /// `j = 0` corners), `v = k / 16`, a pole corner the mean `u` of the two others.
+        const fn sphere_uvs<const K: usize>(tris: &[[u16; 3]]) -> [TexCoord; K] {
+            let mut out = [[0i16; 2]; K];
+            let mut t = 0;
+            while t < tris.len() {
+                let mut u = [0i16; 3];
+                let mut v = [0i16; 3];
+                let mut pole = 3;
+                let mut wraps = false;
+                let mut k = 0;
+                while k < 3 {
+                    let i = tris[t][k] as i16;
+                    if i == 0 || i == 481 {
+                        pole = k;
+                        v[k] = if i == 0 { 0 } else { 256 };
+                    } else {
+                        u[k] = 8 * ((i - 1) % 32);
+                        v[k] = 16 * ((i - 1) / 32 + 1);
+                        wraps |= u[k] == 8 * 31;
+                    }
+                    k += 1;
+                }
+                let mut k = 0;
+                while k < 3 {
+                    if wraps && k != pole && u[k] == 0 {
+                        u[k] = 256;
+                    }
+                    k += 1;
+                }
+                if pole < 3 {
+                    let (a, b) = ((pole + 1) % 3, (pole + 2) % 3);
+                    u[pole] = (u[a] + u[b]) / 2;
+                }
+                let mut k = 0;
+                while k < 3 {
+                    out[3 * t + k] = [u[k], v[k]];
+                    k += 1;
+                }
+                t += 1;
+            }
+            out
+        }
+
+        static CUBE_UV: [TexCoord; 36] = cube_uvs(&cube::TRIANGLES);
+        static SPHERE_UV: [TexCoord; 2880] = sphere_uvs(&sphere::TRIANGLES);
+
+        /// The floor `y = −1`: corners `(x, z)` = `(−4, 2.4), (4, 2.4), (4, −6.5), (−4, −6.5)`
+        /// counter-clockwise seen from above, split along the first and third.
+        static FLOOR_V: [Vec3; 4] = vec3s_from_bits(&[
+            [-4 << 16, -1 << 16, 157_286],
+            [4 << 16, -1 << 16, 157_286],
+            [4 << 16, -1 << 16, -425_984],
+            [-4 << 16, -1 << 16, -425_984],
+        ]);
+        static FLOOR_I: [u16; 6] = [0, 1, 2, 0, 2, 3];
+        static FLOOR_UV: [TexCoord; 6] = [
+            [0, 0],
+            [1024, 0],
+            [1024, 2048],
+            [0, 0],
+            [1024, 2048],
+            [0, 2048],
+        ];
+
+        const fn textured(m: Mesh<'static>, uvs: &'static [TexCoord]) -> Mesh<'static> {
+            match m.with_uvs(uvs) {
+                Ok(m) => m,
+                Err(_) => panic!("invalid texture coordinates"),
+            }
+        }
+
+        /// SCENES.md's `tex_floor` (no fitting; `I = 158` everywhere).
+        pub static FLOOR: StandardScene = StandardScene {
+            mesh: textured(mesh(&FLOOR_V, &FLOOR_I), &FLOOR_UV),
+            intensities: Intensities::Uniform(158),
+        };
+        /// SCENES.md's `tex_cube`.
+        pub static CUBE: StandardScene = StandardScene {
+            mesh: textured(mesh(&cube_t::V, &cube_t::I), &CUBE_UV),
+            intensities: Intensities::PerPolygon(&cube_t::L),
+        };
+        /// SCENES.md's `tex_sphere`.
+        pub static SPHERE: StandardScene = StandardScene {
+            mesh: textured(mesh(&sphere_t::V, &sphere_t::I), &SPHERE_UV),
+            intensities: Intensities::PerVertex(&sphere_t::L),
+        };
+
+        /// The textured frame of scene `s` in `mode`: SCENES.md's frame (clears, vertex
+        /// stage, cull, clip, project, raster with the 16-bit depth test), the texel through
+        /// the grey shade table. Returns the pixels covered.
+        pub fn frame(
+            fb: &mut Framebuffer<'_>,
+            st: &mut Storage,
+            s: &StandardScene,
+            mode: TextureMode,
+        ) -> u32 {
+            let (Ok(texture), Ok(shades)) =
+                (Texture::new(&GRID, 64, 64), ShadeTable::new(&SHADES, 256))
+            else {
+                return 0;
+            };
+            let Ok(mut zb) =
+                DepthBuffer::new(&mut st.depth, super::super::WIDTH, super::super::HEIGHT)
+            else {
+                return 0;
+            };
+            zb.clear();
+            fb.clear(0);
+            let Some(camera) = camera() else { return 0 };
+            let Ok(r) = Renderer::<4>::new(&camera) else {
+                return 0;
+            };
+            let mut o = object(s, ShadeMode::GouraudExact);
+            o.texture = Some(Texturing {
+                texture,
+                mode,
+                shades: Some(shades),
+            });
+            let mut stats = StatsWithoutWritten::default();
+            match r.draw_object(&o, &mut st.vertices, fb, &mut zb, &mut stats) {
+                Ok(()) => stats.0.pixels_covered,
+                Err(_) => 0,
+            }
+        }
     }
 }

@@ -80,6 +80,11 @@ impl fmt::Display for MeshError {
                 given,
                 needed,
             } => write!(f, "the {table} holds {given} entries, {needed} are needed"),
+            MeshError::UvCountMismatch { given, needed } => write!(
+                f,
+                "the texture coordinate table holds {given} pairs, one per index ({needed}) \
+                 is needed"
+            ),
             MeshError::BadParameters => write!(
                 f,
                 "generator parameters are invalid (too few segments or rings, radii out of \
@@ -331,6 +336,8 @@ stage_errors!(
     Plan(crate::visibility::PlanError),
     /// A mesh's planner facts were not computed.
     Facts(crate::visibility::FactsError),
+    /// A texture or shade table was refused (`texture`).
+    Texture(crate::texture::TextureError),
 );
 
 impl From<core::convert::Infallible> for Error {

@@ -100,6 +100,7 @@ pub mod shadow;
 pub(crate) mod stats;
 #[cfg(test)]
 mod test_rng;
+pub mod texture;
 pub mod visibility;
 
 pub use error::Error;

@@ -36,10 +36,11 @@
 // The mesh and its place in the world.
 pub use crate::geometry::fixed::Coord;
 pub use crate::geometry::generators::{
-    torus, torus_normals, torus_sizes, unit_cube, uv_sphere, uv_sphere_normals, uv_sphere_sizes,
+    torus, torus_normals, torus_sizes, torus_uvs, unit_cube, uv_sphere, uv_sphere_normals,
+    uv_sphere_sizes, uv_sphere_uvs,
 };
 pub use crate::geometry::matrix::{Affine3, Affine3Builder};
-pub use crate::geometry::mesh::{triangle_indices, vec3s_from_bits, Mesh, PolygonSizes};
+pub use crate::geometry::mesh::{triangle_indices, vec3s_from_bits, Mesh, PolygonSizes, TexCoord};
 pub use crate::geometry::trig::BinaryAngle;
 pub use crate::geometry::vector::Vec3;
 pub use crate::scene::{Intensities, Object, Scene};
@@ -47,6 +48,9 @@ pub use crate::scene::{Intensities, Object, Scene};
 // Light and shading.
 pub use crate::lighting::{Attenuation, Cone, Light, Material};
 pub use crate::raster::triangle::{LuminanceRamp, ShadeMode};
+
+// Textures.
+pub use crate::texture::{shade_table, ShadeTable, Texture, TextureMode, Texturing};
 
 // The camera.
 pub use crate::geometry::camera::{Camera, FovAxis, Lens, Viewport};

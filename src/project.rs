@@ -165,6 +165,16 @@ struct Ortho {
 }
 
 impl<const S: u32> Projector<S> {
+    /// The depth's `A` (module doc), from which a vertex's `K/z = A − D` is its perspective
+    /// weight for textures; `None` for an orthographic camera (depth linear in `z`: every
+    /// weight equal).
+    pub fn weight_origin(&self) -> Option<u64> {
+        match self.ortho {
+            Some(_) => None,
+            None => Some(self.depth_a),
+        }
+    }
+
     /// The projector of `camera` at `S` sub-pixel bits (`S ≤ 16`).
     pub fn new(camera: &Camera) -> Result<Self, ProjectError> {
         if S > MAX_SUBPIXEL_BITS {

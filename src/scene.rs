@@ -26,6 +26,7 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::vector::Vec3;
 use crate::lighting::{Light, Material};
 use crate::raster::triangle::{LuminanceRamp, ShadeMode};
+use crate::texture::Texturing;
 
 /// Where an object's luminance comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,6 +90,9 @@ pub struct Object<'a> {
     pub dither: bool,
     /// Skip polygons facing away from the eye (closed meshes).
     pub cull_back_faces: bool,
+    /// A texture over the mesh's texture coordinates ([`Mesh::with_uvs`]): the texel, through
+    /// the shade table at the object's level when lit, replaces the ramp. `None`: untextured.
+    pub texture: Option<Texturing<'a>>,
 }
 
 impl<'a> Object<'a> {
@@ -103,6 +107,7 @@ impl<'a> Object<'a> {
             ramp: LuminanceRamp::GREY,
             dither: false,
             cull_back_faces: true,
+            texture: None,
         }
     }
 

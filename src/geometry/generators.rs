@@ -27,9 +27,19 @@
 //! - **Torus**: axis `y`, major radius `R` (tube centre), minor radius `r`; vertex
 //!   `(i, j)` = `i·sides + j` at azimuth `φ_i = 2π·i/rings` (toward `−z`, as the sphere) and tube
 //!   angle `θ_j = 2π·j/sides`: `((R + r cos θ) cos φ, r sin θ, −(R + r cos θ) sin φ)`; quads.
+//!
+//! ## Texture coordinates
+//! Each generator has its natural per-corner coordinates (Q8.8, parallel to its index table,
+//! so seams take both values): the cube maps each face once, `(0, 0), (1, 0), (1, 1), (0, 1)`
+//! counter-clockwise seen from outside, from the lower-left corner on the four side faces
+//! ([`UNIT_CUBE_UVS`], in [`unit_cube`]); the sphere `u = j / segments` (the closing
+//! meridian `1`), `v = k / rings` (0 at the north pole), a pole corner the mean `u` of its
+//! triangle's two others ([`uv_sphere_uvs`]); the torus `u = i / rings`, `v = j / sides`
+//! ([`torus_uvs`]); the prism `u = j / sides` around it and `v` across each face
+//! ([`hollow_prism_uvs`]). Fractions are rounded to nearest.
 
 use super::fixed::{saturate_i32, shr_round, Coord};
-use super::mesh::{Mesh, MeshError, MeshTable, PolygonSizes};
+use super::mesh::{Mesh, MeshError, MeshTable, PolygonSizes, TexCoord, TEX_ONE};
 use super::trig::{sin_cos_bits, BinaryAngle};
 use super::vector::Vec3;
 
@@ -57,7 +67,43 @@ pub static UNIT_CUBE_INDICES: [u16; 24] = [
     1, 3, 7, 5, //
 ];
 
-/// The unit cube as a mesh living in static memory.
+/// The unit cube's texture coordinates, one per corner of [`UNIT_CUBE_INDICES`]: each face
+/// shows the whole texture once, `(0, 0), (1, 0), (1, 1), (0, 1)` counter-clockwise seen from
+/// outside; on the side faces (`z = 0`, `z = 1`, `x = 0`, `x = 1`) `(0, 0)` is the lower-left
+/// corner seen from outside (`y` up) and `v` runs up.
+pub static UNIT_CUBE_UVS: [TexCoord; 24] = {
+    const O: i16 = 0;
+    const I: i16 = TEX_ONE as i16;
+    [
+        [I, O],
+        [I, I],
+        [O, I],
+        [O, O], // z = 0: vertex 1 is its lower left
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // z = 1
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // y = 0
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // y = 1
+        [O, O],
+        [I, O],
+        [I, I],
+        [O, I], // x = 0
+        [I, O],
+        [I, I],
+        [O, I],
+        [O, O], // x = 1: vertex 5 is its lower left
+    ]
+};
+
+/// The unit cube as a mesh living in static memory, with its texture coordinates
+/// ([`UNIT_CUBE_UVS`]).
 pub fn unit_cube() -> Mesh<'static> {
     // The tables are valid, so the fallback is never taken.
     Mesh::new(
@@ -65,7 +111,34 @@ pub fn unit_cube() -> Mesh<'static> {
         &UNIT_CUBE_INDICES,
         PolygonSizes::Uniform(4),
     )
+    .and_then(|m| m.with_uvs(&UNIT_CUBE_UVS))
     .unwrap_or_else(|_| Mesh::empty())
+}
+
+/// `TEX_ONE · num / den` rounded to nearest (`num ≤ 2·den`): a Q8.8 fraction.
+fn frac(num: usize, den: usize) -> i16 {
+    ((2 * TEX_ONE as usize * num + den) / (2 * den)) as i16
+}
+
+/// Writes `corners` (Q8.8 fractions `[u_num, v_num]` over `den`) into `out`, after checking
+/// that it holds `need` pairs.
+fn write_uvs(
+    out: &mut [TexCoord],
+    need: usize,
+    den: [usize; 2],
+    corners: impl Iterator<Item = [usize; 2]>,
+) -> Result<(), MeshError> {
+    if out.len() < need {
+        return Err(MeshError::OutputTooSmall {
+            table: MeshTable::TexCoords,
+            given: out.len(),
+            needed: need,
+        });
+    }
+    for (slot, [u, v]) in out.iter_mut().zip(corners) {
+        *slot = [frac(u, den[0]), frac(v, den[1])];
+    }
+    Ok(())
 }
 
 /// `r·cos a`, `r·sin a` in raw I16F16 (`r` raw, `|r| ≤ 2^32`), saturating.
@@ -183,6 +256,34 @@ pub fn uv_sphere<'a>(
     Mesh::triangles(vs, is)
 }
 
+/// The texture coordinates of [`uv_sphere`]`(segments, rings, …)`, one per index in its
+/// triangle order (module doc): `u = j / segments`, `v = k / rings`, a pole corner the mean
+/// `u` of its triangle's two others. `out` needs [`uv_sphere_sizes`]`(…).1` pairs.
+pub fn uv_sphere_uvs(segments: u16, rings: u16, out: &mut [TexCoord]) -> Result<(), MeshError> {
+    if segments < 3 || rings < 2 {
+        return Err(MeshError::BadParameters);
+    }
+    let need = uv_sphere_sizes_checked(segments, rings)?;
+    let (ns, nr) = (segments as usize, rings as usize);
+    // Fractions over 2·segments for u (the poles' half steps), over rings for v.
+    let at = |k: usize, j: usize| [2 * j, k];
+    let north = (0..ns).flat_map(move |j| [[2 * j + 1, 0], at(1, j), at(1, j + 1)]);
+    let bands = (1..nr - 1).flat_map(move |k| {
+        (0..ns).flat_map(move |j| {
+            [
+                at(k, j),
+                at(k + 1, j),
+                at(k + 1, j + 1),
+                at(k, j),
+                at(k + 1, j + 1),
+                at(k, j + 1),
+            ]
+        })
+    });
+    let south = (0..ns).flat_map(move |j| [at(nr - 1, j), [2 * j + 1, nr], at(nr - 1, j + 1)]);
+    write_uvs(out, need.1, [2 * ns, nr], north.chain(bands).chain(south))
+}
+
 /// The analytic vertex normals of [`uv_sphere`]`(segments, rings, …)`: the unit vectors from
 /// the centre through each vertex (the course's ch. 4 §2.5: where the surface is known, its
 /// own normal rather than the average of the faces' normals), in the generator's vertex
@@ -297,6 +398,36 @@ pub fn hollow_prism<'a>(
     Mesh::new(vs, is, PolygonSizes::Uniform(4))
 }
 
+/// The texture coordinates of [`hollow_prism`]`(sides, …)`, one per index: `u = j / sides`
+/// around the prism; `v` from 0 to 1 across each face (from the top edge down on the sides,
+/// from the outer edge inward on the rings). `out` needs [`hollow_prism_sizes`]`(sides).1`
+/// pairs.
+pub fn hollow_prism_uvs(sides: u16, out: &mut [TexCoord]) -> Result<(), MeshError> {
+    let need = hollow_prism_sizes_checked(sides)?;
+    let corners = (0..sides as usize).flat_map(|j| {
+        let j1 = j + 1;
+        [
+            [j, 1],
+            [j1, 1],
+            [j1, 0],
+            [j, 0], // outer side
+            [j, 1],
+            [j, 0],
+            [j1, 0],
+            [j1, 1], // inner side
+            [j, 0],
+            [j1, 0],
+            [j1, 1],
+            [j, 1], // top ring
+            [j, 0],
+            [j, 1],
+            [j1, 1],
+            [j1, 0], // bottom ring
+        ]
+    });
+    write_uvs(out, need.1, [sides as usize, 1], corners)
+}
+
 /// `(vertices, indices)` needed by [`torus`]: `rings·sides` and `4·rings·sides` (saturating
 /// at `usize::MAX` where they do not fit; see [`torus_sizes_checked`]).
 pub const fn torus_sizes(rings: u16, sides: u16) -> (usize, usize) {
@@ -353,6 +484,18 @@ pub fn torus<'a>(
     Mesh::new(vs, is, PolygonSizes::Uniform(4))
 }
 
+/// The texture coordinates of [`torus`]`(rings, sides, …)`, one per index: `u = i / rings`
+/// around the axis, `v = j / sides` around the tube (the closing ring and side take 1).
+/// `out` needs [`torus_sizes`]`(rings, sides).1` pairs.
+pub fn torus_uvs(rings: u16, sides: u16, out: &mut [TexCoord]) -> Result<(), MeshError> {
+    let need = torus_sizes_checked(rings, sides)?;
+    let (nr, ns) = (rings as usize, sides as usize);
+    let corners = (0..nr).flat_map(move |i| {
+        (0..ns).flat_map(move |j| [[i, j], [i + 1, j], [i + 1, j + 1], [i, j + 1]])
+    });
+    write_uvs(out, need.1, [nr, ns], corners)
+}
+
 /// The analytic vertex normals of [`torus`]`(rings, sides, …)`: at the vertex of azimuth `φ`
 /// and tube angle `θ`, the unit vector `(cos θ cos φ, sin θ, −cos θ sin φ)` from the tube's
 /// centre line through the vertex (course ch. 4 §2.5), whatever the radii; I16F16, in the
@@ -391,6 +534,95 @@ fn torus_points(rings: u16, sides: u16, major: i64, minor: i64, out: &mut [Vec3]
 mod tests {
     extern crate std;
     use super::*;
+
+    /// Twice the signed area of a polygon's texture coordinates (u right, v up).
+    fn uv_area(uvs: &[TexCoord]) -> i64 {
+        let n = uvs.len();
+        (0..n)
+            .map(|k| {
+                let (a, b) = (uvs[k], uvs[(k + 1) % n]);
+                a[0] as i64 * b[1] as i64 - b[0] as i64 * a[1] as i64
+            })
+            .sum()
+    }
+
+    /// Each cube face shows the texture once, counter-clockwise as its corners (whose order is
+    /// counter-clockwise from outside), and on the four side faces `(0, 0)` is a bottom corner
+    /// (`y = 0`) and `v` runs up (`v = y`).
+    #[test]
+    fn cube_faces_map_the_texture_once() {
+        let m = unit_cube();
+        assert_eq!(m.uvs().len(), 24);
+        for (f, (poly, uvs)) in m.polygons().zip(m.uvs().chunks(4)).enumerate() {
+            assert_eq!(uv_area(uvs), 2 * 256 * 256, "face {f}");
+            let side = f < 2 || f >= 4;
+            for (&i, uv) in poly.iter().zip(uvs) {
+                let y = (i >> 1 & 1) as i16 * 256;
+                if side {
+                    assert_eq!(uv[1], y, "face {f} vertex {i}");
+                }
+            }
+        }
+    }
+
+    /// The sphere's seam and poles: the north cap's first and last triangles, a band's
+    /// closing pair and the south cap's last triangle, typed in from the convention.
+    #[test]
+    fn sphere_uvs_close_the_ring_and_average_at_the_poles() {
+        let (_, ni) = uv_sphere_sizes(32, 16);
+        let mut uvs = [[0i16; 2]; 2880];
+        assert_eq!(ni, 2880);
+        uv_sphere_uvs(32, 16, &mut uvs).unwrap();
+        assert_eq!(uvs[0..3], [[4, 0], [0, 16], [8, 16]]);
+        assert_eq!(uvs[93..96], [[252, 0], [248, 16], [256, 16]]);
+        // Band k = 1, segment 31: (1, 31), (2, 31), (2, 32) and (1, 31), (2, 32), (1, 32).
+        let at = 96 + 6 * 31;
+        assert_eq!(
+            uvs[at..at + 6],
+            [
+                [248, 16],
+                [248, 32],
+                [256, 32],
+                [248, 16],
+                [256, 32],
+                [256, 16]
+            ]
+        );
+        assert_eq!(uvs[2877..2880], [[248, 240], [252, 256], [256, 240]]);
+        let mut short = [[0i16; 2]; 2879];
+        assert!(matches!(
+            uv_sphere_uvs(32, 16, &mut short),
+            Err(MeshError::OutputTooSmall {
+                table: MeshTable::TexCoords,
+                given: 2879,
+                needed: 2880
+            })
+        ));
+    }
+
+    /// The torus and the prism: every face one whole cell of its grid (the torus's
+    /// `(1/rings) × (1/sides)`, the prism's `(1/sides) × 1`, rounded to Q8.8).
+    #[test]
+    fn torus_and_prism_uvs_tile_their_grids() {
+        let mut t = [[0i16; 2]; 4 * 8 * 4];
+        torus_uvs(8, 4, &mut t).unwrap();
+        for cell in t.chunks(4) {
+            assert_eq!(uv_area(cell).abs(), 2 * 32 * 64, "{cell:?}");
+        }
+        assert_eq!(
+            t[4 * 4 * 7 + 4 * 3..][..4],
+            [[224, 192], [256, 192], [256, 256], [224, 256]]
+        );
+        let mut p = [[0i16; 2]; 16 * 6];
+        hollow_prism_uvs(6, &mut p).unwrap();
+        for q in p.chunks(4) {
+            let u = q.iter().map(|c| c[0] as i64);
+            let width = u.clone().max().unwrap() - u.min().unwrap();
+            assert!(width == 42 || width == 43, "{q:?}");
+            assert_eq!(uv_area(q).abs(), 2 * width * 256, "{q:?}");
+        }
+        assert!(hollow_prism_uvs(2, &mut p).is_err());
+    }
 
     /// Every face's normal points away from the given "inside" reference.
     fn outward(m: &Mesh, inside: impl Fn(Vec3) -> Vec3) {

@@ -37,6 +37,13 @@
 use super::fixed::Coord;
 use super::vector::{unit_bits, Vec3};
 
+/// A texture coordinate pair `[u, v]` in Q8.8 (`1.0 = 256`, so `−128 ≤ u, v < 128`: a face
+/// may repeat its texture up to 255 times), one per polygon corner ([`Mesh::with_uvs`]).
+pub type TexCoord = [i16; 2];
+
+/// One texture repeat (`1.0`) in [`TexCoord`] units.
+pub const TEX_ONE: i32 = 256;
+
 /// Largest raw mesh coordinate magnitude: 2^26 (1024.0 in I16F16).
 pub const MAX_MESH_COORD_BITS: i32 = 1 << 26;
 
@@ -56,6 +63,8 @@ pub enum MeshTable {
     Levels,
     /// The undirected edges ([`Mesh::edges`]).
     Edges,
+    /// Texture coordinates, one per index (a generator's output).
+    TexCoords,
 }
 
 impl core::fmt::Display for MeshTable {
@@ -67,6 +76,7 @@ impl core::fmt::Display for MeshTable {
             MeshTable::VertexNormals => "vertex normal table",
             MeshTable::Levels => "level table",
             MeshTable::Edges => "edge table",
+            MeshTable::TexCoords => "texture coordinate table",
         })
     }
 }
@@ -89,6 +99,13 @@ pub enum MeshError {
         /// Entries it holds.
         given: usize,
         /// Entries needed.
+        needed: usize,
+    },
+    /// The texture coordinate table ([`Mesh::with_uvs`]) is not one per index.
+    UvCountMismatch {
+        /// Coordinates given.
+        given: usize,
+        /// Indices in the mesh.
         needed: usize,
     },
     /// A generator's parameters are invalid (too few segments, radii out of order, …) or
@@ -114,6 +131,8 @@ pub struct Mesh<'a> {
     polygon_count: usize,
     /// Largest raw coordinate magnitude over all vertices (`≤ MAX_MESH_COORD_BITS`).
     max_coord: u32,
+    /// Texture coordinates, one per index (empty: none).
+    uvs: &'a [TexCoord],
 }
 
 /// Iterator over a mesh's polygons as index slices.
@@ -259,6 +278,7 @@ impl<'a> Mesh<'a> {
             sizes,
             polygon_count,
             max_coord,
+            uvs: &[],
         })
     }
 
@@ -270,12 +290,32 @@ impl<'a> Mesh<'a> {
             sizes: PolygonSizes::Uniform(3),
             polygon_count: 0,
             max_coord: 0,
+            uvs: &[],
         }
     }
 
     /// A validated triangle mesh (`indices` in threes).
     pub fn triangles(vertices: &'a [Vec3], indices: &'a [u16]) -> Result<Mesh<'a>, MeshError> {
         Mesh::new(vertices, indices, PolygonSizes::Uniform(3))
+    }
+
+    /// The mesh with texture coordinates `uvs`, one per corner of every polygon, parallel to
+    /// the index table (`uvs[k]` belongs to the corner `indices[k]`), so that a vertex on a
+    /// seam takes different coordinates in different polygons. Any Q8.8 value is in range;
+    /// a table of another length than the index table is [`MeshError::UvCountMismatch`].
+    pub const fn with_uvs(self, uvs: &'a [TexCoord]) -> Result<Mesh<'a>, MeshError> {
+        if uvs.len() != self.indices.len() {
+            return Err(MeshError::UvCountMismatch {
+                given: uvs.len(),
+                needed: self.indices.len(),
+            });
+        }
+        Ok(Mesh { uvs, ..self })
+    }
+
+    /// The texture coordinates, one per index (empty when the mesh has none).
+    pub fn uvs(&self) -> &'a [TexCoord] {
+        self.uvs
     }
 
     /// The largest raw coordinate magnitude `|c|` over all vertices (0 for an empty mesh;

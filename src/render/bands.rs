@@ -396,6 +396,12 @@ fn check_compact_memory(
             });
         }
     }
+    if let Some(object) = scene.objects.iter().position(|o| o.texture.is_some()) {
+        return Err(RenderError::TextureUnsupported {
+            object,
+            method: "compact bands",
+        });
+    }
     if !scene.objects.iter().all(super::compact::compact_draws) {
         return Err(RenderError::PhongUnsupported);
     }

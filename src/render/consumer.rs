@@ -25,8 +25,10 @@ use crate::raster::triangle::Bayer4;
 use crate::raster::triangle::{draw_depth_only, DepthTarget};
 use crate::raster::triangle::{draw_in_range, RasterTarget, SpanTarget, WrittenCount};
 use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};
+use crate::raster::triangle::{draw_textured_on, TexCorner};
 use crate::raster::SubpixelPoint;
 use crate::scene::Object;
+use crate::texture::Texturing;
 
 /// One triangle corner handed to a consumer: screen position, depth, observer-frame position
 /// and `N` attributes (a level, or a normal), from the vertex stage or the clipper.
@@ -101,6 +103,40 @@ impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> Tri
         } else {
             draw_in_range(self.target, v, values, shade, |_, _| ramp)
         })
+    }
+}
+
+/// The z-buffer consumer of textured triangles: corners whose attributes are a level and the
+/// Q8.8 texture coordinates `u`, `v` (interpolated in the observer frame at clipped corners,
+/// where they are affine), and whose perspective weight is `A − D` from the corner's depth
+/// (`origin = Some(A)`; an orthographic camera's weights are equal), drawn at once.
+pub(crate) struct TextureWriter<'a, 't, D, C, T> {
+    /// The object's frame and depth buffer (or mask).
+    pub(crate) target: &'a mut RasterTarget<'t, D, C, T>,
+    /// The texture, its mode and shade table.
+    pub(crate) texturing: Texturing<'a>,
+    /// The depth's `A`, or `None` for equal weights.
+    pub(crate) origin: Option<u64>,
+}
+
+impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> TriangleConsumer<S, 3>
+    for TextureWriter<'_, '_, D, C, T>
+{
+    #[inline(always)]
+    fn triangle(&mut self, _: usize, c: [Corner<S, 3>; 3]) -> Result<(u32, u32), RenderError> {
+        let v = c.map(|c| c.screen);
+        let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
+        let corners = c.map(|c| TexCorner {
+            uv: [c.attrs[1], c.attrs[2]],
+            weight: self.origin.map_or(1, |a| a.saturating_sub(c.depth as u64)),
+        });
+        Ok(draw_textured_on(
+            self.target,
+            v,
+            values,
+            corners,
+            &self.texturing,
+        ))
     }
 }
 

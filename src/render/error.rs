@@ -99,6 +99,21 @@ pub enum RenderError {
         /// The object's index in the scene.
         object: usize,
     },
+    /// A textured object given to a method that does not draw textures (the visibility
+    /// methods that store triangles, compact bands): draw it with the depth buffer, whole or
+    /// in bands.
+    TextureUnsupported {
+        /// The object's index in the scene.
+        object: usize,
+        /// The method that refused it.
+        method: &'static str,
+    },
+    /// A textured object whose mesh has no texture coordinates, or that asks for Phong
+    /// shading (a textured object is lit per vertex or per face, through its shade table).
+    TextureNotDrawable {
+        /// What is missing or refused.
+        reason: &'static str,
+    },
     /// A scene with more objects than a stored triangle can name (256).
     TooManyObjects,
     /// A drawing order names an object the scene does not have.
@@ -321,6 +336,14 @@ impl core::fmt::Display for RenderError {
                 f,
                 "a Phong object cannot be stored by this visibility method (use the z-buffer)"
             ),
+            RenderError::TextureUnsupported { object, method } => write!(
+                f,
+                "object {object} is textured, which {method} does not draw (draw it with the \
+                 depth buffer, whole or in bands)"
+            ),
+            RenderError::TextureNotDrawable { reason } => {
+                write!(f, "a textured object cannot be drawn: {reason}")
+            }
             RenderError::FastGouraudInParts { object } => write!(
                 f,
                 "object {object} is fast Gouraud, whose 16.16 shading steps differ from the \

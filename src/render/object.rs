@@ -3,7 +3,7 @@
 
 use core::cell::Cell;
 
-use super::consumer::{LevelWriter, PhongWriter, TriangleConsumer};
+use super::consumer::{LevelWriter, PhongWriter, TextureWriter, TriangleConsumer};
 use super::polygon_stage::PolygonStage;
 use super::{
     IntensityTable, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
@@ -111,6 +111,26 @@ impl<const S: u32> Renderer<S> {
         let stats = stats.counts();
         let prepared = checked_scratch(object, scratch)?;
         let stage = self.stage(object, prepared, rows, table);
+        if let Some(texturing) = object.texture {
+            // Textured triangles: the level and the corner's texture coordinates, read from
+            // the table parallel to the indices (a corner's position in it is the polygon's
+            // slice offset plus its rank, as the triangle loops find it).
+            let uvs = textured_uvs(object)?;
+            let indices = object.mesh.indices().as_ptr() as usize;
+            let uv = |poly: &[u16], k: usize| {
+                let at = (poly.as_ptr() as usize - indices) / core::mem::size_of::<u16>() + k;
+                uvs.get(at).copied().unwrap_or([0, 0]).map(i32::from)
+            };
+            let writer = TextureWriter {
+                target: &mut target,
+                texturing,
+                origin: self.projector.weight_origin(),
+            };
+            return self.run_levels(&stage, stats, writer, |l, poly, k| {
+                let [u, v] = uv(poly, k);
+                [l, u, v]
+            });
+        }
         if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
             (object.intensities, object.shade)
         {
@@ -136,7 +156,7 @@ impl<const S: u32> Renderer<S> {
             target: &mut target,
             object,
         };
-        self.run_levels(&stage, stats, writer)
+        self.run_levels(&stage, stats, writer, |l, _, _| [l])
     }
 
     /// The polygon stage of `object` handing every triangle, with a level per corner, to
@@ -156,7 +176,7 @@ impl<const S: u32> Renderer<S> {
         let prepared = checked_scratch(object, scratch)?;
         let rows = (0, self.camera.viewport().height as i32);
         let stage = self.stage(object, prepared, rows, None);
-        self.run_levels(&stage, stats, consumer)
+        self.run_levels(&stage, stats, consumer, |l, _, _| [l])
     }
 
     /// The polygon stage of `object` over the rows `rows.0 .. rows.1` (with its band table,
@@ -180,12 +200,14 @@ impl<const S: u32> Renderer<S> {
 
     /// Runs `stage` with a level per corner: lit per polygon for flat lit objects, read from
     /// the prepared vertex for Gouraud-lit or given per-vertex levels, else given per polygon
-    /// or uniform.
-    fn run_levels(
+    /// or uniform; `with(level, polygon, corner k)` makes the corner's attributes of it (the
+    /// level alone, or with the texture coordinates).
+    fn run_levels<const N: usize>(
         &self,
         stage: &PolygonStage<'_, '_, S>,
         stats: &mut RenderStats,
-        consumer: impl TriangleConsumer<S, 1>,
+        consumer: impl TriangleConsumer<S, N>,
+        with: impl Fn(i32, &[u16], usize) -> [i32; N],
     ) -> Result<(), RenderError> {
         let object = stage.object;
         let mesh = &object.mesh;
@@ -202,24 +224,48 @@ impl<const S: u32> Renderer<S> {
                     }
                     last.get().1
                 };
-                stage.run(stats, |pi, poly, _, _| [level(pi, poly) as i32], consumer)
+                stage.run(
+                    stats,
+                    |pi, poly, k, _| with(level(pi, poly) as i32, poly, k),
+                    consumer,
+                )
             }
             Intensities::Lit { .. } | Intensities::PerVertex(_) => {
                 // Gouraud-lit or given per vertex: the level the vertex stage stored in the
                 // prepared vertex, read with it.
                 stage.run(
                     stats,
-                    |_, _, _, p| [p.map_or(0, |p| p.level as i32)],
+                    |_, poly, k, p| with(p.map_or(0, |p| p.level as i32), poly, k),
                     consumer,
                 )
             }
             _ => stage.run(
                 stats,
-                |pi, poly, k, _| [object.intensity(pi, poly[k]) as i32],
+                |pi, poly, k, _| with(object.intensity(pi, poly[k]) as i32, poly, k),
                 consumer,
             ),
         }
     }
+}
+
+/// The texture coordinates of a textured `object`: one per index, and not Phong-lit (its
+/// corners carry a level and the coordinates, no normals).
+fn textured_uvs<'a>(
+    object: &Object<'a>,
+) -> Result<&'a [crate::geometry::mesh::TexCoord], RenderError> {
+    let uvs = object.mesh.uvs();
+    if uvs.len() != object.mesh.indices().len() {
+        return Err(RenderError::TextureNotDrawable {
+            reason: "its mesh has no texture coordinates (Mesh::with_uvs)",
+        });
+    }
+    if object.shade == ShadeMode::Phong && matches!(object.intensities, Intensities::Lit { .. }) {
+        return Err(RenderError::TextureNotDrawable {
+            reason: "Phong shading does not combine with a texture (light it per vertex or \
+                     per face)",
+        });
+    }
+    Ok(uvs)
 }
 
 /// The prepared vertices of `object` in `scratch`, once its tables are checked long enough.

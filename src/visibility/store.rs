@@ -186,6 +186,12 @@ pub(crate) fn collect<const S: u32>(
     }
     let mut len = 0;
     for (i, object) in scene.objects.iter().enumerate() {
+        if object.texture.is_some() {
+            return Err(RenderError::TextureUnsupported {
+                object: i,
+                method: "a visibility method that stores triangles",
+            });
+        }
         renderer.prepare(object, scratch)?;
         let mut collector = Collector {
             store: &mut *store,

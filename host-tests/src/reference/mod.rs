@@ -3,5 +3,6 @@
 pub mod bresenham;
 pub mod compare;
 pub mod exact_fill;
+pub mod exact_texture;
 pub mod float_lighting;
 pub mod float_render;

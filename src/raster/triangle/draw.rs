@@ -43,6 +43,7 @@ use super::setup::TriangleSetup;
 use super::slices::{DepthTarget, RasterTarget, SpanTarget};
 use super::span::{Direct, LuminanceRamp, Quantizer, SkipWritten, WrittenCount};
 use super::spans::TriangleSpans;
+use super::textured::{TexCorner, TexturedKind};
 use super::tiny::TinyTriangle;
 use crate::arith::TINY_WRITER;
 use crate::geometry::vector::Vec3;
@@ -52,6 +53,7 @@ use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::raster::polygon::FillError;
 use crate::raster::range::check_range;
 use crate::raster::{SubpixelPoint, Window};
+use crate::texture::Texturing;
 
 /// How a triangle's luminance becomes palette indices.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -428,6 +430,66 @@ fn draw_general<
                 _ => spans.planar(values, ExactKind(quantizer_at)),
             }
         }
+    }
+}
+
+/// Draws a depth-tested textured triangle into a frame and its depth buffer: at vertex `i`,
+/// `values[i] = [depth, luminance]` (the luminance read only when `texturing` is lit),
+/// `uvs[i]` its Q8.8 texture coordinates and `weights[i]` its perspective weight (any scale
+/// proportional to `1/z`, as the renderer's `A − D`; [`texture`](crate::texture) says how
+/// the texel is chosen). Returns `(covered, written)` as [`draw_triangle`] does; vertices
+/// outside the raster's range are [`DrawError::Fill`].
+pub fn draw_triangle_textured<D: DepthValue, const S: u32>(
+    frame: &mut Framebuffer<'_>,
+    depth: &mut DepthBuffer<'_, D>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    uvs: [[i16; 2]; 3],
+    weights: [u64; 3],
+    texturing: &Texturing<'_>,
+) -> Result<(u32, u32), DrawError> {
+    check_range(&v).map_err(DrawError::Fill)?;
+    let corners = [0, 1, 2].map(|i| TexCorner {
+        uv: uvs[i].map(i32::from),
+        weight: weights[i],
+    });
+    let mut target = RasterTarget::new(frame, depth);
+    Ok(draw_textured_on(&mut target, v, values, corners, texturing))
+}
+
+/// The textured span kind (`textured`) over the exact depth plane, and the luminance plane
+/// when lit (`values[i] = [depth, luminance]`; depths clamp to [`DepthValue::MAX_DEPTH32`],
+/// luminances to 255, as [`draw_in_range`] does), for vertices within the raster's range.
+pub(crate) fn draw_textured_on<
+    D: DepthValue,
+    C: WrittenCount,
+    T: SpanTarget<Depth = D>,
+    const S: u32,
+>(
+    target: &mut RasterTarget<'_, D, C, T>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    corners: [TexCorner; 3],
+    texturing: &Texturing<'_>,
+) -> (u32, u32) {
+    let t = TriangleSetup::in_range(v);
+    if !bounds_meet(&t, &target.window) {
+        return (0, 0);
+    }
+    let Some(kind) = TexturedKind::new(&t, corners, texturing) else {
+        return (0, 0); // zero area: covers nothing
+    };
+    let values = values.map(|[z, l]| [z.min(D::MAX_DEPTH32), l.min(255)]);
+    let spans = TriangleSpans {
+        t,
+        window: target.window,
+        targets: &mut target.targets,
+        count: target.count,
+    };
+    if texturing.shades.is_some() {
+        spans.planar(values, kind)
+    } else {
+        spans.planar(values.map(|[z, _]| [z]), kind)
     }
 }
 

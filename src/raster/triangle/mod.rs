@@ -15,6 +15,7 @@
 //! | spans | `spans` | one triangle's spans: the plane of its kind, the loop over the fill's spans |
 //! | span kinds | `kinds` | what a span writes: flat, exact or fast Gouraud, depth only, Phong |
 //! | mask | `mask_span` | the reverse painter's per-pixel test: a span's bits of the mask of painted pixels, in place of the depth test |
+//! | textured | `textured` | the textured span kind: texels exact (ratio of two exact planes), subdivided or affine |
 //! | span loop | `span` | the per-pixel loop: depth test, palette index, stores; luminance → index ([`LuminanceRamp`], the `Quantizer`s) |
 //! | dither | `dither` | the 4×4 ordered-dither quantizer |
 //! | slices | `slices` | the frame's and depth buffer's rows handed to each span as slices |
@@ -41,11 +42,13 @@ mod slices;
 mod small_plane;
 mod span;
 mod spans;
+mod textured;
 mod tiny;
 mod wide_plane;
 
 pub use draw::{
-    draw_triangle, draw_triangle_phong, DrawError, PhongContext, PhongVertex, ShadeMode,
+    draw_triangle, draw_triangle_phong, draw_triangle_textured, DrawError, PhongContext,
+    PhongVertex, ShadeMode,
 };
 pub use fill::{fill_triangle, fill_triangle_with};
 pub use setup::twice_area;
@@ -54,6 +57,7 @@ pub use span::LuminanceRamp;
 pub(crate) use dither::Bayer4;
 #[cfg(test)]
 pub(crate) use draw::draw_tiny_or_planar;
-pub(crate) use draw::{draw_depth_only, draw_in_range, draw_phong_on};
+pub(crate) use draw::{draw_depth_only, draw_in_range, draw_phong_on, draw_textured_on};
 pub(crate) use slices::{drawable_window, DepthTarget, RasterTarget, SpanTarget};
 pub(crate) use span::{CountWritten, SkipWritten, WrittenCount};
+pub(crate) use textured::TexCorner;

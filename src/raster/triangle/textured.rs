@@ -1,0 +1,512 @@
+//! The textured span kind: which texel each pixel of a span shows, exactly or fast.
+//!
+//! Role in the pipeline: one more span kind of the one triangle writer (`kinds`, `spans`),
+//! set up once per triangle by [`TexturedKind::new`] and drawn over the depth plane (and the
+//! luminance plane when lit) by the same span loop, `depth_span`, whose `Shading` here is a
+//! texel: a palette index read from the [`Texture`], through the [`ShadeTable`] when lit.
+//!
+//! ## What is computed (the `texture` module's definition)
+//! With the triangle's given vertices `P_i` (sub-pixel units, `F = 2^S`), `D = (P1 − P0) ×
+//! (P2 − P0)` and a per-vertex value `a_i`, the plane `D·a(p) = D·a0 + gx·(p.x − X0) +
+//! gy·(p.y − Y0)` (the `plane` module's `gx`, `gy`) is an integer at every pixel point
+//! `p = (x·F, y·F)`: no rounding. Three such planes, of the weights `q_i`, of `q_i·u_i` and of
+//! `q_i·v_i`, made positive inside the triangle (all negated when `D < 0`), give
+//! `Q = 256·D·q(p)`, `N_u = W·D·(qu)(p)`, `N_v = H·D·(qv)(p)`, and the texel column is
+//! `t_u = ⌊N_u / Q⌋` (`u` in Q8.8: `W·u/256` texels), the row `t_v = ⌊N_v / Q⌋`, both the
+//! floors of the exact perspective-correct coordinate at the pixel.
+//!
+//! - **Exact** ([`TextureMode::Exact`]): `Q` steps by one add per pixel, and so does the
+//!   remainder `r = N − Q·t` of the previous texel `t` (by `dN − dQ·t`, kept beside it); `r` is
+//!   tested against `0 ≤ r < Q`; outside, `t` moves by one (one more compare) or, past that,
+//!   by the Euclidean quotient `⌊r / Q⌋` (minified texels, out of line). Every pixel gets the
+//!   exact floor, with no multiply and no division on the common path.
+//! - **Subdivided** (8 or 16 pixels) and **affine**: the exact value `⌊2^16·N / Q⌋` (texels
+//!   in 16.16) at a segment's ends, a 16.16 step between; affine objects take `q_i = 1`
+//!   (the planes of `u` and `v` themselves) and one segment per span.
+//!
+//! Numeric contract: vertices within the raster's range (`|x|, |y| < 2^28`, `S ≤ 16`, so
+//! `|D| < 2^58` and coordinate differences `< 2^29`), weights `1 ≤ q < 2^16`, coordinates
+//! Q8.8 (`|u| ≤ 2^15`), sides `≤ 2^10`: every set-up product is below `2^101` (`i128`).
+//! Per pixel the planes run in `i64` when their bound over the triangle leaves room
+//! (`|N| + Q·(|t| + 2) < 2^62` at every covered pixel, checked once per triangle), else in
+//! `i128`; both with wrapping adds, exact at covered pixels, where the true values are in
+//! range (the step past a span's last pixel may leave it, and its value is never read; a
+//! non-positive `Q` there moves nothing).
+
+use super::interpolants::{Constant, Interpolant, SpanStarts};
+use super::kinds::SpanKind;
+use super::setup::TriangleSetup;
+use super::span::{depth_span, Shading, SpanTest, WrittenCount};
+use crate::texture::{ShadeTable, Texture, TextureMode, Texturing};
+
+/// Significant bits of the normalised perspective weights (`q < 2^16`).
+pub(crate) const WEIGHT_BITS: u32 = 16;
+
+/// One corner's texture data: Q8.8 coordinates and its raw perspective weight (`K/z` as the
+/// depth holds it, `A − D`; any positive scale: [`normalised_weights`] keeps 16 bits).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct TexCorner {
+    /// `[u, v]`, Q8.8.
+    pub(crate) uv: [i32; 2],
+    /// Proportional to `1/z` (0 counts as 1).
+    pub(crate) weight: u64,
+}
+
+/// The three weights shifted right together until the largest is below `2^16`, each at least
+/// 1: `q_i = max(1, w_i >> s)`.
+#[inline]
+pub(crate) fn normalised_weights(w: [u64; 3]) -> [i64; 3] {
+    let m = w[0].max(w[1]).max(w[2]);
+    let s = (64 - m.leading_zeros()).saturating_sub(WEIGHT_BITS);
+    w.map(|x| (x >> s).max(1) as i64)
+}
+
+/// An affine function of the pixel `(x, y)`: `c + gx·x + gy·y` (set-up precision).
+#[derive(Debug, Clone, Copy)]
+struct Plane {
+    c: i128,
+    gx: i128,
+    gy: i128,
+}
+
+impl Plane {
+    /// `D·a(p)` of the values `a` over the given vertices (module doc), negated with `D`
+    /// when `sign` is −1.
+    fn of<const S: u32>(t: &TriangleSetup<S>, a: [i128; 3], sign: i128) -> Plane {
+        let [p0, p1, p2] = t.given;
+        let (x0, y0) = (p0.x as i128, p0.y as i128);
+        let (dx1, dy1) = (p1.x as i128 - x0, p1.y as i128 - y0);
+        let (dx2, dy2) = (p2.x as i128 - x0, p2.y as i128 - y0);
+        let (da1, da2) = (a[1] - a[0], a[2] - a[0]);
+        let gx = da1 * dy2 - da2 * dy1;
+        let gy = da2 * dx1 - da1 * dx2;
+        let d = dx1 * dy2 - dx2 * dy1;
+        Plane {
+            c: sign * (d * a[0] - gx * x0 - gy * y0),
+            gx: sign * (gx << S),
+            gy: sign * (gy << S),
+        }
+    }
+
+    /// The value at pixel `(x, y)`.
+    #[inline(always)]
+    fn at(&self, x: i32, y: i32) -> i128 {
+        self.c + self.gx * x as i128 + self.gy * y as i128
+    }
+
+    /// The plane scaled by `k`.
+    fn times(self, k: i128) -> Plane {
+        Plane {
+            c: self.c * k,
+            gx: self.gx * k,
+            gy: self.gy * k,
+        }
+    }
+}
+
+/// The per-triangle set-up of a textured triangle (module doc): its three planes, the texture
+/// and how the texel becomes an index.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TexturedKind<'a> {
+    look: Lookup<'a>,
+    mode: TextureMode,
+    /// `Q = 256·D·q(p)`.
+    q: Plane,
+    /// `N_u = W·D·(qu)(p)`, `N_v = H·D·(qv)(p)`.
+    n: [Plane; 2],
+    /// The pixel planes need `i128` (the `i64` bound does not hold).
+    wide: bool,
+}
+
+impl<'a> TexturedKind<'a> {
+    /// The set-up of triangle `t` with `corners` (in the given vertex order), or `None` for a
+    /// zero-area triangle (it covers nothing).
+    pub(crate) fn new<const S: u32>(
+        t: &TriangleSetup<S>,
+        corners: [TexCorner; 3],
+        texturing: &Texturing<'a>,
+    ) -> Option<Self> {
+        let d = t.given_twice_area();
+        if d == 0 {
+            return None;
+        }
+        let sign = if d < 0 { -1 } else { 1 };
+        let q = match texturing.mode {
+            TextureMode::Affine => [1; 3],
+            _ => normalised_weights(corners.map(|c| c.weight)),
+        };
+        let texture = texturing.texture;
+        let sides = [texture.width() as i128, texture.height() as i128];
+        let planes = |k: usize| {
+            let a = [0, 1, 2].map(|i| q[i] as i128 * corners[i].uv[k] as i128);
+            Plane::of(t, a, sign).times(sides[k])
+        };
+        // The i64 bound: at a covered pixel Q ≤ 256·|D|·max q, |N| ≤ side·|D|·max |q·u|, and
+        // the texel |t| ≤ side·max |u| / 256 + 1.
+        let ad = d.unsigned_abs() as i128;
+        let qmax = 256 * ad * q.iter().max().copied().unwrap_or(1) as i128;
+        let fits = |k: usize| {
+            let qu = (0..3).map(|i| (q[i] as i128 * corners[i].uv[k] as i128).abs());
+            let umax = corners.iter().map(|c| (c.uv[k] as i128).abs()).max();
+            let nmax = sides[k] * ad * qu.max().unwrap_or(0);
+            let tmax = sides[k] * umax.unwrap_or(0) / 256 + 1;
+            nmax + qmax * (tmax + 2) < 1 << 62
+        };
+        Some(TexturedKind {
+            look: Lookup::new(texture, texturing.shades),
+            mode: texturing.mode,
+            q: Plane::of(t, q.map(|w| w as i128), sign).times(256),
+            n: [planes(0), planes(1)],
+            wide: !(fits(0) && fits(1)),
+        })
+    }
+
+    /// The span of `colours`/`depths` from pixel `(x, y)` with depth `z` and luminance `lum`.
+    #[inline(always)]
+    fn span<G: SpanTest, Z: Interpolant, L: Interpolant, C: WrittenCount>(
+        &self,
+        colours: &mut [u8],
+        depths: G,
+        z: Z,
+        lum: L,
+        (x, y): (i32, i32),
+        count: C,
+    ) -> u32 {
+        let look = self.look;
+        match (self.mode, self.wide) {
+            (TextureMode::Exact, false) => {
+                let sh = ExactTexels::<i64, L>::start(self, look, lum, x, y);
+                depth_span(colours, depths, z, sh, count)
+            }
+            (TextureMode::Exact, true) => {
+                let sh = ExactTexels::<i128, L>::start(self, look, lum, x, y);
+                depth_span(colours, depths, z, sh, count)
+            }
+            (mode, _) => {
+                let last = colours.len().saturating_sub(1) as u32;
+                let sh = SegmentTexels::start(self, look, lum, x, y, last, mode.segment());
+                depth_span(colours, depths, z, sh, count)
+            }
+        }
+    }
+}
+
+/// Unlit: depth plane only, the texel written as it is.
+impl SpanKind<1> for TexturedKind<'_> {
+    #[inline(always)]
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<1>, C: WrittenCount>(
+        &self,
+        colours: &mut [u8],
+        depths: G,
+        [z]: [I; 1],
+        _: &St,
+        at: (i32, i32),
+        count: C,
+    ) -> u32 {
+        self.span(colours, depths, z, Constant(0), at, count)
+    }
+}
+
+/// Lit: depth and luminance planes, the texel through the shade table.
+impl SpanKind<2> for TexturedKind<'_> {
+    #[inline(always)]
+    fn write<G: SpanTest, I: Interpolant, St: SpanStarts<2>, C: WrittenCount>(
+        &self,
+        colours: &mut [u8],
+        depths: G,
+        [z, lum]: [I; 2],
+        _: &St,
+        at: (i32, i32),
+        count: C,
+    ) -> u32 {
+        self.span(colours, depths, z, lum, at, count)
+    }
+}
+
+/// Texel `(i, j)` → palette index: the texture (wrapped by masks when both sides are powers
+/// of two, else each side wrapped or clamped by [`Texture::texel`]), and the shade table
+/// when lit.
+#[derive(Debug, Clone, Copy)]
+struct Lookup<'a> {
+    texture: Texture<'a>,
+    shades: Option<ShadeTable<'a>>,
+    /// `Some((W − 1, H − 1, log2 W))` for power-of-two sides.
+    masks: Option<(i32, i32, u32)>,
+}
+
+impl<'a> Lookup<'a> {
+    fn new(texture: Texture<'a>, shades: Option<ShadeTable<'a>>) -> Self {
+        let (w, h) = (texture.width(), texture.height());
+        let masks = (w.is_power_of_two() && h.is_power_of_two())
+            .then(|| (w as i32 - 1, h as i32 - 1, w.trailing_zeros()));
+        Lookup {
+            texture,
+            shades,
+            masks,
+        }
+    }
+
+    #[inline(always)]
+    fn index(&self, t: [i32; 2], lum: u32) -> u8 {
+        let texel = match self.masks {
+            Some((mw, mh, shift)) => self
+                .texture
+                .texel_at((((t[1] & mh) << shift) | (t[0] & mw)) as usize),
+            None => self.texture.texel(t[0], t[1]),
+        };
+        match self.shades {
+            Some(s) => s.shade(s.row(lum), texel),
+            None => texel,
+        }
+    }
+}
+
+/// The per-pixel integer type of the exact planes: `i64` where the triangle's bound allows,
+/// else `i128`; wrapping arithmetic (module doc).
+trait Wide: Copy + PartialOrd {
+    const ZERO: Self;
+    fn from_wide(v: i128) -> Self;
+    fn add(self, o: Self) -> Self;
+    fn sub(self, o: Self) -> Self;
+    fn times(self, t: i32) -> Self;
+    /// `⌊self / d⌋` for `d > 0`, as an `i32` (a texel offset).
+    fn floor_div(self, d: Self) -> i32;
+}
+
+impl Wide for i64 {
+    const ZERO: Self = 0;
+    #[inline(always)]
+    fn from_wide(v: i128) -> Self {
+        v as i64
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        self.wrapping_add(o)
+    }
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        self.wrapping_sub(o)
+    }
+    #[inline(always)]
+    fn times(self, t: i32) -> Self {
+        self.wrapping_mul(t as i64)
+    }
+    #[inline(always)]
+    fn floor_div(self, d: Self) -> i32 {
+        self.div_euclid(d) as i32
+    }
+}
+
+impl Wide for i128 {
+    const ZERO: Self = 0;
+    #[inline(always)]
+    fn from_wide(v: i128) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        self.wrapping_add(o)
+    }
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        self.wrapping_sub(o)
+    }
+    #[inline(always)]
+    fn times(self, t: i32) -> Self {
+        self.wrapping_mul(t as i128)
+    }
+    #[inline(always)]
+    fn floor_div(self, d: Self) -> i32 {
+        self.div_euclid(d) as i32
+    }
+}
+
+/// The exact mode's shading: `Q` at the current pixel and its step, and per coordinate the
+/// texel floor `t`, its remainder `r = N − Q·t` (`0 ≤ r < Q` at a covered pixel) and the
+/// remainder's step `e = dN − dQ·t` (so a pixel costs one add per coordinate, and a move of
+/// the texel one add to each of `r` and `e`).
+#[derive(Debug, Clone, Copy)]
+struct ExactTexels<'a, T, L> {
+    q: T,
+    dq: T,
+    r: [T; 2],
+    e: [T; 2],
+    t: [i32; 2],
+    lum: L,
+    look: Lookup<'a>,
+}
+
+impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
+    #[inline(always)]
+    fn start(k: &TexturedKind<'_>, look: Lookup<'a>, lum: L, x: i32, y: i32) -> Self {
+        let q = k.q.at(x, y);
+        let n = k.n.map(|p| p.at(x, y));
+        // A covered pixel has Q > 0 (module doc).
+        let t = n.map(|n| if q > 0 { n.div_euclid(q) as i32 } else { 0 });
+        let r = [0, 1].map(|i| T::from_wide(n[i] - q * t[i] as i128));
+        let e = [0, 1].map(|i| T::from_wide(k.n[i].gx - k.q.gx * t[i] as i128));
+        ExactTexels {
+            q: T::from_wide(q),
+            dq: T::from_wide(k.q.gx),
+            r,
+            e,
+            t,
+            lum,
+            look,
+        }
+    }
+}
+
+impl<T: Wide, L: Interpolant> Shading for ExactTexels<'_, T, L> {
+    #[inline(always)]
+    fn index(&self) -> u8 {
+        self.look.index(self.t, self.lum.value())
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.lum.step();
+        let (q, dq) = (self.q.add(self.dq), self.dq);
+        self.q = q;
+        for k in 0..2 {
+            let r = self.r[k].add(self.e[k]);
+            self.r[k] = r;
+            if r < T::ZERO {
+                let up = r.add(q);
+                if up >= T::ZERO {
+                    self.t[k] -= 1;
+                    self.r[k] = up;
+                    self.e[k] = self.e[k].add(dq);
+                } else {
+                    self.jump(k);
+                }
+            } else if r >= q {
+                let down = r.sub(q);
+                if down < q {
+                    self.t[k] += 1;
+                    self.r[k] = down;
+                    self.e[k] = self.e[k].sub(dq);
+                } else {
+                    self.jump(k);
+                }
+            }
+        }
+    }
+}
+
+impl<T: Wide, L: Interpolant> ExactTexels<'_, T, L> {
+    /// The texel `k` moved by more than one: by the Euclidean quotient `m = ⌊r / Q⌋` (nothing
+    /// where `Q ≤ 0`, past a span's end).
+    #[cold]
+    #[inline(never)]
+    fn jump(&mut self, k: usize) {
+        if self.q > T::ZERO {
+            let m = self.r[k].floor_div(self.q);
+            self.t[k] = self.t[k].wrapping_add(m);
+            self.r[k] = self.r[k].sub(self.q.times(m));
+            self.e[k] = self.e[k].sub(self.dq.times(m));
+        }
+    }
+}
+
+/// The subdivided and affine modes' shading: the texel coordinates in 16.16, exact at the
+/// ends of each segment of `segment` pixels (and at the span's last pixel), stepped linearly
+/// between.
+#[derive(Debug, Clone, Copy)]
+struct SegmentTexels<'a, L> {
+    /// Texels in 16.16 at the current pixel, and the step.
+    acc: [i64; 2],
+    inc: [i64; 2],
+    /// The current pixel's offset in the span, the segment's end and its exact values.
+    pos: u32,
+    end: u32,
+    end_acc: [i64; 2],
+    last: u32,
+    segment: u32,
+    /// The span's first pixel.
+    at: (i32, i32),
+    q: Plane,
+    n: [Plane; 2],
+    lum: L,
+    look: Lookup<'a>,
+}
+
+impl<'a, L: Interpolant> SegmentTexels<'a, L> {
+    #[inline(always)]
+    fn start(
+        k: &TexturedKind<'_>,
+        look: Lookup<'a>,
+        lum: L,
+        x: i32,
+        y: i32,
+        last: u32,
+        segment: u32,
+    ) -> Self {
+        let mut s = SegmentTexels {
+            acc: [0; 2],
+            inc: [0; 2],
+            pos: 0,
+            end: 0,
+            end_acc: [0; 2],
+            last,
+            segment,
+            at: (x, y),
+            q: k.q,
+            n: k.n,
+            lum,
+            look,
+        };
+        s.acc = s.exact(0);
+        s.begin_segment();
+        s
+    }
+
+    /// `⌊2^16·N / Q⌋` at offset `i` of the span (texels in 16.16).
+    #[inline(never)]
+    fn exact(&self, i: u32) -> [i64; 2] {
+        let (x, y) = (self.at.0.wrapping_add(i as i32), self.at.1);
+        let q = self.q.at(x, y);
+        self.n.map(|p| {
+            if q > 0 {
+                ((p.at(x, y) << 16).div_euclid(q)) as i64
+            } else {
+                0
+            }
+        })
+    }
+
+    /// The segment from the current pixel: its end, the exact values there and the step.
+    #[inline(always)]
+    fn begin_segment(&mut self) {
+        self.end = self.pos.saturating_add(self.segment).min(self.last);
+        if self.end > self.pos {
+            self.end_acc = self.exact(self.end);
+            let len = (self.end - self.pos) as i64;
+            for k in 0..2 {
+                self.inc[k] = (self.end_acc[k] - self.acc[k]).div_euclid(len);
+            }
+        }
+    }
+}
+
+impl<L: Interpolant> Shading for SegmentTexels<'_, L> {
+    #[inline(always)]
+    fn index(&self) -> u8 {
+        self.look
+            .index(self.acc.map(|a| (a >> 16) as i32), self.lum.value())
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.lum.step();
+        self.pos += 1;
+        if self.pos == self.end {
+            self.acc = self.end_acc;
+            if self.end < self.last {
+                self.begin_segment();
+            }
+        } else {
+            self.acc = [self.acc[0] + self.inc[0], self.acc[1] + self.inc[1]];
+        }
+    }
+}
