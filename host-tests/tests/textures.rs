@@ -364,7 +364,7 @@ fn exact_mode_frames_show_the_reference_texel() {
             for x in 0..VW as i64 {
                 let mut covering = front
                     .iter()
-                    .filter(|(v, _, _)| exact_fill::covered(&v.to_vec(), S, x, y));
+                    .filter(|(v, _, _)| exact_fill::covered(v.as_ref(), S, x, y));
                 let first = covering.next();
                 assert!(
                     covering.next().is_none(),

@@ -555,7 +555,7 @@ mod tests {
         assert_eq!(m.uvs().len(), 24);
         for (f, (poly, uvs)) in m.polygons().zip(m.uvs().chunks(4)).enumerate() {
             assert_eq!(uv_area(uvs), 2 * 256 * 256, "face {f}");
-            let side = f < 2 || f >= 4;
+            let side = !(2..4).contains(&f);
             for (&i, uv) in poly.iter().zip(uvs) {
                 let y = (i >> 1 & 1) as i16 * 256;
                 if side {

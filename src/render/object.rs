@@ -253,6 +253,14 @@ impl<const S: u32> Renderer<S> {
 fn textured_uvs<'a>(
     object: &Object<'a>,
 ) -> Result<&'a [crate::geometry::mesh::TexCoord], RenderError> {
+    if !cfg!(feature = "textures") {
+        // Known at compile time: without the feature, the textured writer below is never
+        // reached and is left out of the firmware (about 100 KB of i128 planes on a
+        // Cortex-M0+).
+        return Err(RenderError::TextureNotDrawable {
+            reason: "zscan was built without its `textures` feature (on by default)",
+        });
+    }
     let uvs = object.mesh.uvs();
     if uvs.len() != object.mesh.indices().len() {
         return Err(RenderError::TextureNotDrawable {
