@@ -5,6 +5,7 @@ use core::cell::Cell;
 
 use super::consumer::{LevelWriter, PhongWriter, TriangleConsumer};
 use super::polygon_stage::PolygonStage;
+use super::transparency;
 use super::{
     IntensityTable, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
 };
@@ -80,6 +81,13 @@ impl<const S: u32> Renderer<S> {
         if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
             (object.intensities, object.shade)
         {
+            if let Some(kind) = transparency::kind(object) {
+                return Err(RenderError::TransparencyRefused {
+                    object: None,
+                    kind,
+                    method: "Phong shading",
+                });
+            }
             let model_view = self.model_view(object)?;
             let context = PhongContext {
                 illumination: &self.illumination,

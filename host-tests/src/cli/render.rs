@@ -12,7 +12,7 @@
 //! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
 //! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]` or `toward = [x,y,z]`, and `intensity` `0..=255` |
 //! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
-//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither` |
+//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `opacity` = `0..=16` (screen door: pixels drawn of every 4×4 block) or `blend` = `0..=1` (blended over what lies behind through a table built from `[lut]`; drawn after the opaque objects, far to near, by the z-buffer only) |
 //!
 //! Generators (the core's [`zscan::geometry::generators`], buffers allocated here):
 //! `"cube"` (the unit cube `[0,1]³`, no parameters; `center = true` makes it `[−½,½]³`),
@@ -74,12 +74,12 @@ use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
 use zscan::lighting::{Light, Material, MAX_LIGHTS, MAX_SHININESS};
-use zscan::output::{DepthValue, Framebuffer, Lut};
-use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
+use zscan::output::{BlendTable, DepthValue, Framebuffer, Lut, BLEND_ENTRIES};
+use zscan::raster::triangle::{LuminanceRamp, Opacity, ShadeMode};
 use zscan::render::{
     BandScratch, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
 };
-use zscan::scene::{Intensities, Object, Scene};
+use zscan::scene::{Intensities, Object, Scene, Transparency};
 
 use super::CliError;
 use crate::core_render::coord;
@@ -666,6 +666,11 @@ pub struct ObjectSection {
     pub cull: Option<bool>,
     /// Ordered dithering (default `[render] dither`).
     pub dither: Option<bool>,
+    /// Screen-door opacity: pixels drawn of every 4×4 block, `0..=16` (16, opaque).
+    pub opacity: Option<u8>,
+    /// Blended transparency: the object's opacity over what lies behind, `0..=1` (a blend
+    /// table over the scene's `[lut]`, at 1/256 steps).
+    pub blend: Option<f64>,
 }
 
 /// A mesh in `f64` on the host: positions and polygons (counter-clockwise outward).
@@ -702,6 +707,10 @@ pub struct PreparedObject {
     pub cull: bool,
     /// Ordered dithering.
     pub dither: bool,
+    /// Screen-door opacity (`None`: not a screen door).
+    pub opacity: Option<Opacity>,
+    /// The blend table's entries of a blended object.
+    pub blend: Option<Box<[u8; BLEND_ENTRIES]>>,
 }
 
 impl PreparedObject {
@@ -725,6 +734,12 @@ impl PreparedObject {
         o.ramp = self.ramp;
         o.cull_back_faces = self.cull;
         o.dither = self.dither;
+        if let Some(opacity) = self.opacity {
+            o.transparency = Transparency::ScreenDoor(opacity);
+        }
+        if let Some(entries) = &self.blend {
+            o.transparency = Transparency::Blended(BlendTable::from_entries(entries));
+        }
         Ok(o)
     }
 }
@@ -1084,6 +1099,20 @@ fn object_mesh(o: &ObjectSection, dir: &Path, lines: &LineIndex) -> Result<HostM
     })
 }
 
+/// The blend table of opacity `blend` (`0..=1`, rounded to 1/256) over `lut`.
+fn blend_entries(lut: &Lut<Rgb888>, blend: f64) -> Result<Box<[u8; BLEND_ENTRIES]>, String> {
+    if !(0.0..=1.0).contains(&blend) {
+        return Err(format!("blend = {blend}: an opacity from 0 to 1"));
+    }
+    let mut entries: Box<[u8; BLEND_ENTRIES]> = vec![0u8; BLEND_ENTRIES]
+        .into_boxed_slice()
+        .try_into()
+        .map_err(|_| "blend table size".to_string())?;
+    BlendTable::build(lut, (blend * 256.0).round() as u16, &mut entries)
+        .map_err(|e| format!("blend: {e}"))?;
+    Ok(entries)
+}
+
 /// Rounds a placed, lit mesh into the core's tables.
 /// How an object is shaded, as the scene file says.
 struct Look {
@@ -1093,6 +1122,8 @@ struct Look {
     ramp: LuminanceRamp,
     cull: bool,
     dither: bool,
+    opacity: Option<Opacity>,
+    blend: Option<Box<[u8; BLEND_ENTRIES]>>,
 }
 
 fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
@@ -1140,6 +1171,8 @@ fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
         ramp: look.ramp,
         cull: look.cull,
         dither: look.dither,
+        opacity: look.opacity,
+        blend: look.blend,
     };
     if o.lit.is_some() {
         let mut normals = vec![Vec3::ZERO; o.vertices.len()];
@@ -1421,7 +1454,22 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
             ramp,
             cull: o.cull.unwrap_or(file.render.cull),
             dither: o.dither.unwrap_or(file.render.dither),
+            opacity: o
+                .opacity
+                .map(Opacity::new)
+                .transpose()
+                .map_err(|e| err(format!("opacity: {e}")))?,
+            blend: o
+                .blend
+                .map(|b| blend_entries(&lut, b))
+                .transpose()
+                .map_err(err)?,
         };
+        if look.opacity.is_some() && look.blend.is_some() {
+            return Err(err(
+                "an object is a screen door (opacity) or blended (blend), not both".into(),
+            ));
+        }
         objects.push(prepare(&mesh, look).map_err(err)?);
     }
     let (ambient, lights) = match &file.lighting {

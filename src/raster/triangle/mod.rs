@@ -16,6 +16,7 @@
 //! | span kinds | `kinds` | what a span writes: flat, exact or fast Gouraud, depth only, Phong |
 //! | span loop | `span` | the per-pixel loop: depth test, palette index, stores; luminance → index ([`LuminanceRamp`], the `Quantizer`s) |
 //! | dither | `dither` | the 4×4 ordered-dither quantizer |
+//! | transparency | [`transparency`] | the screen door's mask and the blend, as quantizers of the span loop |
 //! | slices | `slices` | the frame's and depth buffer's rows handed to each span as slices |
 //!
 //! Numeric contract (each module states its own): vertices within the raster's range
@@ -40,6 +41,7 @@ mod small_plane;
 mod span;
 mod spans;
 mod tiny;
+pub mod transparency;
 mod wide_plane;
 
 pub use draw::{
@@ -55,3 +57,5 @@ pub(crate) use draw::draw_tiny_or_planar;
 pub(crate) use draw::{draw_depth_only, draw_in_range, draw_phong_on};
 pub(crate) use slices::{DepthTarget, RasterTarget};
 pub(crate) use span::{CountWritten, SkipWritten, WrittenCount};
+pub(crate) use transparency::{Blend, ScreenDoor};
+pub use transparency::{Opacity, OpacityError};

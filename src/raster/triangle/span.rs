@@ -53,8 +53,24 @@ impl LuminanceRamp {
 pub trait Shading: Copy {
     /// True when the index does not change along a span ([`FlatIndex`], flat [`Gouraud`]).
     const IS_CONSTANT: bool = false;
+    /// True when every pixel that passes the depth test is stored as it is: no screen-door
+    /// mask, no blend ([`Quantizer::PLAIN`]).
+    const PLAIN: bool = true;
+    /// True when the stored index is blended with the pixel under it and the depth is not
+    /// stored ([`Quantizer::BLENDS`]).
+    const BLENDS: bool = false;
     /// The palette index at the current pixel.
     fn index(&self) -> u8;
+    /// Whether the current pixel is covered ([`Quantizer::covers`]).
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        true
+    }
+    /// The index stored over `dst` ([`Quantizer::blend`]).
+    #[inline(always)]
+    fn blend(&self, src: u8, _dst: u8) -> u8 {
+        src
+    }
     /// Moves one pixel to the right.
     fn step(&mut self);
 }
@@ -76,6 +92,22 @@ pub trait Quantizer: Copy {
     #[inline(always)]
     fn offset(&self) -> Option<u8> {
         None
+    }
+    /// False for the transparency quantizers (`transparency`): a screen-door mask or a blend.
+    const PLAIN: bool = true;
+    /// True for a blend: the index stored is [`Quantizer::blend`] of it and the pixel under
+    /// it, and the depth is tested but not stored.
+    const BLENDS: bool = false;
+    /// Whether the current pixel is covered (a screen-door mask); the span loop tests it
+    /// before the depth test, and only where [`Quantizer::PLAIN`] is false.
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        true
+    }
+    /// The index stored over a pixel of index `dst` (where [`Quantizer::BLENDS`]).
+    #[inline(always)]
+    fn blend(&self, src: u8, _dst: u8) -> u8 {
+        src
     }
     /// Moves one pixel right.
     fn step(&mut self);
@@ -117,6 +149,18 @@ pub struct Gouraud<L: Interpolant, Q: Quantizer = LuminanceRamp> {
 
 impl<L: Interpolant, Q: Quantizer> Shading for Gouraud<L, Q> {
     const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
+    const PLAIN: bool = Q::PLAIN;
+    const BLENDS: bool = Q::BLENDS;
+
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        self.quantizer.covers()
+    }
+
+    #[inline(always)]
+    fn blend(&self, src: u8, dst: u8) -> u8 {
+        self.quantizer.blend(src, dst)
+    }
 
     #[inline(always)]
     fn index(&self) -> u8 {
@@ -143,6 +187,18 @@ pub(crate) struct InRange<L: Interpolant, Q: Quantizer> {
 
 impl<L: Interpolant, Q: Quantizer> Shading for InRange<L, Q> {
     const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
+    const PLAIN: bool = Q::PLAIN;
+    const BLENDS: bool = Q::BLENDS;
+
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        self.quantizer.covers()
+    }
+
+    #[inline(always)]
+    fn blend(&self, src: u8, dst: u8) -> u8 {
+        self.quantizer.blend(src, dst)
+    }
 
     #[inline(always)]
     fn index(&self) -> u8 {
@@ -226,7 +282,7 @@ pub fn depth_span<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount>(
     shading: Sh,
     count: C,
 ) -> u32 {
-    if Z::IS_CONSTANT && Sh::IS_CONSTANT {
+    if Z::IS_CONSTANT && Sh::IS_CONSTANT && Sh::PLAIN {
         // A sample of no bits (`NoDepth`) has one value: the test is the same at every pixel
         // and nothing is stored, so the span is one fill, inline (out of line, the call cost
         // the back-face frames about 9 instructions a span on the host).
@@ -260,6 +316,8 @@ pub(crate) fn depth_only_span<D: DepthValue, Z: Interpolant, C: WrittenCount>(
 pub(crate) trait ColourPixel {
     /// Stores `index` (or nothing).
     fn store(self, index: u8);
+    /// Stores `blend(index under it)` (or nothing).
+    fn store_over(self, blend: impl FnOnce(u8) -> u8);
 }
 
 impl ColourPixel for &mut u8 {
@@ -267,11 +325,19 @@ impl ColourPixel for &mut u8 {
     fn store(self, index: u8) {
         *self = index;
     }
+
+    #[inline(always)]
+    fn store_over(self, blend: impl FnOnce(u8) -> u8) {
+        *self = blend(*self);
+    }
 }
 
 impl ColourPixel for () {
     #[inline(always)]
     fn store(self, _: u8) {}
+
+    #[inline(always)]
+    fn store_over(self, _: impl FnOnce(u8) -> u8) {}
 }
 
 /// The shading of a depth-only span: no colour (its index is never stored).
@@ -307,13 +373,21 @@ fn span_core<D: DepthValue, Z: Interpolant, Sh: Shading, C: WrittenCount, P: Col
     let constant_index = shading.index();
     for (c, stored) in colours.zip(depths.iter_mut()) {
         let d = D::from_depth32(z.value());
-        if d.nearer(*stored) {
-            *stored = d;
-            c.store(if Sh::IS_CONSTANT {
+        // The transparency seam (`transparency`), compiled out for plain shadings: a pixel
+        // outside the screen-door mask is not drawn, and a blend tests the depth without
+        // storing it.
+        if (Sh::PLAIN || shading.covers()) && d.nearer(*stored) {
+            let index = if Sh::IS_CONSTANT {
                 constant_index
             } else {
                 shading.index()
-            });
+            };
+            if Sh::BLENDS {
+                c.store_over(|dst| shading.blend(index, dst));
+            } else {
+                *stored = d;
+                c.store(index);
+            }
             written += C::COUNTS as u32;
         }
         z.step();
