@@ -106,7 +106,7 @@ pub enum Transparency<'a> {
     ScreenDoor(Opacity),
     /// Each pixel in front of the opaque surfaces blended with the one under it through the
     /// table (depth tested, not stored); drawn after the opaque objects, far to near, by the
-    /// z-buffer's whole and banded frames only.
+    /// z-buffer's frames (whole, banded, compact banded) only.
     Blended(BlendTable<'a>),
 }
 

@@ -364,14 +364,21 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
         |frame, depth| {
             frame.clear(scene.background);
             depth.clear();
-            let (mut at, mut lat, mut pat) = (0, 0, 0);
-            for object in scene.objects {
-                let n = object.mesh.vertices().len();
-                let nl = if sizes.levels > 0 && vertex_lit(object) {
-                    n
-                } else {
-                    0
+            for i in draw_order(renderer, scene.objects) {
+                let object = &scene.objects[i];
+                let lit_levels = |o: &Object<'_>| {
+                    if sizes.levels > 0 && vertex_lit(o) {
+                        o.mesh.vertices().len()
+                    } else {
+                        0
+                    }
                 };
+                // The object's parts follow those of the objects before it in the scene.
+                let before = &scene.objects[..i];
+                let at: usize = before.iter().map(|o| o.mesh.vertices().len()).sum();
+                let lat: usize = before.iter().map(lit_levels).sum();
+                let pat: usize = before.iter().map(|o| o.mesh.polygon_count()).sum();
+                let (n, nl) = (object.mesh.vertices().len(), lit_levels(object));
                 let np = object.mesh.polygon_count();
                 let scratch = CompactObject {
                     vertices: &vertices[at..at + n],
@@ -379,7 +386,6 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
                 };
                 let table = (&polygons[pat..pat + np], &rows);
                 renderer.draw_compact_band(object, &scratch, table, frame, depth, stats)?;
-                (at, lat, pat) = (at + n, lat + nl, pat + np);
             }
             Ok(())
         },
@@ -405,6 +411,6 @@ fn check_compact_memory(
     if !scene.objects.iter().all(super::compact::compact_draws) {
         return Err(RenderError::PhongUnsupported);
     }
-    check_transparency(scene, "compact bands", Draws::ScreenDoor)?;
+    check_transparency(scene, "compact bands", Draws::Both)?;
     Ok(())
 }

@@ -101,7 +101,7 @@ pub enum RenderError {
         object: usize,
     },
     /// An object's transparency that the method cannot draw (`render::transparency`): a
-    /// blended object outside the z-buffer's whole and banded frames, a screen door in
+    /// blended object outside the z-buffer's frames, a screen door in
     /// Warnock's subdivision, or either on a core-lit Phong object.
     TransparencyRefused {
         /// The object's index in the scene (`None` when drawn alone, by
@@ -338,7 +338,7 @@ impl core::fmt::Display for RenderError {
                     }
                     (TransparencyKind::Blended, _) => {
                         "(blended objects are drawn after the opaque ones, far to near, by the \
-                         z-buffer's whole or banded frames only)"
+                         z-buffer's frames only)"
                     }
                 })
             }

@@ -5,9 +5,9 @@
 //! z-buffer's picture draws it, but Warnock's, whose *front* verdict paints one surrounding
 //! surface over a whole window and would paint it over the mask's holes. A blended object
 //! needs the opaque surfaces drawn first and the blended ones after, far to near: the
-//! z-buffer's whole and banded frames draw in [`draw_order`]; the methods without a depth
-//! buffer or with their own order (back faces alone, the painter, the scan-line, Warnock's,
-//! compact bands) refuse it. A core-lit Phong object is drawn opaque only (its span kind has
+//! z-buffer's whole, banded and compact banded frames draw in [`draw_order`] (and the planner
+//! gives a scene holding one the z-buffer); the methods without a depth buffer or with their
+//! own order (back faces alone, the painter, the scan-line, Warnock's) refuse it. A core-lit Phong object is drawn opaque only (its span kind has
 //! no transparency quantizer). Each refusal is [`RenderError::TransparencyRefused`], naming
 //! the object, its kind of transparency and the method ([`check`]).
 //!
@@ -49,7 +49,7 @@ impl core::fmt::Display for TransparencyKind {
 /// What a method can draw of transparent objects.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Draws {
-    /// Screen doors and blends (the z-buffer's whole and banded frames, in [`draw_order`]).
+    /// Screen doors and blends (the z-buffer's frames, in [`draw_order`]).
     Both,
     /// Screen doors only.
     ScreenDoor,
