@@ -315,6 +315,10 @@ stage_errors!(
     Plan(crate::visibility::PlanError),
     /// A mesh's planner facts were not computed.
     Facts(crate::visibility::FactsError),
+    /// A screen-door opacity is out of range.
+    Opacity(crate::raster::triangle::OpacityError),
+    /// A blend table could not be built.
+    Blend(crate::output::BlendError),
 );
 
 impl From<core::convert::Infallible> for Error {

@@ -42,11 +42,11 @@ pub use crate::geometry::matrix::{Affine3, Affine3Builder};
 pub use crate::geometry::mesh::{triangle_indices, vec3s_from_bits, Mesh, PolygonSizes};
 pub use crate::geometry::trig::BinaryAngle;
 pub use crate::geometry::vector::Vec3;
-pub use crate::scene::{Intensities, Object, Scene};
+pub use crate::scene::{Intensities, Object, Scene, Transparency};
 
 // Light and shading.
 pub use crate::lighting::{Light, Material};
-pub use crate::raster::triangle::{LuminanceRamp, ShadeMode};
+pub use crate::raster::triangle::{LuminanceRamp, Opacity, ShadeMode};
 
 // The camera.
 pub use crate::geometry::camera::{Camera, FovAxis, Lens, Viewport};
@@ -63,7 +63,9 @@ pub use crate::render::{CompactVertex, PolygonTop};
 pub use crate::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};
 
 // The target buffers, the palette and the display.
-pub use crate::output::{flush, shaded_index, DepthBuffer, DepthValue, Framebuffer, Lut};
+pub use crate::output::{
+    flush, shaded_index, BlendTable, DepthBuffer, DepthValue, Framebuffer, Lut,
+};
 
 // Errors.
 pub use crate::Error;

@@ -62,13 +62,14 @@ mod both_preludes {
         shaded_index as _, torus as _, torus_normals as _, torus_sizes as _, triangle_indices as _,
         unit_cube as _, uv_sphere as _, uv_sphere_normals as _, uv_sphere_sizes as _,
         vec3s_from_bits as _, Affine3 as _, Affine3Builder as _, BandScratch as _, BandSink as _,
-        BinaryAngle as _, Camera as _, CompactVertex as _, Coord as _, DepthBuffer as _,
-        DepthValue as _, DisplaySink as _, DoubleBands as _, Error as _, FovAxis as _,
-        Framebuffer as _, Intensities as _, Lens as _, Light as _, LuminanceRamp as _, Lut as _,
-        Material as _, Mesh as _, MeshFacts as _, Object as _, PlanMemory as _, PlanSizes as _,
-        PolygonRows as _, PolygonSizes as _, PolygonTop as _, PreparedVertex as _,
-        RenderStats as _, Renderer as _, Scene as _, ShadeMode as _, StatsSink as _,
-        StatsWithoutWritten as _, Vec3 as _, Viewport as _,
+        BinaryAngle as _, BlendTable as _, Camera as _, CompactVertex as _, Coord as _,
+        DepthBuffer as _, DepthValue as _, DisplaySink as _, DoubleBands as _, Error as _,
+        FovAxis as _, Framebuffer as _, Intensities as _, Lens as _, Light as _,
+        LuminanceRamp as _, Lut as _, Material as _, Mesh as _, MeshFacts as _, Object as _,
+        Opacity as _, PlanMemory as _, PlanSizes as _, PolygonRows as _, PolygonSizes as _,
+        PolygonTop as _, PreparedVertex as _, RenderStats as _, Renderer as _, Scene as _,
+        ShadeMode as _, StatsSink as _, StatsWithoutWritten as _, Transparency as _, Vec3 as _,
+        Viewport as _,
     };
 
     /// The names above, as `src/prelude.rs` exports them.
@@ -126,6 +127,9 @@ mod both_preludes {
         "plan",
         "triangle_indices",
         "vec3s_from_bits",
+        "BlendTable",
+        "Opacity",
+        "Transparency",
     ];
 }
 
