@@ -20,11 +20,15 @@
 use super::{PreparedVertex, RenderError};
 use crate::geometry::vector::Vec3;
 use crate::output::DepthValue;
+use crate::raster::triangle::Bayer4;
 use crate::raster::triangle::{draw_in_range, RasterTarget, WrittenCount};
 use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};
-use crate::raster::triangle::{Bayer4, Blend, ScreenDoor};
+#[cfg(feature = "transparency")]
+use crate::raster::triangle::{Blend, ScreenDoor};
 use crate::raster::SubpixelPoint;
-use crate::scene::{Object, Transparency};
+use crate::scene::Object;
+#[cfg(feature = "transparency")]
+use crate::scene::Transparency;
 
 /// One triangle corner handed to a consumer: screen position, depth, observer-frame position
 /// and `N` attributes (a level, or a normal), from the vertex stage or the clipper.
@@ -116,7 +120,12 @@ fn transparent<D: DepthValue, C: WrittenCount, const S: u32>(
     object: &Object<'_>,
 ) -> Option<(u32, u32)> {
     let (ramp, shade, dither) = (object.ramp, object.shade, object.dither);
-    Some(match object.transparency {
+    // Without the feature the entries refused the object (`render::transparency`).
+    if !cfg!(feature = "transparency") {
+        return None;
+    }
+    #[cfg(feature = "transparency")]
+    return Some(match object.transparency {
         Transparency::Opaque => return None,
         Transparency::ScreenDoor(o) => draw_in_range(target, v, values, shade, |x, y| {
             ScreenDoor::at(ramp, dither, o, x, y)
@@ -124,7 +133,12 @@ fn transparent<D: DepthValue, C: WrittenCount, const S: u32>(
         Transparency::Blended(t) => draw_in_range(target, v, values, shade, |x, y| {
             Blend::at(ramp, dither, t, x, y)
         }),
-    })
+    });
+    #[cfg(not(feature = "transparency"))]
+    {
+        let _ = (target, v, values, ramp, shade, dither);
+        None
+    }
 }
 
 /// The z-buffer consumer of Phong triangles: corners whose three attributes are the

@@ -329,6 +329,9 @@ impl core::fmt::Display for RenderError {
                 }
                 write!(f, " is {kind}, which {method} cannot draw ")?;
                 f.write_str(match (kind, *method) {
+                    (_, "a build without the transparency feature") => {
+                        "(enable zscan's transparency feature)"
+                    }
                     (_, "Phong shading") => {
                         "(a per-pixel lit object is drawn opaque only: use Gouraud shading)"
                     }

@@ -105,6 +105,13 @@ impl<const S: u32> Renderer<S> {
             };
             return stage.run(stats, |_, poly, k, _| normal(poly[k]), writer);
         }
+        if let (Some(kind), false) = (transparency::kind(object), cfg!(feature = "transparency")) {
+            return Err(RenderError::TransparencyRefused {
+                object: None,
+                kind,
+                method: transparency::WITHOUT_FEATURE,
+            });
+        }
         // Luminance triangles.
         let writer = LevelWriter {
             target: &mut target,

@@ -62,6 +62,7 @@ impl Bayer4 {
     /// `⌊lum·levels/256⌋ ≤ levels − 1` for `lum ≤ 255`). The transparency quantizers wrap it,
     /// so that one writer serves dithered and plain objects.
     #[inline]
+    #[cfg_attr(not(feature = "transparency"), allow(dead_code))]
     pub(crate) fn plain(ramp: LuminanceRamp) -> Self {
         Bayer4 {
             ramp,

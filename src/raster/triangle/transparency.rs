@@ -36,6 +36,9 @@
 //! Conventions: pixel `(x, y)` as [`raster`](crate::raster), the frame's own coordinates (a
 //! band's rows keep their frame `y`, so the mask does not move with the bands).
 
+// Without the crate's `transparency` feature the renderer does not draw these quantizers.
+#![cfg_attr(not(feature = "transparency"), allow(dead_code))]
+
 use super::dither::{Bayer4, BAYER4};
 use super::span::{LuminanceRamp, Quantizer};
 use crate::output::BlendTable;
