@@ -57,5 +57,6 @@ pub(crate) use draw::draw_tiny_or_planar;
 pub(crate) use draw::{draw_depth_only, draw_in_range, draw_phong_on};
 pub(crate) use slices::{DepthTarget, RasterTarget};
 pub(crate) use span::{CountWritten, SkipWritten, WrittenCount};
+#[cfg(feature = "transparency")]
 pub(crate) use transparency::{Blend, ScreenDoor};
 pub use transparency::{Opacity, OpacityError};
