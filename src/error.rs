@@ -338,6 +338,10 @@ stage_errors!(
     Facts(crate::visibility::FactsError),
     /// A texture or shade table was refused (`texture`).
     Texture(crate::texture::TextureError),
+    /// A screen-door opacity is out of range.
+    Opacity(crate::raster::triangle::OpacityError),
+    /// A blend table could not be built.
+    Blend(crate::output::BlendError),
 );
 
 impl From<core::convert::Infallible> for Error {

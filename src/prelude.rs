@@ -43,11 +43,11 @@ pub use crate::geometry::matrix::{Affine3, Affine3Builder};
 pub use crate::geometry::mesh::{triangle_indices, vec3s_from_bits, Mesh, PolygonSizes, TexCoord};
 pub use crate::geometry::trig::BinaryAngle;
 pub use crate::geometry::vector::Vec3;
-pub use crate::scene::{Intensities, Object, Scene};
+pub use crate::scene::{Intensities, Object, Scene, Transparency};
 
 // Light and shading.
 pub use crate::lighting::{Attenuation, Cone, Light, Material};
-pub use crate::raster::triangle::{LuminanceRamp, ShadeMode};
+pub use crate::raster::triangle::{LuminanceRamp, Opacity, ShadeMode};
 
 // Textures.
 pub use crate::texture::{shade_table, ShadeTable, Texture, TextureMode, Texturing};
@@ -71,7 +71,7 @@ pub use crate::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};
 
 // The target buffers, the palette and the display.
 pub use crate::output::{
-    flush, mask_words_needed, shaded_index, DepthBuffer, DepthValue, Framebuffer, Lut,
+    flush, mask_words_needed, shaded_index, BlendTable, DepthBuffer, DepthValue, Framebuffer, Lut,
 };
 
 // Errors.

@@ -25,7 +25,8 @@ use crate::geometry::matrix::Affine3;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::vector::Vec3;
 use crate::lighting::{Light, Material};
-use crate::raster::triangle::{LuminanceRamp, ShadeMode};
+use crate::output::BlendTable;
+use crate::raster::triangle::{LuminanceRamp, Opacity, ShadeMode};
 use crate::texture::Texturing;
 
 /// Where an object's luminance comes from.
@@ -93,11 +94,29 @@ pub struct Object<'a> {
     /// A texture over the mesh's texture coordinates ([`Mesh::with_uvs`]): the texel, through
     /// the shade table at the object's level when lit, replaces the ramp. `None`: untextured.
     pub texture: Option<Texturing<'a>>,
+    /// Opaque, a screen door or blended ([`Transparency`]).
+    pub transparency: Transparency<'a>,
+}
+
+/// How an object lets through what lies behind it, without refraction
+/// ([`transparency`](crate::raster::triangle::transparency)).
+#[derive(Debug, Clone, Copy, Default)]
+pub enum Transparency<'a> {
+    /// Every covered pixel drawn.
+    #[default]
+    Opaque,
+    /// Covered pixels thinned by the 4×4 ordered mask of the opacity, in any drawing order and
+    /// by every visibility method but Warnock's.
+    ScreenDoor(Opacity),
+    /// Each pixel in front of the opaque surfaces blended with the one under it through the
+    /// table (depth tested, not stored); drawn after the opaque objects, far to near, by the
+    /// z-buffer's frames (whole, banded, compact banded) only.
+    Blended(BlendTable<'a>),
 }
 
 impl<'a> Object<'a> {
     /// An object with identity transform, uniform full intensity, exact Gouraud shading, the
-    /// grey ramp without dithering and back-face culling.
+    /// grey ramp without dithering, back-face culling, opaque.
     pub fn new(mesh: Mesh<'a>) -> Self {
         Object {
             mesh,
@@ -108,6 +127,7 @@ impl<'a> Object<'a> {
             dither: false,
             cull_back_faces: true,
             texture: None,
+            transparency: Transparency::Opaque,
         }
     }
 

@@ -693,3 +693,39 @@ fn wireframe_scenes_render_their_modes() {
         "{err}"
     );
 }
+
+/// The transparency scene: drawn by the z-buffer (whole and in bands, the same picture) and
+/// refused in words by the painter (its blended sphere); out-of-range `opacity` and `blend`
+/// keys, or both on one object, named.
+#[test]
+fn transparency_keys_from_the_command_line() {
+    let dir = out_dir("transparency");
+    let path = scenes().join("transparency.toml");
+    let (png, _, s) = render(&path, &dir, &[]);
+    let (png8, _, _) = render(&path, &dir.join("bands"), &["--bands", "8"]);
+    assert!(n(&s, "pixels_covered") > 30_000, "{s}");
+    assert_eq!(read_png_rgb(&png).unwrap(), read_png_rgb(&png8).unwrap());
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .args(["render", path.to_str().unwrap(), "-o"])
+        .arg(dir.join("painter.png"))
+        .args(["--visibility", "painter"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("object 4 is blended, which the painter cannot draw"),
+        "{err}"
+    );
+
+    let object = "[[object]]\ngenerator = \"cube\"\n";
+    let err = fails("opacity.toml", &format!("{object}opacity = 17\n"));
+    assert!(
+        err.contains("opacity 17 is past the screen door's 16 levels"),
+        "{err}"
+    );
+    let err = fails("blend.toml", &format!("{object}blend = 1.5\n"));
+    assert!(err.contains("blend = 1.5: an opacity from 0 to 1"), "{err}");
+    let err = fails("both.toml", &format!("{object}blend = 0.5\nopacity = 3\n"));
+    assert!(err.contains("not both"), "{err}");
+}

@@ -3,7 +3,8 @@
 //! Role in the pipeline: the last stage. The raster stage writes palette indices into a
 //! caller-provided [`Framebuffer`] (one `u8` per pixel) and, when a scene needs hidden-surface
 //! removal, depth values into a caller-provided [`DepthBuffer`]. A [`Lut`] maps the 256 indices
-//! to display colours, and [`flush()`] sends the frame (or only its dirty rectangle) to any
+//! to display colours (and a [`BlendTable`] maps two indices to the index of their mix, for
+//! blended transparency), and [`flush()`] sends the frame (or only its dirty rectangle) to any
 //! embedded-graphics `DrawTarget` through `fill_contiguous`, the fast path display drivers
 //! implement.
 //!
@@ -14,6 +15,7 @@
 //! `(y - top) * stride`. Sizes are `u16` (a display is at most 65 535 pixels wide), so every
 //! index computed here fits `usize` on 16-bit and wider targets without overflow.
 
+mod blend;
 mod depth;
 mod flush;
 mod framebuffer;
@@ -22,6 +24,7 @@ mod mask;
 mod palette_index;
 mod window;
 
+pub use blend::{BlendError, BlendTable, BLEND_ENTRIES};
 pub use depth::{DepthBuffer, DepthValue, NoDepth};
 pub use flush::flush;
 pub use framebuffer::Framebuffer;

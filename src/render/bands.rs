@@ -9,8 +9,9 @@ use super::compact::{vertex_lit, CompactObject, Rows};
 use super::polygon_rows::triangle_rows;
 use super::polygon_stage::{Path, PolygonStage, Visitor};
 use super::{
-    render_scene, BandPart, CompactSizes, CompactVertex, PolygonRows, PolygonTop, PreparedVertex,
-    RenderError, RenderStats, Renderer, SceneRenderer, StatsSink, TargetBuffer,
+    check_transparency, draw_order, render_scene, BandPart, CompactSizes, CompactVertex, Draws,
+    PolygonRows, PolygonTop, PreparedVertex, RenderError, RenderStats, Renderer, SceneRenderer,
+    StatsSink, TargetBuffer,
 };
 use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::scene::{Object, Scene};
@@ -171,6 +172,7 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
     let (scene, renderer) = (scene_renderer.scene(), scene_renderer.renderer());
     let BandScratch { vertices, polygons } = scratch;
     let band_rows = band_height(renderer, (width, height, band_rows))?;
+    check_transparency(scene, "the z-buffer", Draws::Both)?;
     let total: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
     let total_polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
     let prepare_once = vertices.len() >= total;
@@ -194,8 +196,13 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
             if prepare_once {
                 frame.clear(scene.background);
                 depth.clear();
-                let (mut at, mut pat) = (0, 0);
-                for object in scene.objects {
+                for i in draw_order(renderer, scene.objects) {
+                    let object = &scene.objects[i];
+                    // The object's vertices and polygon rows follow those of the objects
+                    // before it in the scene.
+                    let before = &scene.objects[..i];
+                    let at: usize = before.iter().map(|o| o.mesh.vertices().len()).sum();
+                    let pat: usize = before.iter().map(|o| o.mesh.polygon_count()).sum();
                     let (n, np) = (object.mesh.vertices().len(), object.mesh.polygon_count());
                     let prepared = &vertices[at..at + n];
                     let st = &mut *stats;
@@ -205,7 +212,6 @@ pub fn render_in_bands<D: DepthValue, E: From<RenderError>, const S: u32>(
                     } else {
                         renderer.rasterize(object, prepared, frame, depth, st)?;
                     }
-                    (at, pat) = (at + n, pat + np);
                 }
                 Ok(())
             } else {
@@ -358,14 +364,21 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
         |frame, depth| {
             frame.clear(scene.background);
             depth.clear();
-            let (mut at, mut lat, mut pat) = (0, 0, 0);
-            for object in scene.objects {
-                let n = object.mesh.vertices().len();
-                let nl = if sizes.levels > 0 && vertex_lit(object) {
-                    n
-                } else {
-                    0
+            for i in draw_order(renderer, scene.objects) {
+                let object = &scene.objects[i];
+                let lit_levels = |o: &Object<'_>| {
+                    if sizes.levels > 0 && vertex_lit(o) {
+                        o.mesh.vertices().len()
+                    } else {
+                        0
+                    }
                 };
+                // The object's parts follow those of the objects before it in the scene.
+                let before = &scene.objects[..i];
+                let at: usize = before.iter().map(|o| o.mesh.vertices().len()).sum();
+                let lat: usize = before.iter().map(lit_levels).sum();
+                let pat: usize = before.iter().map(|o| o.mesh.polygon_count()).sum();
+                let (n, nl) = (object.mesh.vertices().len(), lit_levels(object));
                 let np = object.mesh.polygon_count();
                 let scratch = CompactObject {
                     vertices: &vertices[at..at + n],
@@ -373,7 +386,6 @@ pub fn render_in_compact_bands<D: DepthValue, E: From<RenderError>, const S: u32
                 };
                 let table = (&polygons[pat..pat + np], &rows);
                 renderer.draw_compact_band(object, &scratch, table, frame, depth, stats)?;
-                (at, lat, pat) = (at + n, lat + nl, pat + np);
             }
             Ok(())
         },
@@ -405,5 +417,6 @@ fn check_compact_memory(
     if !scene.objects.iter().all(super::compact::compact_draws) {
         return Err(RenderError::PhongUnsupported);
     }
+    check_transparency(scene, "compact bands", Draws::Both)?;
     Ok(())
 }

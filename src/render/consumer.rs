@@ -6,7 +6,7 @@
 //! decides rejection, culling and clipping, projects, fans polygons into triangles, and counts.
 //! A consumer decides what a triangle is for. Today's consumers draw at once through the depth
 //! buffer: [`LevelWriter`] (a luminance level per corner: flat, exact or fast Gouraud, plain
-//! or dithered) and [`PhongWriter`] (a normal per corner, lit per pixel). A visibility method
+//! or dithered, opaque or transparent: a screen door or a blend) and [`PhongWriter`] (a normal per corner, lit per pixel). A visibility method
 //! that needs every triangle before drawing any (a depth sort, a scan-line edge table, an area
 //! subdivision) is another consumer: it stores what it is handed (the corners hold the exact
 //! sub-pixel position, the 32-bit depth and the attributes, so a later pass draws the same
@@ -26,8 +26,12 @@ use crate::raster::triangle::{draw_depth_only, DepthTarget};
 use crate::raster::triangle::{draw_in_range, RasterTarget, SpanTarget, WrittenCount};
 use crate::raster::triangle::{draw_phong_on, PhongContext, PhongVertex};
 use crate::raster::triangle::{draw_textured_on, TexCorner};
+#[cfg(feature = "transparency")]
+use crate::raster::triangle::{Blend, ScreenDoor};
 use crate::raster::SubpixelPoint;
 use crate::scene::Object;
+#[cfg(feature = "transparency")]
+use crate::scene::Transparency;
 use crate::texture::Texturing;
 
 /// One triangle corner handed to a consumer: screen position, depth, observer-frame position
@@ -98,6 +102,9 @@ impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> Tri
         let v = c.map(|c| c.screen);
         let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
         let (ramp, shade) = (self.object.ramp, self.object.shade);
+        if let Some(drawn) = transparent(self.target, v, values, self.object) {
+            return Ok(drawn);
+        }
         Ok(if self.object.dither {
             draw_in_range(self.target, v, values, shade, |x, y| Bayer4::at(ramp, x, y))
         } else {
@@ -137,6 +144,38 @@ impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> Tri
             corners,
             &self.texturing,
         ))
+    }
+}
+
+/// A luminance triangle of a transparent object, drawn through its screen-door or blending
+/// quantizer (`raster::triangle::transparency`), or `None` for an opaque object. Out of line:
+/// the opaque objects' writer keeps its registers.
+#[inline(never)]
+fn transparent<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32>(
+    target: &mut RasterTarget<'_, D, C, T>,
+    v: [SubpixelPoint<S>; 3],
+    values: [[u32; 2]; 3],
+    object: &Object<'_>,
+) -> Option<(u32, u32)> {
+    let (ramp, shade, dither) = (object.ramp, object.shade, object.dither);
+    // Without the feature the entries refused the object (`render::transparency`).
+    if !cfg!(feature = "transparency") {
+        return None;
+    }
+    #[cfg(feature = "transparency")]
+    return Some(match object.transparency {
+        Transparency::Opaque => return None,
+        Transparency::ScreenDoor(o) => draw_in_range(target, v, values, shade, |x, y| {
+            ScreenDoor::at(ramp, dither, o, x, y)
+        }),
+        Transparency::Blended(t) => draw_in_range(target, v, values, shade, |x, y| {
+            Blend::at(ramp, dither, t, x, y)
+        }),
+    });
+    #[cfg(not(feature = "transparency"))]
+    {
+        let _ = (target, v, values, ramp, shade, dither);
+        None
     }
 }
 

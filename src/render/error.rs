@@ -1,5 +1,6 @@
 //! Why a frame or an object could not be rendered: [`RenderError`], one variant per stage.
 
+use super::TransparencyKind;
 use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
 use crate::geometry::matrix::MatrixError;
 use crate::lighting::LightingError;
@@ -113,6 +114,18 @@ pub enum RenderError {
     TextureNotDrawable {
         /// What is missing or refused.
         reason: &'static str,
+    },
+    /// An object's transparency that the method cannot draw (`render::transparency`): a
+    /// blended object outside the z-buffer's frames, a screen door in
+    /// Warnock's subdivision, or either on a core-lit Phong object.
+    TransparencyRefused {
+        /// The object's index in the scene (`None` when drawn alone, by
+        /// [`Renderer::rasterize`](super::Renderer::rasterize)).
+        object: Option<usize>,
+        /// Its kind of transparency.
+        kind: TransparencyKind,
+        /// The method or shading that refuses it.
+        method: &'static str,
     },
     /// A scene with more objects than a stored triangle can name (256).
     TooManyObjects,
@@ -350,6 +363,33 @@ impl core::fmt::Display for RenderError {
                  z-buffer's when a triangle is drawn in parts (the painter's pieces, Warnock's \
                  windows): use exact Gouraud, the scan-line or the z-buffer"
             ),
+            RenderError::TransparencyRefused {
+                object,
+                kind,
+                method,
+            } => {
+                match object {
+                    Some(i) => write!(f, "object {i}")?,
+                    None => write!(f, "the object")?,
+                }
+                write!(f, " is {kind}, which {method} cannot draw ")?;
+                f.write_str(match (kind, *method) {
+                    (_, "a build without the transparency feature") => {
+                        "(enable zscan's transparency feature)"
+                    }
+                    (_, "Phong shading") => {
+                        "(a per-pixel lit object is drawn opaque only: use Gouraud shading)"
+                    }
+                    (TransparencyKind::ScreenDoor, _) => {
+                        "(its front windows would cover the mask's holes: use the scan-line, \
+                         the painter or the z-buffer)"
+                    }
+                    (TransparencyKind::Blended, _) => {
+                        "(blended objects are drawn after the opaque ones, far to near, by the \
+                         z-buffer's frames only)"
+                    }
+                })
+            }
             RenderError::TooManyObjects => write!(f, "more than 256 objects in the scene"),
             RenderError::NoSuchObject { index, objects } => write!(
                 f,

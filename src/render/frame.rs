@@ -1,7 +1,10 @@
 //! The frame entry: [`Renderer::draw_object`] (both stages for one object) and
 //! [`render_scene`] (clear, then every object of a [`SceneRenderer`]'s scene).
 
-use super::{PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
+use super::{
+    check_transparency, draw_order, Draws, PreparedVertex, RenderError, Renderer, SceneRenderer,
+    StatsSink,
+};
 use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::scene::Object;
 
@@ -21,7 +24,7 @@ impl<const S: u32> Renderer<S> {
 }
 
 /// Clears `frame` to the scene's background and `depth` to far, then draws every object of
-/// the renderer's scene with that scene's camera and lights, adding the frame's counts to
+/// the renderer's scene (the blended ones last, far to near: `render::transparency`) with that scene's camera and lights, adding the frame's counts to
 /// `stats`: a [`RenderStats`](super::RenderStats) counts everything, a
 /// [`StatsWithoutWritten`](super::StatsWithoutWritten) everything but the written pixels, whose
 /// per-pixel add the span loops then leave out (the faster choice when the count is not read;
@@ -38,10 +41,11 @@ pub fn render_scene<D: DepthValue, const S: u32>(
 ) -> Result<(), RenderError> {
     let (scene, renderer) = (renderer.scene(), renderer.renderer());
     renderer.check_targets(frame, depth)?;
+    check_transparency(scene, "the z-buffer", Draws::Both)?;
     frame.clear(scene.background);
     depth.clear();
-    for object in scene.objects {
-        renderer.draw_object(object, scratch, frame, depth, stats)?;
+    for i in draw_order(renderer, scene.objects) {
+        renderer.draw_object(&scene.objects[i], scratch, frame, depth, stats)?;
     }
     Ok(())
 }

@@ -66,6 +66,7 @@ mod object;
 mod polygon_rows;
 mod polygon_stage;
 mod renderer;
+mod transparency;
 mod vertex_stage;
 
 pub use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
@@ -80,4 +81,6 @@ pub use frame::render_scene;
 pub use lines::{LineStyle, Wireframe, DEFAULT_DEPTH_OFFSET, MAX_POINT_SIZE};
 pub use polygon_rows::PolygonRows;
 pub use renderer::{Renderer, SceneRenderer};
+pub use transparency::TransparencyKind;
+pub(crate) use transparency::{check as check_transparency, draw_order, Draws};
 pub use vertex_stage::PreparedVertex;

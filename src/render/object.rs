@@ -5,6 +5,7 @@ use core::cell::Cell;
 
 use super::consumer::{LevelWriter, PhongWriter, TextureWriter, TriangleConsumer};
 use super::polygon_stage::PolygonStage;
+use super::transparency;
 use super::{
     IntensityTable, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
 };
@@ -134,6 +135,13 @@ impl<const S: u32> Renderer<S> {
         if let (Intensities::Lit { material, normals }, ShadeMode::Phong) =
             (object.intensities, object.shade)
         {
+            if let Some(kind) = transparency::kind(object) {
+                return Err(RenderError::TransparencyRefused {
+                    object: None,
+                    kind,
+                    method: "Phong shading",
+                });
+            }
             let model_view = self.model_view(object)?;
             let context = PhongContext {
                 illumination: &self.illumination,
@@ -150,6 +158,13 @@ impl<const S: u32> Renderer<S> {
                 context,
             };
             return stage.run(stats, |_, poly, k, _| normal(poly[k]), writer);
+        }
+        if let (Some(kind), false) = (transparency::kind(object), cfg!(feature = "transparency")) {
+            return Err(RenderError::TransparencyRefused {
+                object: None,
+                kind,
+                method: transparency::WITHOUT_FEATURE,
+            });
         }
         // Luminance triangles.
         let writer = LevelWriter {

@@ -11,6 +11,7 @@
 //! zero-sized [`NoDepth`] sample, which compiles away the depth interpolant, test and store.
 
 use crate::output::{DepthBuffer, Framebuffer, NoDepth};
+use crate::render::{check_transparency, Draws};
 use crate::render::{BandPart, PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 
@@ -68,6 +69,7 @@ pub(super) fn draw_objects<const S: u32>(
     stats: &mut impl StatsSink,
 ) -> Result<(), RenderError> {
     renderer.check_frame(frame)?;
+    check_transparency(scene, "back faces alone", Draws::ScreenDoor)?;
     frame.clear(scene.background);
     without_depth(frame, |frame, depth| {
         let objects = order

@@ -95,6 +95,7 @@ use super::store::{collect, cuts, sort_order, StoredTriangle, CUT_FRONT};
 use crate::output::{Framebuffer, NoDepth};
 use crate::raster::triangle::{RasterTarget, ShadeMode};
 use crate::raster::Window;
+use crate::render::{check_transparency, Draws};
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 
@@ -143,6 +144,7 @@ pub fn render_painter<T: StatsSink, const S: u32>(
 ) -> Result<(), RenderError> {
     let scene = renderer.scene();
     renderer.renderer().check_frame(frame)?;
+    check_transparency(renderer.scene(), "the painter", Draws::ScreenDoor)?;
     let counts = stats.counts();
     let PainterMemory {
         triangles,

@@ -98,7 +98,7 @@ use crate::project::{require_perspective, Projector};
 use crate::raster::triangle::ShadeMode;
 use crate::render::compact::compact_draws;
 use crate::render::{CompactSizes, PolygonRows, PreparedVertex, RenderError, Renderer};
-use crate::scene::{Intensities, Object, Scene};
+use crate::scene::{Intensities, Object, Scene, Transparency};
 
 /// Units of the 2^32 depth range each object's depth range is widened by on each side.
 pub const DEPTH_MARGIN: u32 = 16;
@@ -165,6 +165,12 @@ pub enum MethodReason {
     ConvexAndSeparable,
     /// This object draws its back faces.
     BackFacesDrawn {
+        /// Its index.
+        object: usize,
+    },
+    /// This object is blended: the z-buffer draws it after the opaque ones, far to near
+    /// (`render::transparency`).
+    Blended {
         /// Its index.
         object: usize,
     },
@@ -367,6 +373,12 @@ impl core::fmt::Display for MethodReason {
             ),
             MethodReason::BackFacesDrawn { object } => {
                 write!(f, "object {object} draws its back faces")
+            }
+            MethodReason::Blended { object } => {
+                write!(
+                    f,
+                    "object {object} is blended (drawn after the opaque ones, far to near)"
+                )
             }
             MethodReason::NotConvex { object } => {
                 write!(f, "object {object}'s mesh is not convex")
@@ -773,6 +785,9 @@ pub(super) fn back_faces_allowed<const S: u32>(
     for (i, (object, fact)) in scene.objects.iter().zip(facts).enumerate() {
         if !object.cull_back_faces {
             return Err(MethodReason::BackFacesDrawn { object: i });
+        }
+        if matches!(object.transparency, Transparency::Blended(_)) {
+            return Err(MethodReason::Blended { object: i });
         }
         if matches!(fact.convexity, Convexity::NotConvex) {
             return Err(MethodReason::NotConvex { object: i });

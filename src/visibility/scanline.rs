@@ -23,6 +23,7 @@ use crate::raster::triangle::RasterTarget;
 use crate::render::{
     band_buffers, band_height, PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink,
 };
+use crate::render::{check_transparency, Draws};
 use crate::scene::Scene;
 
 /// Caller memory of [`render_scan_lines`].
@@ -58,6 +59,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
 ) -> Result<(), E> {
     let scene = renderer.scene();
     let band_rows = band_height(renderer.renderer(), (width, height, band_rows))?;
+    check_transparency(renderer.scene(), "the scan-line", Draws::ScreenDoor)?;
     let ScanLineMemory {
         triangles,
         order,

@@ -62,6 +62,7 @@ use super::store::{collect, StoredTriangle};
 use crate::output::{DepthValue, Framebuffer, NoDepth};
 use crate::raster::triangle::{RasterTarget, ShadeMode, WrittenCount};
 use crate::raster::Window;
+use crate::render::{check_transparency, Draws};
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 
@@ -130,6 +131,7 @@ pub fn render_warnock<T: StatsSink, const S: u32>(
 ) -> Result<(), RenderError> {
     let scene = renderer.scene();
     renderer.renderer().check_frame(frame)?;
+    check_transparency(renderer.scene(), "Warnock's subdivision", Draws::Neither)?;
     let counts = stats.counts();
     let WarnockMemory {
         triangles,

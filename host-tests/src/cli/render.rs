@@ -12,7 +12,7 @@
 //! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
 //! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]`, `toward = [x,y,z]` or `spot = [x,y,z]` with `axis = [x,y,z]` and `cone = [inner, outer]` (half-angles in degrees), `attenuation = [c, l, q]` for a point or spot, and `intensity` `0..=255` |
 //! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
-//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `wireframe` = `"all"` \| `"front"` \| `"hidden"` (drawn as lines instead of shaded: every edge, the front faces' edges, hidden lines removed through the depth buffer), `line_index` the lines' palette index (the ramp's brightest) |
+//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `wireframe` = `"all"` \| `"front"` \| `"hidden"` (drawn as lines instead of shaded: every edge, the front faces' edges, hidden lines removed through the depth buffer), `line_index` the lines' palette index (the ramp's brightest); `opacity` = `0..=16` (screen door: pixels drawn of every 4×4 block) or `blend` = `0..=1` (blended over what lies behind through a table built from `[lut]`; drawn after the opaque objects, far to near, by the z-buffer only) |
 //! | `[[lines]]` | a 3D line list in world coordinates: `points` = `[[x,y,z], ...]`, `segments` = `[[i, j], ...]` (indices into `points`), `index` palette index (255), `point_size` (0: no points; 1 to 16: each point a square of that side) |
 //!
 //! Generators (the core's [`zscan::geometry::generators`], buffers allocated here):
@@ -83,13 +83,13 @@ use zscan::geometry::vector::Vec3;
 use zscan::lighting::{
     Attenuation, Cone, Illumination, Light, Material, MAX_LIGHTS, MAX_SHININESS,
 };
-use zscan::output::{DepthBuffer, DepthValue, Framebuffer, Lut};
-use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
+use zscan::output::{BlendTable, DepthBuffer, DepthValue, Framebuffer, Lut, BLEND_ENTRIES};
+use zscan::raster::triangle::{LuminanceRamp, Opacity, ShadeMode};
 use zscan::render::{
     BandScratch, LineStyle, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
     Wireframe,
 };
-use zscan::scene::{Intensities, Object, Scene};
+use zscan::scene::{Intensities, Object, Scene, Transparency};
 
 use super::CliError;
 use crate::core_render::coord;
@@ -832,6 +832,11 @@ pub struct ObjectSection {
     pub wireframe: Option<WireKey>,
     /// The wireframe's palette index (default: the ramp's brightest).
     pub line_index: Option<u8>,
+    /// Screen-door opacity: pixels drawn of every 4×4 block, `0..=16` (16, opaque).
+    pub opacity: Option<u8>,
+    /// Blended transparency: the object's opacity over what lies behind, `0..=1` (a blend
+    /// table over the scene's `[lut]`, at 1/256 steps).
+    pub blend: Option<f64>,
 }
 
 /// A mesh in `f64` on the host: positions and polygons (counter-clockwise outward).
@@ -872,6 +877,10 @@ pub struct PreparedObject {
     pub wireframe: Option<Wireframe>,
     /// The wireframe's palette index.
     pub line_index: u8,
+    /// Screen-door opacity (`None`: not a screen door).
+    pub opacity: Option<Opacity>,
+    /// The blend table's entries of a blended object.
+    pub blend: Option<Box<[u8; BLEND_ENTRIES]>>,
 }
 
 /// A `[[lines]]` list ready for the core.
@@ -908,6 +917,12 @@ impl PreparedObject {
         o.ramp = self.ramp;
         o.cull_back_faces = self.cull;
         o.dither = self.dither;
+        if let Some(opacity) = self.opacity {
+            o.transparency = Transparency::ScreenDoor(opacity);
+        }
+        if let Some(entries) = &self.blend {
+            o.transparency = Transparency::Blended(BlendTable::from_entries(entries));
+        }
         Ok(o)
     }
 }
@@ -1269,6 +1284,20 @@ fn object_mesh(o: &ObjectSection, dir: &Path, lines: &LineIndex) -> Result<HostM
     })
 }
 
+/// The blend table of opacity `blend` (`0..=1`, rounded to 1/256) over `lut`.
+fn blend_entries(lut: &Lut<Rgb888>, blend: f64) -> Result<Box<[u8; BLEND_ENTRIES]>, String> {
+    if !(0.0..=1.0).contains(&blend) {
+        return Err(format!("blend = {blend}: an opacity from 0 to 1"));
+    }
+    let mut entries: Box<[u8; BLEND_ENTRIES]> = vec![0u8; BLEND_ENTRIES]
+        .into_boxed_slice()
+        .try_into()
+        .map_err(|_| "blend table size".to_string())?;
+    BlendTable::build(lut, (blend * 256.0).round() as u16, &mut entries)
+        .map_err(|e| format!("blend: {e}"))?;
+    Ok(entries)
+}
+
 /// Rounds a placed, lit mesh into the core's tables.
 /// How an object is shaded, as the scene file says.
 struct Look {
@@ -1280,6 +1309,8 @@ struct Look {
     dither: bool,
     wireframe: Option<Wireframe>,
     line_index: u8,
+    opacity: Option<Opacity>,
+    blend: Option<Box<[u8; BLEND_ENTRIES]>>,
 }
 
 fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
@@ -1329,6 +1360,8 @@ fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
         dither: look.dither,
         wireframe: look.wireframe,
         line_index: look.line_index,
+        opacity: look.opacity,
+        blend: look.blend,
     };
     if o.lit.is_some() {
         let mut normals = vec![Vec3::ZERO; o.vertices.len()];
@@ -1616,7 +1649,22 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
                     .saturating_sub(1)
                     .min(255) as u8,
             ),
+            opacity: o
+                .opacity
+                .map(Opacity::new)
+                .transpose()
+                .map_err(|e| err(format!("opacity: {e}")))?,
+            blend: o
+                .blend
+                .map(|b| blend_entries(&lut, b))
+                .transpose()
+                .map_err(err)?,
         };
+        if look.opacity.is_some() && look.blend.is_some() {
+            return Err(err(
+                "an object is a screen door (opacity) or blended (blend), not both".into(),
+            ));
+        }
         objects.push(prepare(&mesh, look).map_err(err)?);
     }
     let mut lines = Vec::new();

@@ -56,6 +56,22 @@ impl Bayer4 {
     }
 }
 
+impl Bayer4 {
+    /// `ramp` as a Bayer quantizer with every threshold at the middle (`t = 128`): the
+    /// numerator is `lum·levels`, so the index is the plain ramp's at every pixel (its level
+    /// `⌊lum·levels/256⌋ ≤ levels − 1` for `lum ≤ 255`). The transparency quantizers wrap it,
+    /// so that one writer serves dithered and plain objects.
+    #[inline]
+    #[cfg_attr(not(feature = "transparency"), allow(dead_code))]
+    pub(crate) fn plain(ramp: LuminanceRamp) -> Self {
+        Bayer4 {
+            ramp,
+            row: [128; 4],
+            phase: 0,
+        }
+    }
+}
+
 impl Quantizer for Bayer4 {
     #[inline(always)]
     fn index(&self, lum: u32) -> u8 {

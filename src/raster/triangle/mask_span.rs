@@ -113,6 +113,13 @@ impl PixelTest<NoDepth> for MaskPixel<'_> {
         self.word.set(w | self.bit);
         w & self.bit == 0
     }
+
+    /// A blended surface is never drawn by the reverse painter (it refuses blended objects):
+    /// the pixel passes while unpainted, and stays unpainted.
+    #[inline(always)]
+    fn passes(self, _: NoDepth) -> bool {
+        self.word.get() & self.bit == 0
+    }
 }
 
 /// The bits of a [`MaskSpan`], left to right.

@@ -18,6 +18,7 @@
 //! | textured | `textured` | the textured span kind: texels exact (ratio of two exact planes), subdivided or affine |
 //! | span loop | `span` | the per-pixel loop: depth test, palette index, stores; luminance → index ([`LuminanceRamp`], the `Quantizer`s) |
 //! | dither | `dither` | the 4×4 ordered-dither quantizer |
+//! | transparency | [`transparency`] | the screen door's mask and the blend, as quantizers of the span loop |
 //! | slices | `slices` | the frame's and depth buffer's rows handed to each span as slices |
 //!
 //! Numeric contract (each module states its own): vertices within the raster's range
@@ -44,6 +45,7 @@ mod span;
 mod spans;
 mod textured;
 mod tiny;
+pub mod transparency;
 mod wide_plane;
 
 pub use draw::{
@@ -61,3 +63,6 @@ pub(crate) use draw::{draw_depth_only, draw_in_range, draw_phong_on, draw_textur
 pub(crate) use slices::{drawable_window, DepthTarget, RasterTarget, SpanTarget};
 pub(crate) use span::{CountWritten, SkipWritten, WrittenCount};
 pub(crate) use textured::TexCorner;
+#[cfg(feature = "transparency")]
+pub(crate) use transparency::{Blend, ScreenDoor};
+pub use transparency::{Opacity, OpacityError};

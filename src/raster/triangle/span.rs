@@ -57,8 +57,24 @@ impl LuminanceRamp {
 pub trait Shading: Copy {
     /// True when the index does not change along a span ([`FlatIndex`], flat [`Gouraud`]).
     const IS_CONSTANT: bool = false;
+    /// True when every pixel that passes the depth test is stored as it is: no screen-door
+    /// mask, no blend ([`Quantizer::PLAIN`]).
+    const PLAIN: bool = true;
+    /// True when the stored index is blended with the pixel under it and the depth is not
+    /// stored ([`Quantizer::BLENDS`]).
+    const BLENDS: bool = false;
     /// The palette index at the current pixel.
     fn index(&self) -> u8;
+    /// Whether the current pixel is covered ([`Quantizer::covers`]).
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        true
+    }
+    /// The index stored over `dst` ([`Quantizer::blend`]).
+    #[inline(always)]
+    fn blend(&self, src: u8, _dst: u8) -> u8 {
+        src
+    }
     /// Moves one pixel to the right.
     fn step(&mut self);
 }
@@ -80,6 +96,22 @@ pub trait Quantizer: Copy {
     #[inline(always)]
     fn offset(&self) -> Option<u8> {
         None
+    }
+    /// False for the transparency quantizers (`transparency`): a screen-door mask or a blend.
+    const PLAIN: bool = true;
+    /// True for a blend: the index stored is [`Quantizer::blend`] of it and the pixel under
+    /// it, and the depth is tested but not stored.
+    const BLENDS: bool = false;
+    /// Whether the current pixel is covered (a screen-door mask); the span loop tests it
+    /// before the depth test, and only where [`Quantizer::PLAIN`] is false.
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        true
+    }
+    /// The index stored over a pixel of index `dst` (where [`Quantizer::BLENDS`]).
+    #[inline(always)]
+    fn blend(&self, src: u8, _dst: u8) -> u8 {
+        src
     }
     /// Moves one pixel right.
     fn step(&mut self);
@@ -121,6 +153,18 @@ pub struct Gouraud<L: Interpolant, Q: Quantizer = LuminanceRamp> {
 
 impl<L: Interpolant, Q: Quantizer> Shading for Gouraud<L, Q> {
     const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
+    const PLAIN: bool = Q::PLAIN;
+    const BLENDS: bool = Q::BLENDS;
+
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        self.quantizer.covers()
+    }
+
+    #[inline(always)]
+    fn blend(&self, src: u8, dst: u8) -> u8 {
+        self.quantizer.blend(src, dst)
+    }
 
     #[inline(always)]
     fn index(&self) -> u8 {
@@ -147,6 +191,18 @@ pub(crate) struct InRange<L: Interpolant, Q: Quantizer> {
 
 impl<L: Interpolant, Q: Quantizer> Shading for InRange<L, Q> {
     const IS_CONSTANT: bool = L::IS_CONSTANT && Q::IS_CONSTANT;
+    const PLAIN: bool = Q::PLAIN;
+    const BLENDS: bool = Q::BLENDS;
+
+    #[inline(always)]
+    fn covers(&self) -> bool {
+        self.quantizer.covers()
+    }
+
+    #[inline(always)]
+    fn blend(&self, src: u8, dst: u8) -> u8 {
+        self.quantizer.blend(src, dst)
+    }
 
     #[inline(always)]
     fn index(&self) -> u8 {
@@ -242,6 +298,9 @@ pub(crate) trait SpanTest {
 pub(crate) trait PixelTest<D> {
     /// Whether a surface at depth `d` is written here; when it is, the test records it.
     fn pass(self, d: D) -> bool;
+    /// Whether a surface at depth `d` would be written here, without recording it (a blended
+    /// surface: drawn over what lies behind, leaving the depth as it was).
+    fn passes(self, d: D) -> bool;
 }
 
 /// The depth test: strict, nearer wins, the nearer depth stored ([`DepthValue::nearer`]).
@@ -254,6 +313,11 @@ impl<D: DepthValue> PixelTest<D> for &mut D {
         } else {
             false
         }
+    }
+
+    #[inline(always)]
+    fn passes(self, d: D) -> bool {
+        d.nearer(*self)
     }
 }
 
@@ -295,7 +359,7 @@ pub fn depth_span<G: SpanTest, Z: Interpolant, Sh: Shading, C: WrittenCount>(
     shading: Sh,
     count: C,
 ) -> u32 {
-    if Z::IS_CONSTANT && Sh::IS_CONSTANT {
+    if Z::IS_CONSTANT && Sh::IS_CONSTANT && Sh::PLAIN {
         return tests.constant::<C>(colours, G::Depth::from_depth32(z.value()), shading.index());
     }
     span_core(colours.iter_mut(), tests, z, shading, count)
@@ -318,6 +382,8 @@ pub(crate) fn depth_only_span<G: SpanTest, Z: Interpolant, C: WrittenCount>(
 pub(crate) trait ColourPixel {
     /// Stores `index` (or nothing).
     fn store(self, index: u8);
+    /// Stores `blend(index under it)` (or nothing).
+    fn store_over(self, blend: impl FnOnce(u8) -> u8);
 }
 
 impl ColourPixel for &mut u8 {
@@ -325,11 +391,19 @@ impl ColourPixel for &mut u8 {
     fn store(self, index: u8) {
         *self = index;
     }
+
+    #[inline(always)]
+    fn store_over(self, blend: impl FnOnce(u8) -> u8) {
+        *self = blend(*self);
+    }
 }
 
 impl ColourPixel for () {
     #[inline(always)]
     fn store(self, _: u8) {}
+
+    #[inline(always)]
+    fn store_over(self, _: impl FnOnce(u8) -> u8) {}
 }
 
 /// The shading of a depth-only span: no colour (its index is never stored).
@@ -364,12 +438,27 @@ fn span_core<G: SpanTest, Z: Interpolant, Sh: Shading, C: WrittenCount, P: Colou
     // A shading constant along the span (flat) is mapped to its index once.
     let constant_index = shading.index();
     for (c, test) in colours.zip(tests.pixels()) {
-        if test.pass(G::Depth::from_depth32(z.value())) {
-            c.store(if Sh::IS_CONSTANT {
+        let d = G::Depth::from_depth32(z.value());
+        // The transparency seam (`transparency`), compiled out for plain shadings: a pixel
+        // outside the screen-door mask is not drawn, and a blend tests the pixel without
+        // recording it (`PixelTest::passes`).
+        let drawn = (Sh::PLAIN || shading.covers())
+            && if Sh::BLENDS {
+                test.passes(d)
+            } else {
+                test.pass(d)
+            };
+        if drawn {
+            let index = if Sh::IS_CONSTANT {
                 constant_index
             } else {
                 shading.index()
-            });
+            };
+            if Sh::BLENDS {
+                c.store_over(|dst| shading.blend(index, dst));
+            } else {
+                c.store(index);
+            }
             written += C::COUNTS as u32;
         }
         z.step();
