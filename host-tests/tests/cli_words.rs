@@ -344,8 +344,8 @@ fn plan_chart_data_is_checked_field_by_field() {
         (
             "cube,zbufer,230624,334416,574387,zscan",
             vec![
-                "field 2 `method` = \"zbufer\" is not a zscan method: one of backface, painter, \
-                 scanline, warnock, zbuffer"
+                "field 2 `method` = \"zbufer\" is not a zscan method: one of backface, \
+                 reverse-painter, painter, scanline, warnock, zbuffer"
                     .into(),
             ],
         ),
