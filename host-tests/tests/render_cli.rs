@@ -399,7 +399,7 @@ fn visibility_methods_from_the_command_line() {
         .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr)
-        .contains("one of auto, backface, painter, scanline, warnock, zbuffer"));
+        .contains("one of auto, backface, reverse-painter, painter, scanline, warnock, zbuffer"));
 }
 
 /// Runs `zscan render SCENE -o OUT --stats JSON --visibility auto EXTRA…`.

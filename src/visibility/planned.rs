@@ -123,7 +123,9 @@ impl<const S: u32> BackFaceFrame<'_, '_, S> {
 /// assert_eq!(planned.plan().visibility, Visibility::BackFace); // convex: no depth buffer
 /// match planned {
 ///     PlannedFrame::BackFace(planned) => planned.render(&mut frame, &mut stats)?,
-///     PlannedFrame::ZBuffer(_) => {
+///     // The z-buffer's plan (the reverse painter's draws the same picture; `draw_plan` draws
+///     // it through its mask of painted pixels).
+///     PlannedFrame::ZBuffer(_) | PlannedFrame::ReversePainter(_) => {
 ///         let mut depths = [0u16; 32 * 24];
 ///         let mut depth = DepthBuffer::new(&mut depths, 32, 24)?;
 ///         render_scene(&renderer, &mut frame, &mut depth, &mut scratch, &mut stats)?;

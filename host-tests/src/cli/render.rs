@@ -1747,6 +1747,13 @@ impl LoadedScene {
         &self,
         budget: usize,
     ) -> Result<crate::core_render::PlannedFrame, String> {
+        if self.objects.iter().any(|o| o.wireframe.is_some()) || !self.lines.is_empty() {
+            return Err(
+                "wireframes and [[lines]] are drawn through the whole-frame z-buffer, \
+                        which the planner does not plan"
+                    .into(),
+            );
+        }
         let objects = self.core_objects(None)?;
         let scene = self.core_scene(&objects);
         let mut pairs = Vec::new();

@@ -8,24 +8,24 @@
 //! never bent. Both forms here are of that kind, and neither needs a colour channel the 8-bit
 //! frame does not have:
 //!
-//! - **Screen door** ([`Opacity`], [`ScreenDoor`]): an object of opacity `k` (`0..=16`) covers
-//!   pixel `(x, y)` only where the 4×4 Bayer matrix ([`BAYER4`]) gives `B(x mod 4, y mod 4) <
+//! - **Screen door** ([`Opacity`], `ScreenDoor`): an object of opacity `k` (`0..=16`) covers
+//!   pixel `(x, y)` only where the 4×4 Bayer matrix (`BAYER4`) gives `B(x mod 4, y mod 4) <
 //!   k`, so exactly `k` of the 16 pixels of every aligned 4×4 block. A pixel outside the mask
 //!   is not drawn at all (neither colour nor depth), so what lies behind shows through it;
 //!   inside the mask the depth test and stores are the opaque ones. The mask depends on the
 //!   pixel alone, never on the drawing order: every visibility method that draws the
 //!   z-buffer's picture of opaque objects draws the z-buffer's picture of screen-door ones.
-//! - **Blend** ([`Blend`], with a [`BlendTable`](crate::output::BlendTable)): a pixel that
+//! - **Blend** (`Blend`, with a [`BlendTable`]): a pixel that
 //!   passes the depth test (against the opaque surfaces) becomes `table[source][under]`, the
 //!   palette entry nearest the mix of the two colours, and the depth is *not* stored. The
 //!   result depends on the order: blended objects are drawn after the opaque ones, far to
 //!   near (`render::transparency`).
 //!
-//! The seam: a [`Quantizer`] says whether it is plain ([`Quantizer::PLAIN`]); where it is not,
-//! the span loop asks it [`Quantizer::covers`] before the depth test and, where it
-//! [`blends`](Quantizer::BLENDS), stores [`Quantizer::blend`] of the index and the pixel under
-//! it instead of the index and the depth. Plain quantizers (the ramp, [`Bayer4`]) compile to
-//! the loop they had. Both wrap a [`Bayer4`]: an undithered ramp is the Bayer quantizer with
+//! The seam: a `Quantizer` says whether it is plain (`Quantizer::PLAIN`); where it is not,
+//! the span loop asks it `Quantizer::covers` before the depth test and, where it
+//! blends (`Quantizer::BLENDS`), stores `Quantizer::blend` of the index and the pixel under
+//! it instead of the index and the depth. Plain quantizers (the ramp, `Bayer4`) compile to
+//! the loop they had. Both wrap a `Bayer4`: an undithered ramp is the Bayer quantizer with
 //! every threshold at the middle, which maps as the ramp does (`Bayer4::plain`), so one
 //! writer serves dithered and plain objects.
 //!
