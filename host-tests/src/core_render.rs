@@ -620,7 +620,7 @@ impl CoreMesh {
     }
 }
 
-/// Each object's [`MeshFacts`](zscan::visibility::MeshFacts), computed once, with the
+/// Each object's [`MeshFacts`], computed once, with the
 /// buffers its edge table borrows (`words[i]` for object `i`, sized by
 /// [`MeshFacts::words_needed`](zscan::visibility::MeshFacts::words_needed): memory
 /// proportional to the mesh).
