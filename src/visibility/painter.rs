@@ -16,7 +16,10 @@
 //! 4. `Q` lies wholly in front of (or on) `P`'s plane;
 //! 5. their projections are disjoint (the line through an edge of one has the other on it or
 //!    outside: their interiors are disjoint, and the fill rule draws no sample for both, so
-//!    mesh neighbours sharing an edge or a corner pass; `separated`).
+//!    mesh neighbours sharing an edge or a corner pass; `separated`), or they share no pixel
+//!    sample of the frame (no lattice point of the frame lies inside or on the edges of both,
+//!    row by row, exactly: `share_a_sample`). Two triangles that touch or overlap only
+//!    between pixel centres (the bunny's folds near its outline) then need no split.
 //!
 //! **Ties** follow the z-buffer's rule: where two surfaces are at exactly the same depth, the
 //! z-buffer keeps the one it drew first, the triangle stored first (scene order). So "or on"
@@ -33,18 +36,31 @@
 //!
 //! When every test fails, `Q` is moved before `P` and marked; a marked `Q` failing again is a
 //! cycle (or interpenetration), and test 6 **splits** `P` by `Q`'s plane into the piece behind
-//! it and the piece in front (when each is cut by the other's plane already, one entry of the
-//! cycle of moved entries is split by the plane of another that it crosses). A piece keeps
-//! `P`'s corners (so its pixels get `P`'s exact depth and level) and its cuts, a chain through
-//! the store (its last cut and the piece it was cut from, whose cuts it inherits), so a piece
-//! may be cut as often as the store holds pieces and the split budget allows; drawn row by row, each row restricted to the columns whose samples lie on its side of the cut planes,
-//! so the pieces of `P` write exactly `P`'s pixels. The tests judge a piece by its own
+//! it and the piece in front. When neither crosses the other's plane (each is cut by it
+//! already), the cycle runs through other moved entries: one of them is split by the plane of
+//! another that it crosses, preferably one it may not precede, else any (a **third plane**:
+//! the pieces then lie on one side of it each). A group of pieces none of which crosses the
+//! plane of another has an order (each plane leaves the others on one side: ordering by one
+//! plane, then within each side, is the binary partition by the triangles' own planes), and
+//! tests 3 and 4 see that order through the third planes too: `A` cut behind a plane that
+//! `B` lies wholly in front of may be painted before `B`, and so may `A` wholly behind a plane
+//! that `B` was cut in front of. Splitting goes on while the split budget and the store allow
+//! (each named in its error when it runs out); a group that no split and no test can order
+//! is refused as [`RenderError::PainterCycle`] (none is left in the tests' random scenes:
+//! soups of large triangles, interpenetrating cubes from any view). A piece keeps `P`'s
+//! corners (so its pixels get `P`'s exact depth and level) and its cuts, a chain through the
+//! store (its last cut and the piece it was cut from, whose cuts it inherits), so a piece may
+//! be cut as often as the store holds pieces and the split budget allows; drawn row by row,
+//! each row restricted to the columns whose samples lie on its side of the cut planes, so the
+//! pieces of `P` write exactly `P`'s pixels. The tests judge a piece by its own
 //! polygon: tests 1–4 by its **outline** (`outline.rs`: the triangle clipped by its cuts, a
 //! superset of the piece with exact integer vertices, clipped by its latest three cuts, so what
 //! holds for the outline holds for the piece, and an empty outline is a piece with no sample),
-//! by its cuts (a piece behind
-//! `Q`'s plane passes test 3 against `Q`; a plane that cut both, one behind and one in front,
-//! separates them), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
+//! by its cuts (a piece behind `Q`'s plane passes test 3 against `Q`; a plane that cut both,
+//! one behind and one in front, separates them, and so does a third plane that cut one when
+//! the other's outline lies on the other side; samples of both on that plane tie, so the
+//! outline must then lie strictly off it unless the tie rule already gives the pair this
+//! order), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
 //! `P` in the tests' order instead: the painter without test 6, whose wrong pixels
 //! `tests/visibility.rs` counts.
 //!
@@ -151,6 +167,7 @@ pub fn render_painter<T: StatsSink, const S: u32>(
         let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
         let mut painter = Painter {
             scene,
+            window: target.buffers(),
             triangles,
             normals,
             order,
@@ -179,6 +196,8 @@ pub fn render_painter<T: StatsSink, const S: u32>(
 struct Painter<'m, const S: u32> {
     /// The scene (its objects' shading: a fast Gouraud triangle is not split).
     scene: &'m Scene<'m>,
+    /// The frame's pixels: pairs that share no sample in it may be painted in either order.
+    window: Window,
     triangles: &'m mut [StoredTriangle<S>],
     /// The front triangles' plane normals (by base index).
     normals: &'m [Normal],
@@ -300,7 +319,7 @@ impl<const S: u32> Painter<'_, S> {
 
     /// Whether painting `a` before `b` is right wherever they overlap (tests 1–5), counted.
     fn may_precede(&mut self, a: usize, b: usize) -> bool {
-        match deciding_test((self.triangles, self.normals), a, b) {
+        match deciding_test((self.triangles, self.normals), self.window, a, b) {
             Some(test) => {
                 self.tests[test] += 1;
                 true
@@ -316,13 +335,20 @@ impl<const S: u32> Painter<'_, S> {
         let all = (&*self.triangles, self.normals);
         let group = self.moved.max(last + 1).min(self.count);
         let entry = |i: usize| (self.order[i] & !MOVED) as usize;
-        (0..group).find_map(|i| {
-            let x = entry(i);
-            (0..group)
-                .map(entry)
-                .find(|&y| y != x && straddles(all, x, y) && deciding_test(all, x, y).is_none())
-                .map(|y| (i, y))
-        })
+        let find = |blocked: bool| {
+            (0..group).find_map(|i| {
+                let x = entry(i);
+                (0..group)
+                    .map(entry)
+                    .find(|&y| {
+                        y != x
+                            && straddles(all, x, y)
+                            && (!blocked || deciding_test(all, self.window, x, y).is_none())
+                    })
+                    .map(|y| (i, y))
+            })
+        };
+        find(true).or_else(|| find(false))
     }
 
     /// Removes the first entry (painted).
@@ -380,11 +406,16 @@ impl<const S: u32> Painter<'_, S> {
 /// it drew first, the earlier stored base triangle. When that is `b`, painting `b` last keeps
 /// it, so "behind or at the same depth" suffices; when it is `a`, `a` must lie strictly
 /// behind `b` wherever they overlap (`margin` 1 below: a strict inequality of integers).
-fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<usize> {
+fn deciding_test<const S: u32>(
+    all: Store<'_, S>,
+    window: Window,
+    a: usize,
+    b: usize,
+) -> Option<usize> {
     let t = all.0;
     let (ta, tb) = (&t[a], &t[b]);
     if ta.is_piece() || tb.is_piece() {
-        return deciding_test_pieces(all, ta, tb);
+        return deciding_test_pieces(all, window, ta, tb);
     }
     let margin = tie_margin(ta, tb);
     let (a_near, _) = ta.depth_range();
@@ -409,8 +440,8 @@ fn deciding_test<const S: u32>(all: Store<'_, S>, a: usize, b: usize) -> Option<
     if (0..3).all(|k| a_plane.behind(tb, k) <= -margin) {
         return Some(3);
     }
-    // 5. Projections disjoint.
-    (separated(ta, tb) || separated(tb, ta)).then_some(4)
+    // 5. Projections disjoint, or sharing no sample of the frame.
+    (separated(ta, tb) || separated(tb, ta) || !share_a_sample(ta, tb, window)).then_some(4)
 }
 
 /// 1 when `a` was stored (so drawn by the z-buffer) before `b`, which then keeps `a` where
@@ -425,6 +456,7 @@ fn tie_margin<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> i12
 /// on the base triangles. An empty piece (no sample) may go anywhere: counted as test 2.
 fn deciding_test_pieces<const S: u32>(
     all: Store<'_, S>,
+    window: Window,
     ta: &StoredTriangle<S>,
     tb: &StoredTriangle<S>,
 ) -> Option<usize> {
@@ -470,8 +502,34 @@ fn deciding_test_pieces<const S: u32>(
     {
         return Some(3);
     }
-    // 5. Projections disjoint (the base triangles'; a piece lies within its base).
-    (separated(ta, tb) || separated(tb, ta)).then_some(4)
+    // 3 and 4 by a third plane: A cut behind a plane that B lies wholly in front of, or B
+    // cut in front of a plane that A lies wholly behind. Where both have samples on that
+    // plane (a piece keeps them when `draw_piece`'s rule gives them its side, a polygon that
+    // only touches the plane has them), they tie, and painting B last is right only when B
+    // was stored first: otherwise the other must lie strictly off the plane.
+    let tie_on = |cut: u32, piece: &StoredTriangle<S>, behind: bool| {
+        margin == 1 && ((cut < piece.base) == behind)
+    };
+    if cuts_a.clone().any(|c| {
+        c & CUT_FRONT == 0 && c != tb.base && {
+            let m = tie_on(c, ta, true) as i128;
+            ob.side_bounds(Plane::stored(all, c).oriented(tb)).1 <= -m
+        }
+    }) {
+        return Some(2);
+    }
+    if cuts_b.clone().any(|c| {
+        let by = c & !CUT_FRONT;
+        c & CUT_FRONT != 0 && by != ta.base && {
+            let m = tie_on(by, tb, false) as i128;
+            oa.side_bounds(Plane::stored(all, by).oriented(ta)).0 >= m
+        }
+    }) {
+        return Some(3);
+    }
+    // 5. Projections disjoint, or sharing no sample of the frame (the base triangles'; a
+    // piece lies within its base).
+    (separated(ta, tb) || separated(tb, ta) || !share_a_sample(ta, tb, window)).then_some(4)
 }
 
 /// Whether `a` (its outline, for a piece) has points on both sides of `b`'s plane, and `a`
@@ -530,6 +588,55 @@ fn separated<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> bool
             e * orient <= 0
         })
     })
+}
+
+/// Whether some pixel sample of `window` lies inside or on the edges of both `a` and `b`
+/// (their closed triangles, a superset of what the fill rule draws of each): when none does,
+/// no pixel is drawn by both, and either may be painted first. Row by row over the rows both
+/// may cover, each row's columns of each triangle exactly (`closed_columns`), stopping at the
+/// first row where they meet.
+fn share_a_sample<const S: u32>(
+    a: &StoredTriangle<S>,
+    b: &StoredTriangle<S>,
+    window: Window,
+) -> bool {
+    let ((ra_lo, ra_hi), (rb_lo, rb_hi)) = (a.rows(), b.rows());
+    let rows = ra_lo.max(rb_lo).max(window.y0)..=ra_hi.min(rb_hi).min(window.y1 - 1);
+    rows.into_iter().any(|y| {
+        let (a_lo, a_hi) = closed_columns(a, y);
+        let (b_lo, b_hi) = closed_columns(b, y);
+        let lo = a_lo.max(b_lo).max(window.x0 as i64);
+        let hi = a_hi.min(b_hi).min(window.x1 as i64 - 1);
+        lo <= hi
+    })
+}
+
+/// The columns `lo..=hi` (empty when `lo > hi`) of row `y` whose samples `(x·2^S, y·2^S)`
+/// lie inside or on the edges of `t`. Each edge's function is affine along the row,
+/// `c·X + d ≥ 0` inside, with `|c| < 2^29` and `|d| < 2^60` (`i128`); its bound on `X` is
+/// divided by `2^S` with the floor or ceiling, exactly.
+fn closed_columns<const S: u32>(t: &StoredTriangle<S>, y: i32) -> (i64, i64) {
+    let orient = t.twice_area().signum() as i128;
+    let sample_y = (y as i128) << S;
+    let (mut lo, mut hi) = (i64::MIN, i64::MAX);
+    for k in 0..3 {
+        let (p, q) = (t.v[k], t.v[(k + 1) % 3]);
+        let (ex, ey) = ((q.x - p.x) as i128, (q.y - p.y) as i128);
+        // e(X) = ex·(Y − p_y) − ey·(X − p_x), inside where orient·e ≥ 0.
+        let c = -ey * orient;
+        let d = (ex * (sample_y - p.y as i128) + ey * p.x as i128) * orient;
+        let unit = c << S;
+        if c > 0 {
+            // x ≥ −d / (c·2^S).
+            lo = lo.max(-d.div_euclid(unit) as i64);
+        } else if c < 0 {
+            // x ≤ d / (−c·2^S).
+            hi = hi.min(d.div_euclid(-unit) as i64);
+        } else if d < 0 {
+            return (1, 0);
+        }
+    }
+    (lo, hi)
 }
 
 /// Paints `t` (a whole triangle at once; a piece row by row, each row's columns restricted to
@@ -604,5 +711,51 @@ fn kept_columns(a: i32, b: i32, keep: impl Fn(i32) -> bool) -> (i32, i32) {
                 (hi, b)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::SubpixelPoint;
+    use crate::test_rng::XorShift;
+
+    /// `closed_columns` against the definition: every sample of a row tested on the three
+    /// edge functions (inside or on each, for either orientation).
+    #[test]
+    fn closed_columns_are_the_samples_on_or_inside() {
+        let mut rng = XorShift::new(0x0c01_0030);
+        let mut seen = 0;
+        for _ in 0..2000 {
+            let mut t = StoredTriangle::<4>::DEFAULT;
+            // Small triangles (corners within 24 × 24 pixels), some with lattice corners.
+            t.v = [0; 3].map(|_| {
+                let (x, y) = (rng.range(-64, 384) as i32, rng.range(-64, 384) as i32);
+                if rng.chance(20) {
+                    SubpixelPoint::new(x & !15, y & !15)
+                } else {
+                    SubpixelPoint::new(x, y)
+                }
+            });
+            let area = t.twice_area();
+            if area == 0 {
+                continue;
+            }
+            for y in -5..25 {
+                let (lo, hi) = closed_columns(&t, y);
+                for x in -5..25i64 {
+                    let (sx, sy) = (x << 4, (y as i64) << 4);
+                    let inside = (0..3).all(|k| {
+                        let (p, q) = (t.v[k], t.v[(k + 1) % 3]);
+                        let e = (q.x as i64 - p.x as i64) * (sy - p.y as i64)
+                            - (q.y as i64 - p.y as i64) * (sx - p.x as i64);
+                        e * area.signum() >= 0
+                    });
+                    assert_eq!(inside, lo <= x && x <= hi, "{:?} row {y} col {x}", t.v);
+                    seen += inside as u32;
+                }
+            }
+        }
+        assert!(seen > 10_000, "{seen} samples inside");
     }
 }
