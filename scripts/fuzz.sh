@@ -3,7 +3,10 @@
 #   scripts/fuzz.sh [--checked] [--progress] COUNT [SEED] [FIRST]
 # runs COUNT cases (default 100000) of the campaign SEED (default 1), from case index FIRST
 # (default 0: two shards of one campaign run as FIRST = 0 and FIRST = COUNT), over the scene
-# parser and renderer, the OBJ reader, `zscan spans` and the core API. It prints every input
+# parser and renderer, the OBJ reader, `zscan spans`, the core's buffers, the planner (`plan`,
+# `plan_frame`, `draw_plan` with random memory), every visibility method against the z-buffer
+# and the fill under both rules and through `ConvexWindow` against the exact reference
+# (host-tests/src/fuzz/, one file per family). It prints every input
 # tried, or with --progress one line every 100,000 cases (a case is regenerated from its seed
 # and index), then the build, the cases per target, the accepted inputs, the time per target
 # and the failures. --checked runs the `checked` profile (overflow checks and debug

@@ -409,7 +409,9 @@ fn plan_chart_data_is_checked_field_by_field() {
 
 /// Keys out of range or of the wrong form are named with what is accepted: `scale` of two
 /// numbers (serde's "did not match any variant of untagged enum ScaleKey"), a specular
-/// exponent past a byte ("expected u8"), a viewport past 16 bits ("expected u16").
+/// exponent past a byte ("expected u8"), a viewport past 16 bits ("expected u16"), and every
+/// other integer key (background, ambient, a light's intensity, generator counts, pixel
+/// aspect, depth bits, the LUT's levels, colours and entries) past its type's range.
 #[test]
 fn scene_keys_are_named_with_their_range() {
     let dir = out_dir("keys");
@@ -445,6 +447,51 @@ fn scene_keys_are_named_with_their_range() {
             "height",
             format!("[viewport]\nheight = -1\n\n{cube}"),
             "[viewport] height = -1 is outside the supported sizes 1..=4096 pixels",
+        ),
+        (
+            "background",
+            format!("[render]\nbackground = 300\n\n{cube}"),
+            "300 is outside the range 0..=255",
+        ),
+        (
+            "depth_bits",
+            format!("[render]\ndepth_bits = -16\n\n{cube}"),
+            "-16 is outside the range 0..=4294967295",
+        ),
+        (
+            "ambient",
+            format!("[lighting]\nambient = 256\n\n{cube}"),
+            "256 is outside the range 0..=255",
+        ),
+        (
+            "intensity",
+            format!("[[lighting.light]]\ntoward = [0, 0, 1]\nintensity = -1\n\n{cube}"),
+            "-1 is outside the range 0..=255",
+        ),
+        (
+            "segments",
+            "[[object]]\ngenerator = \"sphere\"\nsegments = 70000\n".to_string(),
+            "70000 is outside the range 0..=65535",
+        ),
+        (
+            "pixel_aspect",
+            format!("[viewport]\npixel_aspect = [1, 65536]\n\n{cube}"),
+            "65536 is outside the range 0..=65535",
+        ),
+        (
+            "lut_levels",
+            format!("[lut]\nlevels = 256\n\n{cube}"),
+            "256 is outside the range 0..=255",
+        ),
+        (
+            "lut_entries",
+            format!("[lut]\nentries = [[0, 1, 2, 999]]\n\n{cube}"),
+            "999 is outside the range 0..=255",
+        ),
+        (
+            "lut_colours",
+            format!("[lut]\ncolours = [[1, 2]]\n\n{cube}"),
+            "expected 3 integers, got 2",
         ),
     ] {
         let scene = scene_file(&dir, name, &text);

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use zscan_host::fuzz::{campaign, campaign_from, check, Case, Log};
+use zscan_host::fuzz::{campaign, campaign_from, check, Case, Log, Target, TARGETS};
 
 fn corpus() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fuzz-corpus")
@@ -24,23 +24,30 @@ fn report_failures(report: &zscan_host::fuzz::Report) {
     panic!("{} failing cases:\n{}", names.len(), names.join("\n"));
 }
 
-/// A bounded campaign: 20,000 cases (5,000 per target) of a fixed seed.
+/// The targets' names, in [`Target::ALL`]'s order.
+fn names() -> [&'static str; TARGETS] {
+    Target::ALL.map(Target::name)
+}
+
+/// A bounded campaign: 21,000 cases (3,000 per target) of a fixed seed.
 #[test]
 fn bounded_campaign() {
     let start = std::time::Instant::now();
-    let report = campaign(0x5EED_2026_1201, 20_000, None);
+    let report = campaign(0x5EED_2026_1201, 21_000, None);
     eprintln!(
-        "fuzz: {} cases in {:?}, accepted (scene, obj, spans, core) = {:?}, time {:?}, slowest {:?}",
+        "fuzz: {} cases in {:?}, accepted {:?} = {:?}, time {:?}, slowest {:?}",
         report.cases,
         start.elapsed(),
+        names(),
         report.accepted,
         report.time,
         report.slowest
     );
     report_failures(&report);
-    // The generators reach past the input checks: a fair share of each target is accepted.
+    // The generators reach past the input checks: a share of each target is accepted (the
+    // OBJ text, the most hostile, about 4 %).
     assert!(
-        report.accepted.iter().all(|&a| a >= 100),
+        report.accepted.iter().all(|&a| a >= 50),
         "{:?}",
         report.accepted
     );
@@ -93,15 +100,20 @@ fn long_campaign() {
         Log::Inputs(&mut out)
     };
     let report = campaign_from(seed, first..first + cases, log);
-    let per_target = |t: usize| (first..first + cases).filter(|k| k % 4 == t as u64).count();
+    let per_target = |t: usize| {
+        (first..first + cases)
+            .filter(|k| k % TARGETS as u64 == t as u64)
+            .count()
+    };
     println!(
         "fuzz: seed {seed}, cases {first}..{}, overflow checks {}: {} cases in {:?}; per target \
-         (scene, obj, spans, core): run {:?}, accepted {:?}, time {:?}; slowest {:?}; {} failures",
+         {:?}: run {:?}, accepted {:?}, time {:?}; slowest {:?}; {} failures",
         first + cases,
         if overflow_checks { "on" } else { "off" },
         report.cases,
         start.elapsed(),
-        [0, 1, 2, 3].map(per_target),
+        names(),
+        core::array::from_fn::<usize, TARGETS, _>(per_target),
         report.accepted,
         report.time,
         report.slowest.as_ref().map(|(c, t)| (c.target.name(), *t)),

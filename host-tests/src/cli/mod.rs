@@ -9,6 +9,7 @@ pub mod failures;
 pub mod lines;
 pub mod mesh;
 pub mod out;
+pub mod ranged;
 pub mod render;
 pub mod spans;
 pub mod visibility_chart;

@@ -261,6 +261,7 @@ pub struct ViewportSection {
     /// Principal point in pixels (default the picture's centre).
     pub principal: Option<[f64; 2]>,
     /// Physical pixel shape `[r_x, r_y]`.
+    #[serde(deserialize_with = "super::ranged::array")]
     pub pixel_aspect: [u16; 2],
 }
 
@@ -280,10 +281,13 @@ impl Default for ViewportSection {
 #[serde(deny_unknown_fields, default)]
 pub struct RenderSection {
     /// Depth sample width, 16 or 32.
+    #[serde(deserialize_with = "super::ranged::int")]
     pub depth_bits: u32,
     /// Sub-pixel bits (only 4 is supported).
+    #[serde(deserialize_with = "super::ranged::int")]
     pub subpixel_bits: u32,
     /// Palette index of the background.
+    #[serde(deserialize_with = "super::ranged::int")]
     pub background: u8,
     /// Default shading of the objects.
     pub shade: ShadeKey,
@@ -337,7 +341,7 @@ impl ShadeKey {
 #[serde(deny_unknown_fields)]
 pub struct LightingSection {
     /// Ambient intensity `I_a`, `0..=255`.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::ranged::int")]
     pub ambient: u8,
     /// `[[lighting.light]]` entries (at most 4).
     #[serde(default, rename = "light")]
@@ -354,6 +358,7 @@ pub struct LightKey {
     /// Direction toward a directional light (world, any non-zero length).
     pub toward: Option<[f64; 3]>,
     /// Intensity `I_p`, `0..=255`.
+    #[serde(deserialize_with = "super::ranged::int")]
     pub intensity: u8,
 }
 
@@ -541,12 +546,16 @@ pub struct LutSection {
     /// Grey ramp or shaded palette.
     pub kind: LutKind,
     /// Base colours of the materials (shaded).
+    #[serde(deserialize_with = "super::ranged::arrays")]
     pub colours: Vec<[u8; 3]>,
     /// Shade levels per material (shaded).
+    #[serde(deserialize_with = "super::ranged::int")]
     pub levels: u8,
     /// Index of material 0's darkest shade (shaded; default 1).
+    #[serde(deserialize_with = "super::ranged::option")]
     pub first: Option<u8>,
     /// `[index, r, g, b]` entries set after building the table.
+    #[serde(deserialize_with = "super::ranged::arrays")]
     pub entries: Vec<[u8; 4]>,
 }
 
@@ -626,12 +635,15 @@ pub struct ObjectSection {
     /// A mesh shipped with the repository (`"bunny"`).
     pub builtin: Option<Spanned<String>>,
     /// Sphere segments.
+    #[serde(default, deserialize_with = "super::ranged::option")]
     pub segments: Option<u16>,
     /// Sphere rings, or torus rings around the axis.
+    #[serde(default, deserialize_with = "super::ranged::option")]
     pub rings: Option<u16>,
     /// Sphere radius.
     pub radius: Option<f64>,
     /// Torus or prism sides.
+    #[serde(default, deserialize_with = "super::ranged::option")]
     pub sides: Option<u16>,
     /// Torus major radius.
     pub major: Option<f64>,
