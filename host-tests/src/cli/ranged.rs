@@ -2,7 +2,7 @@
 //! field they fill, so that a value out of range is named with its range ("300 is outside
 //! 0..=255") instead of serde's "invalid value: integer `300`, expected u8". Used with
 //! `#[serde(deserialize_with = "...")]` on the `u8`, `u16`, `u32` and `usize` fields of
-//! `render.rs`' sections: [`int`], [`option`], [`array`] and [`arrays`].
+//! `render.rs`' sections: [`int()`], [`option()`], [`array()`] and [`arrays()`].
 
 use serde::de::Error;
 use serde::{Deserialize, Deserializer};
