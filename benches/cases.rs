@@ -1184,11 +1184,11 @@ pub mod scene {
     /// Rows of a compact band ([`frame_compact`]): the tallest band whose memory, with the
     /// bunny's compact scratch, leaves room for the stack in 32 KB of RAM
     /// (`scripts/footprint.sh`).
-    pub const COMPACT_ROWS: u16 = 11;
+    pub const COMPACT_ROWS: u16 = 10;
     const COMPACT_BAND: usize = super::WIDTH as usize * COMPACT_ROWS as usize;
 
     /// The memory of a compact banded frame of any standard scene: one band of pixels and
-    /// 16-bit depths, 8 bytes per vertex, 1 per polygon (`CompactSizes::bytes`: 28,946 bytes
+    /// 16-bit depths, 8 bytes per vertex, 1 per polygon (`CompactSizes::bytes`: 27,986 bytes
     /// for the bunny).
     pub struct CompactMemory {
         /// The band's pixels.

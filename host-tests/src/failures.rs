@@ -279,7 +279,7 @@ pub enum Method {
     ZBuffer32,
     /// The z-buffer in bands of 16 rows, 16-bit depth, with the polygon table.
     Bands16,
-    /// The compact bands of 11 rows, 16-bit depth (the 32 KB footprint's layout).
+    /// The compact bands of 11 rows, 16-bit depth.
     Compact11,
 }
 

@@ -28,7 +28,7 @@
 //!
 //! ([`CompactSizes::of`] counts `V`, `L` and `P` for a scene, [`CompactSizes::bytes`] adds
 //! them up.) The standard bunny (1,839 vertices, 3,674 triangles, levels given per vertex) at
-//! 320 × 240 in bands of 11 rows with 16-bit depth: 10,560 + 14,712 + 3,674 = 28,946 bytes
+//! 320 × 240 in bands of 10 rows with 16-bit depth: 9,600 + 14,712 + 3,674 = 27,986 bytes
 //! (`scripts/footprint.sh` draws it so in 32 KB of RAM, the stack included).
 //!
 //! # Cost

@@ -38,7 +38,7 @@
 //! clipper: 8 bytes per vertex ([`CompactVertex`]) and 1 per polygon ([`PolygonTop`]) besides
 //! the band, `width·band_rows·(1 + depth bytes) + 8·V + L + P` bytes in all
 //! ([`CompactSizes`]; `L`: one level byte per vertex of lit Gouraud objects). The standard
-//! bunny at 320 × 240 in bands of 11 rows takes 28,946 bytes, drawn with its stack in 32 KB of
+//! bunny at 320 × 240 in bands of 10 rows takes 27,986 bytes, drawn with its stack in 32 KB of
 //! RAM on a Cortex-M0 (`scripts/footprint.sh`).
 //!
 //! ## Numeric contract

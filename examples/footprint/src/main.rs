@@ -1,7 +1,7 @@
 //! zscan's footprint firmware: the standard bunny (1,839 vertices, 3,674 triangles, mesh in
 //! flash), 320×240, exact Gouraud with the 16-bit z-buffer's picture, drawn on a Cortex-M0
 //! with **32 KB of RAM and 256 KB of flash** (the nRF51822-QFAC's sizes: `memory.x` beside
-//! `Cargo.toml`) by `render_in_compact_bands` in bands of 11 rows; each finished band is streamed
+//! `Cargo.toml`) by `render_in_compact_bands` in bands of 10 rows; each finished band is streamed
 //! into the bench cases' FNV-1a checksum, as a display flush would stream it. It prints, over
 //! semihosting, one line:
 //!
@@ -110,7 +110,7 @@ fn stack_peak() -> usize {
 
 #[entry]
 fn main() -> ! {
-    // The frame's memory, on the stack like the rest (28,946 bytes: see CompactSizes::bytes).
+    // The frame's memory, on the stack like the rest (27,986 bytes: see CompactSizes::bytes).
     let mut memory = cases::scene::CompactMemory::new();
     paint_stack();
     zscan_bench_begin(0);
