@@ -21,3 +21,4 @@ pub mod reference;
 pub mod scenes;
 #[path = "../../src/test_rng.rs"]
 pub mod test_rng;
+pub mod texture_png;

@@ -12,7 +12,7 @@
 //! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
 //! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]`, `toward = [x,y,z]` or `spot = [x,y,z]` with `axis = [x,y,z]` and `cone = [inner, outer]` (half-angles in degrees), `attenuation = [c, l, q]` for a point or spot, and `intensity` `0..=255` |
 //! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
-//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `wireframe` = `"all"` \| `"front"` \| `"hidden"` (drawn as lines instead of shaded: every edge, the front faces' edges, hidden lines removed through the depth buffer), `line_index` the lines' palette index (the ramp's brightest); `opacity` = `0..=16` (screen door: pixels drawn of every 4×4 block) or `blend` = `0..=1` (blended over what lies behind through a table built from `[lut]`; drawn after the opaque objects, far to near, by the z-buffer only) |
+//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `wireframe` = `"all"` \| `"front"` \| `"hidden"` (drawn as lines instead of shaded: every edge, the front faces' edges, hidden lines removed through the depth buffer), `line_index` the lines' palette index (the ramp's brightest); `opacity` = `0..=16` (screen door: pixels drawn of every 4×4 block) or `blend` = `0..=1` (blended over what lies behind through a table built from `[lut]`; drawn after the opaque objects, far to near, by the z-buffer only); `texture`, `texture_mode`, `texture_lit`, `uv_scale` (section "Textures") |
 //! | `[[lines]]` | a 3D line list in world coordinates: `points` = `[[x,y,z], ...]`, `segments` = `[[i, j], ...]` (indices into `points`), `index` palette index (255), `point_size` (0: no points; 1 to 16: each point a square of that side) |
 //!
 //! Generators (the core's [`zscan::geometry::generators`], buffers allocated here):
@@ -29,6 +29,35 @@
 //! (degrees, right-hand rule; SCENES.md's cube is `rotate_deg = [20, 30, 0]`), then
 //! `translate = T`. The placement is done here in `f64` and the world positions are rounded
 //! once to the core's I16F16 (the object's core transform is the identity).
+//!
+//! ## Textures
+//! An object with `texture = "file.png"` (path relative to the TOML file) shows the image over
+//! its mesh's per-corner texture coordinates, drawn by the core's textured span kind:
+//! - **the image** ([`read_texture`](crate::texture_png::read_texture)): texel `(i, j)` is the
+//!   image's column `i`, row `j` as stored (top row first: row 0 lies at `v = 0`); an indexed PNG
+//!   gives its palette indices as they are (the scene's `[lut]` colours them); a grey or RGB(A)
+//!   PNG is mapped to the `[lut]` by nearest colour, the entry of least squared RGB distance
+//!   (grey `g` as `(g, g, g)`, alpha ignored, the lowest index among equals). Sides
+//!   `1..=1024` texels (the core's `MAX_TEXTURE_SIDE`); a power-of-two side wraps, another
+//!   clamps (the core's rule).
+//! - **the coordinates**: the generators' own (the core's `UNIT_CUBE_UVS`, `uv_sphere_uvs`,
+//!   `torus_uvs`, `hollow_prism_uvs`; the quad `(0, 0), (1, 0), (1, 1), (0, 1)` from its
+//!   lower-left corner, `v` up), or an OBJ file's `vt` (`v/vt` and `v/vt/vn` corners, every
+//!   corner of every face; OBJ's `v` runs up the image, so the core's is `1 − v`); the builtin
+//!   bunny has none (an error). `uv_scale = s` or `[su, sv]` multiplies them (each factor in
+//!   `0 < s ≤ 127`; the products rounded to the core's Q8.8, `1/256`, and each checked within
+//!   `−128 ≤ u, v < 128`, else an error naming the value).
+//! - **`texture_mode`** = `"exact"` (default) \| `"sub16"` \| `"sub8"` \| `"affine"`: the core's
+//!   `TextureMode::Exact`, `Subdivided16`, `Subdivided8`, `Affine`.
+//! - **`texture_lit`** (true): the texel and the object's light level (its `material`, host- or
+//!   core-lit, flat or Gouraud) go through a shade table of [`TEXTURE_SHADE_LEVELS`] levels built
+//!   from the `[lut]` by the core's `shade_table`; `false` writes the texels as they are.
+//!
+//! A textured object cannot be a wireframe, transparent (`opacity`, `blend`) or dithered, and is
+//! not core-lit Phong (the core refuses it in words); `gouraud-fast` draws what `gouraud` draws
+//! (the textured span interpolates the level exactly). The z-buffer (whole frames and `--bands`),
+//! back faces alone and the reverse painter draw textures; the painter, the scan-line and
+//! Warnock's subdivision refuse them in the core's words.
 //!
 //! ## Wireframes, lines and points
 //! Wireframe objects and `[[lines]]` are drawn after the shaded objects, in the file's order,
@@ -72,12 +101,12 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use serde::Deserialize;
 use toml::Spanned;
 use zscan::geometry::camera::{Camera, FovAxis, Lens, OrthoView, Viewport};
 use zscan::geometry::generators;
-use zscan::geometry::mesh::{Mesh, PolygonSizes};
+use zscan::geometry::mesh::{Mesh, PolygonSizes, TexCoord, TEX_ONE};
 use zscan::geometry::trig::BinaryAngle;
 use zscan::geometry::vector::Vec3;
 use zscan::lighting::{
@@ -90,6 +119,7 @@ use zscan::render::{
     Wireframe,
 };
 use zscan::scene::{Intensities, Object, Scene, Transparency};
+use zscan::texture::{shade_table, ShadeTable, Texture, TextureMode, Texturing};
 
 use super::CliError;
 use crate::core_render::coord;
@@ -837,7 +867,84 @@ pub struct ObjectSection {
     /// Blended transparency: the object's opacity over what lies behind, `0..=1` (a blend
     /// table over the scene's `[lut]`, at 1/256 steps).
     pub blend: Option<f64>,
+    /// A PNG texture, relative to the scene file (module doc, "Textures").
+    pub texture: Option<Spanned<String>>,
+    /// How exactly the texture follows the perspective (default exact).
+    pub texture_mode: Option<TextureModeKey>,
+    /// Texels lit through a shade table (default true) or written as they are.
+    pub texture_lit: Option<bool>,
+    /// Factor on the texture coordinates, uniform or `[su, sv]`.
+    pub uv_scale: Option<UvScaleKey>,
 }
+
+/// `texture_mode` values: the core's [`TextureMode`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+pub enum TextureModeKey {
+    /// [`TextureMode::Exact`].
+    #[serde(rename = "exact")]
+    Exact,
+    /// [`TextureMode::Subdivided16`].
+    #[serde(rename = "sub16", alias = "subdivided16")]
+    Sub16,
+    /// [`TextureMode::Subdivided8`].
+    #[serde(rename = "sub8", alias = "subdivided8")]
+    Sub8,
+    /// [`TextureMode::Affine`].
+    #[serde(rename = "affine")]
+    Affine,
+}
+
+impl TextureModeKey {
+    fn mode(self) -> TextureMode {
+        match self {
+            TextureModeKey::Exact => TextureMode::Exact,
+            TextureModeKey::Sub16 => TextureMode::Subdivided16,
+            TextureModeKey::Sub8 => TextureMode::Subdivided8,
+            TextureModeKey::Affine => TextureMode::Affine,
+        }
+    }
+}
+
+/// `uv_scale`: one factor for `u` and `v`, or one each. Read through [`toml::Value`] so that a
+/// value of another form is named with the forms accepted.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(try_from = "toml::Value")]
+pub struct UvScaleKey(pub [f64; 2]);
+
+impl TryFrom<toml::Value> for UvScaleKey {
+    type Error = String;
+
+    fn try_from(v: toml::Value) -> Result<Self, String> {
+        let number = |v: &toml::Value| match v {
+            toml::Value::Float(f) => Some(*f),
+            toml::Value::Integer(i) => Some(*i as f64),
+            _ => None,
+        };
+        match &v {
+            toml::Value::Array(a) if a.len() == 2 => {
+                if let (Some(u), Some(w)) = (number(&a[0]), number(&a[1])) {
+                    return Ok(UvScaleKey([u, w]));
+                }
+            }
+            other => {
+                if let Some(s) = number(other) {
+                    return Ok(UvScaleKey([s, s]));
+                }
+            }
+        }
+        Err(format!(
+            "`uv_scale` must be a number (`uv_scale = 4`) or two (`uv_scale = [su, sv]`), got {v}"
+        ))
+    }
+}
+
+/// Largest `uv_scale` factor: the generators' coordinates lie in `0..=1`, so a factor up to
+/// 127 keeps them inside the core's Q8.8 (`−128 ≤ u, v < 128`).
+pub const MAX_UV_SCALE: f64 = 127.0;
+
+/// Light levels of a lit texture's shade table (`zscan::texture::shade_table` over the
+/// scene's `[lut]`: 32 rows of 256 entries, 8 KiB).
+pub const TEXTURE_SHADE_LEVELS: u16 = 32;
 
 /// A mesh in `f64` on the host: positions and polygons (counter-clockwise outward).
 #[derive(Debug, Clone, Default)]
@@ -846,6 +953,22 @@ pub struct HostMesh {
     pub vertices: Vec<[f64; 3]>,
     /// Polygons as vertex indices.
     pub polygons: Vec<Vec<usize>>,
+    /// Texture coordinates, one per polygon corner in the polygons' order (the core's
+    /// `Mesh::with_uvs` table), or empty: none.
+    pub uvs: Vec<TexCoord>,
+}
+
+/// A texture ready for the core: its texels, the corners' coordinates, its mode and shades.
+#[derive(Debug, Clone)]
+pub struct PreparedTexture {
+    /// The image as palette indices.
+    pub image: crate::texture_png::TextureImage,
+    /// Q8.8 coordinates, one per index of the object's mesh.
+    pub uvs: Vec<TexCoord>,
+    /// Exact, subdivided or affine.
+    pub mode: TextureMode,
+    /// The shade table (`TEXTURE_SHADE_LEVELS · 256` entries), or `None`: unlit texels.
+    pub shades: Option<Vec<u8>>,
 }
 
 /// An object ready for the core: rounded tables and its shading.
@@ -881,6 +1004,8 @@ pub struct PreparedObject {
     pub opacity: Option<Opacity>,
     /// The blend table's entries of a blended object.
     pub blend: Option<Box<[u8; BLEND_ENTRIES]>>,
+    /// The texture of a textured object.
+    pub texture: Option<PreparedTexture>,
 }
 
 /// A `[[lines]]` list ready for the core.
@@ -902,9 +1027,29 @@ impl PreparedObject {
             Some(n) => PolygonSizes::Uniform(n),
             None => PolygonSizes::PerPolygon(&self.sizes),
         };
-        let mesh = Mesh::new(&self.vertices, &self.indices, sizes)
+        let mut mesh = Mesh::new(&self.vertices, &self.indices, sizes)
             .map_err(|e| format!("mesh: {}", mesh_error_words(e)))?;
+        if let Some(t) = &self.texture {
+            mesh = mesh
+                .with_uvs(&t.uvs)
+                .map_err(|e| format!("texture coordinates: {e}"))?;
+        }
         let mut o = Object::new(mesh);
+        if let Some(t) = &self.texture {
+            let image = &t.image;
+            let shades = t
+                .shades
+                .as_deref()
+                .map(|s| ShadeTable::new(s, TEXTURE_SHADE_LEVELS))
+                .transpose()
+                .map_err(|e| format!("texture: {e}"))?;
+            o.texture = Some(Texturing {
+                texture: Texture::new(&image.texels, image.width, image.height)
+                    .map_err(|e| format!("texture: {e}"))?,
+                mode: t.mode,
+                shades,
+            });
+        }
         o.intensities = match self.lit {
             Some(material) => Intensities::Lit {
                 material,
@@ -1002,6 +1147,7 @@ fn from_core(mesh: Mesh<'_>) -> HostMesh {
             .polygons()
             .map(|p| p.iter().map(|&i| i as usize).collect())
             .collect(),
+        uvs: mesh.uvs().to_vec(),
     }
 }
 
@@ -1076,7 +1222,10 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
                 )
             })?;
             let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
+            let mut uvs = vec![[0i16; 2]; ni];
+            generators::uv_sphere_uvs(s, r, &mut uvs).map_err(bad)?;
             generators::uv_sphere(s, r, radius, &mut vs, &mut is)
+                .and_then(|m| m.with_uvs(&uvs))
                 .map(from_core)
                 .map_err(bad)
         }
@@ -1092,7 +1241,10 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
                 )
             })?;
             let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
+            let mut uvs = vec![[0i16; 2]; ni];
+            generators::torus_uvs(r, s, &mut uvs).map_err(bad)?;
             generators::torus(r, s, major, minor, &mut vs, &mut is)
+                .and_then(|m| m.with_uvs(&uvs))
                 .map(from_core)
                 .map_err(bad)
         }
@@ -1108,7 +1260,10 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
                 )
             })?;
             let (mut vs, mut is) = (vec![Vec3::ZERO; nv], vec![0u16; ni]);
+            let mut uvs = vec![[0i16; 2]; ni];
+            generators::hollow_prism_uvs(s, &mut uvs).map_err(bad)?;
             generators::hollow_prism(s, outer, inner, hh, &mut vs, &mut is)
+                .and_then(|m| m.with_uvs(&uvs))
                 .map(from_core)
                 .map_err(bad)
         }
@@ -1118,9 +1273,11 @@ fn generate(name: &str, o: &ObjectSection) -> Result<HostMesh, String> {
                 return Err(format!("quad `size` must be positive, got [{w}, {h}]"));
             }
             let (x, y) = (w / 2.0, h / 2.0);
+            let one = TEX_ONE as i16;
             Ok(HostMesh {
                 vertices: vec![[-x, -y, 0.0], [x, -y, 0.0], [x, y, 0.0], [-x, y, 0.0]],
                 polygons: vec![vec![0, 1, 2, 3]],
+                uvs: vec![[0, 0], [one, 0], [one, one], [0, one]],
             })
         }
     }
@@ -1175,8 +1332,13 @@ fn place(mesh: &mut HostMesh, o: &ObjectSection) -> Result<(), String> {
     }
     // A mirroring scale turns the winding inside out: restore counter-clockwise outward.
     if s[0] * s[1] * s[2] < 0.0 {
+        let mut at = 0;
         for p in &mut mesh.polygons {
             p.reverse();
+            if let Some(uvs) = mesh.uvs.get_mut(at..at + p.len()) {
+                uvs.reverse();
+            }
+            at += p.len();
         }
     }
     Ok(())
@@ -1281,6 +1443,85 @@ fn object_mesh(o: &ObjectSection, dir: &Path, lines: &LineIndex) -> Result<HostM
     Ok(HostMesh {
         vertices: mesh.vertices,
         polygons: mesh.polygons,
+        uvs: Vec::new(),
+    })
+}
+
+/// The shade table of `lut` for lit textures ([`TEXTURE_SHADE_LEVELS`] levels, the core's
+/// `shade_table`).
+fn texture_shades(lut: &Lut<Rgb888>) -> Vec<u8> {
+    const ENTRIES: usize = TEXTURE_SHADE_LEVELS as usize * 256;
+    let palette = lut.entries().map(|c| [c.r(), c.g(), c.b()]);
+    shade_table::<ENTRIES>(&palette).to_vec()
+}
+
+/// The keys that only a textured object takes.
+fn texture_keys(o: &ObjectSection) -> [(&'static str, bool); 3] {
+    [
+        ("texture_mode", o.texture_mode.is_some()),
+        ("texture_lit", o.texture_lit.is_some()),
+        ("uv_scale", o.uv_scale.is_some()),
+    ]
+}
+
+/// The texture of an object whose `texture` is `file` (module doc, "Textures"): the image
+/// over `lut`, `mesh`'s coordinates times `uv_scale`, the mode, and `shades` (the scene's
+/// table, built at its first use) when lit.
+fn prepare_texture(
+    o: &ObjectSection,
+    file: &Spanned<String>,
+    mesh: &HostMesh,
+    (lut, dir, lines): (&Lut<Rgb888>, &Path, &LineIndex),
+    shades: &mut Option<Vec<u8>>,
+) -> Result<PreparedTexture, String> {
+    let key = format!("`texture` (line {})", lines.line(file.span().start));
+    let corners: usize = mesh.polygons.iter().map(Vec::len).sum();
+    if mesh.uvs.len() != corners {
+        return Err(format!(
+            "{key}: the mesh has no texture coordinates (the generators, the quad and OBJ \
+             files with `vt` on every face corner have them)"
+        ));
+    }
+    let [su, sv] = o.uv_scale.map_or([1.0; 2], |k| k.0);
+    for f in [su, sv] {
+        if !(f.is_finite() && f > 0.0 && f <= MAX_UV_SCALE) {
+            return Err(format!(
+                "`uv_scale` factor {f} is outside 0 < factor ≤ {MAX_UV_SCALE}"
+            ));
+        }
+    }
+    let scaled = |c: i16, f: f64| {
+        let x = (c as f64 * f).round();
+        if (i16::MIN as f64..=i16::MAX as f64).contains(&x) {
+            Ok(x as i16)
+        } else {
+            Err(format!(
+                "`uv_scale`: coordinate {} times {f} is {}, outside the core's Q8.8 range \
+                 −128 ≤ u, v < 128",
+                c as f64 / 256.0,
+                x / 256.0
+            ))
+        }
+    };
+    let uvs = mesh
+        .uvs
+        .iter()
+        .map(|&[u, v]| Ok([scaled(u, su)?, scaled(v, sv)?]))
+        .collect::<Result<Vec<TexCoord>, String>>()?;
+    let image = crate::texture_png::read_texture(&dir.join(file.get_ref()), lut)
+        .map_err(|e| format!("{key}: {e}"))?;
+    let shades = if o.texture_lit.unwrap_or(true) {
+        Some(shades.get_or_insert_with(|| texture_shades(lut)).clone())
+    } else {
+        None
+    };
+    Ok(PreparedTexture {
+        image,
+        uvs,
+        mode: o
+            .texture_mode
+            .map_or(TextureMode::Exact, TextureModeKey::mode),
+        shades,
     })
 }
 
@@ -1311,6 +1552,7 @@ struct Look {
     line_index: u8,
     opacity: Option<Opacity>,
     blend: Option<Box<[u8; BLEND_ENTRIES]>>,
+    texture: Option<PreparedTexture>,
 }
 
 fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
@@ -1362,6 +1604,7 @@ fn prepare(mesh: &HostMesh, look: Look) -> Result<PreparedObject, String> {
         line_index: look.line_index,
         opacity: look.opacity,
         blend: look.blend,
+        texture: look.texture,
     };
     if o.lit.is_some() {
         let mut normals = vec![Vec3::ZERO; o.vertices.len()];
@@ -1590,6 +1833,7 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let lines = LineIndex::of(text);
     let mut objects = Vec::new();
+    let mut shades = None;
     let mut triangles_in = 0u64;
     for (k, spanned) in file.objects.iter().enumerate() {
         let o = spanned.get_ref();
@@ -1659,11 +1903,45 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, String> {
                 .map(|b| blend_entries(&lut, b))
                 .transpose()
                 .map_err(err)?,
+            texture: None,
         };
         if look.opacity.is_some() && look.blend.is_some() {
             return Err(err(
                 "an object is a screen door (opacity) or blended (blend), not both".into(),
             ));
+        }
+        let mut look = look;
+        match &o.texture {
+            None => {
+                if let Some((key, _)) = texture_keys(o).iter().find(|(_, set)| *set) {
+                    return Err(err(format!(
+                        "`{key}` applies to a textured object (this one has no `texture`)"
+                    )));
+                }
+            }
+            Some(file) => {
+                let clash = [
+                    ("wireframe", look.wireframe.is_some()),
+                    ("opacity", look.opacity.is_some()),
+                    ("blend", look.blend.is_some()),
+                    ("dither", look.dither),
+                ];
+                if let Some((key, _)) = clash.iter().find(|(_, set)| *set) {
+                    return Err(err(format!(
+                        "a textured object takes no `{key}` (the core's textured spans are \
+                         opaque, undithered surfaces){}",
+                        if *key == "dither" {
+                            "; set `dither = false` on it"
+                        } else {
+                            ""
+                        }
+                    )));
+                }
+                look.texture = Some(
+                    prepare_texture(o, file, &mesh, (&lut, dir, &lines), &mut shades)
+                        .map_err(err)?,
+                );
+            }
         }
         objects.push(prepare(&mesh, look).map_err(err)?);
     }
@@ -2086,6 +2364,11 @@ pub fn render_error_words(e: &zscan::render::RenderError) -> String {
             | LightingError::AttenuationOutOfRange { .. } => l.to_string(),
             LightingError::Transform(m) => format!("lighting transform: {}", matrix(m)),
         },
+        // Without the core's 0-based index: the caller names the object (`object k of n`).
+        R::TextureUnsupported { method, .. } => format!(
+            "the object is textured, which {method} does not draw (draw it with the depth \
+             buffer: --visibility zbuffer, whole or in --bands)"
+        ),
         other => other.to_string(),
     }
 }
