@@ -1,7 +1,18 @@
-//! A Wavefront OBJ reader for the host: vertex positions (`v`) and polygons (`f`) of any vertex
-//! count, in all index forms (`i`, `i/t`, `i//n`, `i/t/n`), negative (relative) indices and
-//! comments. Other statements (`vt`, `vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, …) are skipped.
-//! Errors carry the 1-based line number.
+//! A Wavefront OBJ reader for the host: vertex positions (`v`), texture coordinates (`vt`)
+//! and polygons (`f`) of any vertex count, in all index forms (`i`, `i/t`, `i//n`, `i/t/n`),
+//! negative (relative) indices and comments. Other statements (`vn`, `g`, `o`, `s`, `usemtl`,
+//! `mtllib`, …) are skipped. Errors carry the 1-based line number.
+//!
+//! ## Texture coordinates
+//! Per polygon corner ([`ObjMesh::uvs`], parallel to the polygons' indices, as the core's
+//! `Mesh::with_uvs` takes them), in the core's Q8.8
+//! ([`TexCoord`](zscan::geometry::mesh::TexCoord), `1.0 = 256`, `−128 ≤ u, v < 128`): the core's
+//! `u` is the file's `u`, its `v` is `1 − v` (OBJ's `v` runs up the image, the core's rows run
+//! down it from row 0 at the top), both rounded to the nearest 1/256. A mesh has them when
+//! every corner of every face names a `vt`; they are only needed for a texture, so their
+//! problems (a `vt` whose value leaves the range, a corner without one while others have one,
+//! an index past the `vt` lines) do not stop the mesh from loading: the first one is kept
+//! with its line ([`ObjMesh::texture_coordinates`] returns it).
 //!
 //! ## Limits
 //! Every limit is checked before the memory it bounds is allocated, so no file can make the
@@ -21,6 +32,7 @@ use std::fmt;
 use std::path::Path;
 
 use zscan::geometry::fixed::Coord;
+use zscan::geometry::mesh::{TexCoord, TEX_ONE};
 use zscan::geometry::vector::Vec3;
 
 /// Longest OBJ file read: 64 MiB.
@@ -39,6 +51,11 @@ pub struct ObjMesh {
     pub vertices: Vec<[f64; 3]>,
     /// Polygons as 0-based vertex indices, in file order (at least 3 each).
     pub polygons: Vec<Vec<usize>>,
+    /// Texture coordinates, one per polygon corner in the order of `polygons` (module doc),
+    /// or empty: the file gives none, or [`uv_error`](Self::uv_error) says why not.
+    pub uvs: Vec<TexCoord>,
+    /// The first problem with the texture coordinates, with its line (module doc).
+    pub uv_error: Option<ObjError>,
 }
 
 /// What went wrong, and where.
@@ -75,6 +92,16 @@ pub enum ObjErrorKind {
     TooManyFaces,
     /// A face with more than [`MAX_FACE_VERTICES`] vertices.
     FaceTooLarge,
+    /// A `vt` value (as written) whose Q8.8 form leaves `−128 ≤ · < 128` (module doc).
+    TexCoordOutOfRange(String),
+    /// A `vt` line without `u`, or a value that is not a finite number (as written).
+    BadTexCoord(String),
+    /// A texture index beyond the `vt` lines so far, or 0 (as written).
+    TexIndexOutOfRange(i64),
+    /// A face corner without a texture index where other corners have one.
+    MissingTexCoord,
+    /// No face corner names a texture coordinate.
+    NoTexCoords,
 }
 
 impl fmt::Display for ObjError {
@@ -102,6 +129,22 @@ impl fmt::Display for ObjError {
             ObjErrorKind::FaceTooLarge => {
                 write!(f, "face with more than {MAX_FACE_VERTICES} vertices")
             }
+            ObjErrorKind::TexCoordOutOfRange(s) => write!(
+                f,
+                "texture coordinate {s} is outside the core's Q8.8 range (u and 1 − v must lie \
+                 in −128 ≤ · < 128)"
+            ),
+            ObjErrorKind::BadTexCoord(s) => {
+                write!(f, "texture coordinate {s:?} is not a finite number")
+            }
+            ObjErrorKind::TexIndexOutOfRange(i) => {
+                write!(f, "texture coordinate index {i} out of range")
+            }
+            ObjErrorKind::MissingTexCoord => write!(
+                f,
+                "a face corner has no texture coordinate index while others have one"
+            ),
+            ObjErrorKind::NoTexCoords => write!(f, "no face names texture coordinates (vt)"),
         }
     }
 }
@@ -111,6 +154,10 @@ impl std::error::Error for ObjError {}
 /// Parses OBJ text.
 pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
     let mut mesh = ObjMesh::default();
+    // The `vt` lines read so far: their Q8.8 pair or their problem.
+    let mut vts: Vec<Result<TexCoord, ObjError>> = Vec::new();
+    // Corners naming a `vt`, corners naming none.
+    let (mut named, mut unnamed) = (0usize, None::<usize>);
     for (n, raw) in text.lines().enumerate() {
         let line = n + 1;
         let err = |kind| ObjError { line, kind };
@@ -135,6 +182,12 @@ pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
                 }
                 mesh.vertices.push(c);
             }
+            Some("vt") => {
+                if vts.len() >= MAX_OBJ_TEX_COORDS {
+                    return Err(err(ObjErrorKind::TooManyVertices));
+                }
+                vts.push(tex_coord(words.next(), words.next()).map_err(err));
+            }
             Some("f") => {
                 if mesh.polygons.len() >= MAX_OBJ_FACES {
                     return Err(err(ObjErrorKind::TooManyFaces));
@@ -144,7 +197,8 @@ pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
                     if poly.len() >= MAX_FACE_VERTICES {
                         return Err(err(ObjErrorKind::FaceTooLarge));
                     }
-                    let first = w.split('/').next().unwrap_or("");
+                    let mut fields = w.split('/');
+                    let first = fields.next().unwrap_or("");
                     let i: i64 = first
                         .parse()
                         .map_err(|_| err(ObjErrorKind::BadNumber(first.to_string())))?;
@@ -160,6 +214,35 @@ pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
                         _ => count - magnitude,
                     };
                     poly.push(idx as usize);
+                    match fields.next().filter(|t| !t.is_empty()) {
+                        None => {
+                            unnamed.get_or_insert(line);
+                        }
+                        Some(t) => {
+                            named += 1;
+                            let uv = t
+                                .parse::<i64>()
+                                .map_err(|_| err(ObjErrorKind::BadNumber(t.to_string())))
+                                .and_then(|i| {
+                                    let count = vts.len() as u64;
+                                    let m = i.unsigned_abs();
+                                    match i {
+                                        _ if i == 0 || m > count => {
+                                            Err(err(ObjErrorKind::TexIndexOutOfRange(i)))
+                                        }
+                                        i if i > 0 => vts[(m - 1) as usize].clone(),
+                                        _ => vts[(count - m) as usize].clone(),
+                                    }
+                                });
+                            match uv {
+                                Ok(uv) if mesh.uv_error.is_none() => mesh.uvs.push(uv),
+                                Ok(_) => {}
+                                Err(e) => {
+                                    mesh.uv_error.get_or_insert(e);
+                                }
+                            }
+                        }
+                    }
                 }
                 if poly.len() < 3 {
                     return Err(err(ObjErrorKind::TooFewVertices));
@@ -169,7 +252,42 @@ pub fn parse_obj(text: &str) -> Result<ObjMesh, ObjError> {
             _ => {}
         }
     }
+    if let (Some(line), true) = (unnamed, named > 0) {
+        mesh.uv_error.get_or_insert(ObjError {
+            line,
+            kind: ObjErrorKind::MissingTexCoord,
+        });
+    }
+    if mesh.uv_error.is_some() || named == 0 {
+        mesh.uvs = Vec::new();
+    }
     Ok(mesh)
+}
+
+/// Most `vt` lines read (each kept until the faces are read): as many as vertices.
+pub const MAX_OBJ_TEX_COORDS: usize = MAX_OBJ_VERTICES;
+
+/// A `vt` line's `u` and `v` (absent: 0) in Q8.8 (module doc: the core's `v` is `1 − v`).
+fn tex_coord(u: Option<&str>, v: Option<&str>) -> Result<TexCoord, ObjErrorKind> {
+    let value = |w: &str| match w.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(ObjErrorKind::BadTexCoord(w.to_string())),
+    };
+    let u_text = u.ok_or_else(|| ObjErrorKind::BadTexCoord(String::new()))?;
+    let v_text = v.unwrap_or("0");
+    let (u, v) = (value(u_text)?, value(v_text)?);
+    let q8 = |x: f64, written: String| {
+        let q = (x * TEX_ONE as f64).round();
+        if (i16::MIN as f64..=i16::MAX as f64).contains(&q) {
+            Ok(q as i16)
+        } else {
+            Err(ObjErrorKind::TexCoordOutOfRange(written))
+        }
+    };
+    Ok([
+        q8(u, format!("u = {u_text}"))?,
+        q8(1.0 - v, format!("v = {v_text}"))?,
+    ])
 }
 
 /// Reads and parses an OBJ file of at most [`MAX_OBJ_BYTES`] (see the module doc).
@@ -199,6 +317,18 @@ pub fn load_obj(path: impl AsRef<Path>) -> Result<ObjMesh, ObjError> {
 }
 
 impl ObjMesh {
+    /// The texture coordinates, one per polygon corner, or why there are none (module doc).
+    pub fn texture_coordinates(&self) -> Result<&[TexCoord], ObjError> {
+        match &self.uv_error {
+            Some(e) => Err(e.clone()),
+            None if self.uvs.is_empty() => Err(ObjError {
+                line: 0,
+                kind: ObjErrorKind::NoTexCoords,
+            }),
+            None => Ok(&self.uvs),
+        }
+    }
+
     /// Number of triangles after fanning every polygon (`Σ (n − 2)`).
     pub fn triangle_count(&self) -> usize {
         self.polygons.iter().map(|p| p.len() - 2).sum()
@@ -298,6 +428,86 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("line 0"));
+    }
+
+    /// `vt` in `v/vt` and `v/vt/vn` corners (relative indices too) become per-corner Q8.8
+    /// coordinates, `u` as written and `v` as `1 − v`, rounded to 1/256.
+    #[test]
+    fn texture_coordinates_per_corner() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
+                    vt 0.25 0.75 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf 1/-4 3/-2 4/-1\n";
+        let m = parse_obj(text).unwrap();
+        assert_eq!(m.uv_error, None);
+        assert_eq!(
+            m.texture_coordinates().unwrap(),
+            &[
+                [0, 256],
+                [256, 256],
+                [256, 0],
+                [64, 64],
+                [0, 256],
+                [256, 0],
+                [64, 64]
+            ]
+        );
+        // 1/512 rounds away from zero; the range's ends: u = −128 and 1 − v = 127.99609375.
+        let m =
+            parse_obj("v 0 0 0\nvt 0.001953125 1\nvt -128 -126.99609375\nf 1/1 1/2 1/1\n").unwrap();
+        assert_eq!(m.uvs, vec![[1, 0], [-32768, 32767], [1, 0]]);
+        // Without `vt` corners there are none, and the mesh loads as before.
+        let m = parse_obj("v 0 0 0\nvt 5 5\nf 1 1 1\n").unwrap();
+        assert_eq!(m.polygons.len(), 1);
+        assert_eq!(
+            m.texture_coordinates().unwrap_err().kind,
+            ObjErrorKind::NoTexCoords
+        );
+    }
+
+    /// Texture coordinate problems keep their line and stop only their own use: the mesh
+    /// loads, [`ObjMesh::texture_coordinates`] names the first problem.
+    #[test]
+    fn texture_coordinate_errors_have_line_numbers() {
+        let check = |text: &str, line: usize, kind: ObjErrorKind, words: &str| {
+            let m = parse_obj(text).unwrap();
+            assert!(m.uvs.is_empty(), "{text}");
+            let e = m.texture_coordinates().unwrap_err();
+            assert_eq!((e.line, &e.kind), (line, &kind), "{text}");
+            assert!(e.to_string().contains(words), "{e}");
+        };
+        let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        check(
+            &format!("{tri}vt 0 0\nvt 128 0\nf 1/1 2/2 3/1\n"),
+            5,
+            ObjErrorKind::TexCoordOutOfRange("u = 128".into()),
+            "u = 128 is outside the core's Q8.8 range",
+        );
+        check(
+            &format!("{tri}vt 0 129.5\nf 1/1 2/1 3/1\n"),
+            4,
+            ObjErrorKind::TexCoordOutOfRange("v = 129.5".into()),
+            "1 − v must lie in −128 ≤ · < 128",
+        );
+        check(
+            &format!("{tri}vt 0 nan\nf 1/1 2/1 3/1\n"),
+            4,
+            ObjErrorKind::BadTexCoord("nan".into()),
+            "not a finite number",
+        );
+        check(
+            &format!("{tri}vt 0 0\nf 1/1 2/2 3/1\n"),
+            5,
+            ObjErrorKind::TexIndexOutOfRange(2),
+            "texture coordinate index 2 out of range",
+        );
+        check(
+            &format!("{tri}vt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n"),
+            6,
+            ObjErrorKind::MissingTexCoord,
+            "no texture coordinate index while others have one",
+        );
+        // An out-of-range `vt` that no face names is no problem.
+        let m = parse_obj(&format!("{tri}vt 500 0\nvt 0 0\nf 1/2 2/2 3/2\n")).unwrap();
+        assert_eq!(m.uvs, vec![[0, 256]; 3]);
     }
 
     /// Issue "hostile inputs" #5: `i64::MIN` (and other huge indices) are out of range, with

@@ -3,7 +3,7 @@
 //
 // 1839 vertices, 3674 triangles; scale 0.2019503717531328 applied after placement.
 // Planner facts: not convex.
-// Texture coordinates: not written (zscan has no texture format yet).
+// Texture coordinates: none in the source.
 // Tables in I16F16 raw bits (round(v * 65536)); polygons counter-clockwise seen from the
 // front, as the file winds them.
 

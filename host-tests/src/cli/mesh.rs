@@ -12,8 +12,10 @@
 //! - `FACTS: MeshFacts<'static>`, the planner's facts ([`MeshFacts::of`]: bounds, rounding
 //!   guard, convexity certificate with a creased mesh's face pairs as `static` tables).
 //!
-//! Texture coordinates are not written: the core has no texture format yet, and the readers
-//! skip `vt` lines (OBJ) and `s`/`t`/`u`/`v` properties (PLY); STL has none.
+//! - `UVS: [TexCoord; K]`, when the source gives texture coordinates for every face corner (an
+//!   OBJ file's `vt`, read by [`crate::obj`]: Q8.8, the core's `v` is `1 − v`), one per index,
+//!   and `MESH` carries them (`Mesh::with_uvs`); the header says why when there are none (the
+//!   PLY reader skips `s`/`t`/`u`/`v` properties, STL has none).
 //!
 //! Placement ([`crate::scenes::place`]): `--centre` centres the bounding box on the origin
 //! (again after a turn), `--turn-y` turns about `+y` by degrees, then `--scale` multiplies or
@@ -153,6 +155,7 @@ pub fn mesh_source(mesh: &ObjMesh, placement: &Placement, source: &str) -> Resul
     let mut normals = vec![Vec3::ZERO; vertices.len()];
     core.vertex_normals(&mut normals)
         .map_err(|e| format!("vertex normals: {e:?}"))?;
+    let uvs = mesh.texture_coordinates();
     let mut words = vec![0u32; MeshFacts::words_needed(&core)];
     let facts = MeshFacts::of(&core, &mut words).map_err(|e| format!("planner facts: {e}"))?;
 
@@ -177,11 +180,18 @@ pub fn mesh_source(mesh: &ObjMesh, placement: &Placement, source: &str) -> Resul
          //\n\
          // {n} vertices, {} {kind}; scale {scale} applied after placement.\n\
          // Planner facts: {convexity}.\n\
-         // Texture coordinates: not written (zscan has no texture format yet).\n\
+         // Texture coordinates: {}.\n\
          // Tables in I16F16 raw bits (round(v * 65536)); polygons counter-clockwise seen from the\n\
          // front, as the file winds them.\n\n",
         env!("CARGO_PKG_VERSION"),
         mesh.polygons.len(),
+        match &uvs {
+            Ok(t) => format!("{} in UVS (Q8.8, v = 1 - the file's v)", t.len()),
+            Err(e) if e.kind == crate::obj::ObjErrorKind::NoTexCoords => {
+                "none in the source".to_string()
+            }
+            Err(e) => format!("not written ({e})"),
+        },
     );
     let vec3s = "zscan::geometry::mesh::vec3s_from_bits";
     let _ = writeln!(out, "/// Vertex positions in the model frame.");
@@ -230,12 +240,33 @@ pub fn mesh_source(mesh: &ObjMesh, placement: &Placement, source: &str) -> Resul
     let normal_bits: Vec<[i32; 3]> = normals.iter().map(|v| v.bits()).collect();
     rows(&mut out, &normal_bits, 4);
     let _ = writeln!(out, "]);\n");
+    // The mesh, with its coordinates when it has them.
+    let ok = match &uvs {
+        Ok(t) => {
+            let _ = writeln!(
+                out,
+                "/// Texture coordinates in Q8.8, one per index (`Mesh::with_uvs`)."
+            );
+            let _ = writeln!(
+                out,
+                "pub static UVS: [zscan::geometry::mesh::TexCoord; {}] = [",
+                t.len()
+            );
+            rows(&mut out, t, 8);
+            let _ = writeln!(out, "];\n");
+            "match mesh.with_uvs(&UVS) {\n            \
+             Ok(mesh) => mesh,\n            \
+             Err(_) => panic!(\"the texture coordinates are not one per index\"),\n        \
+             }"
+        }
+        Err(_) => "mesh",
+    };
     let _ = writeln!(out, "/// The mesh, validated at compile time.");
     let _ = writeln!(
         out,
         "pub static MESH: zscan::geometry::mesh::Mesh<'static> =\n    \
          match zscan::geometry::mesh::Mesh::new(&VERTICES, &INDICES, {sizes_expr}) {{\n        \
-         Ok(mesh) => mesh,\n        \
+         Ok(mesh) => {ok},\n        \
          Err(_) => panic!(\"the generated tables do not form a valid mesh\"),\n    }};\n"
     );
     let convexity = match facts.convexity {
@@ -308,7 +339,11 @@ mod tests {
             .iter()
             .flat_map(|q| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]])
             .collect();
-        ObjMesh { vertices, polygons }
+        ObjMesh {
+            vertices,
+            polygons,
+            ..ObjMesh::default()
+        }
     }
 
     #[test]
@@ -354,6 +389,38 @@ mod tests {
         assert!(text.contains("triangle_indices(&["));
     }
 
+    /// An OBJ file's `vt` corners become a `UVS` table that `MESH` carries; without them the
+    /// header says so and `MESH` has none.
+    #[test]
+    fn texture_coordinates_are_written_when_the_source_has_them() {
+        let quad = crate::obj::parse_obj(
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 2 0\nvt 2 0.5\n\
+             f 1/1 2/2 3/3\nf 1/1 3/3 4/1\n",
+        )
+        .unwrap();
+        let text = mesh_source(&quad, &STANDARD_KEEP, "quad.obj").unwrap();
+        assert!(
+            text.contains(
+                "pub static UVS: [zscan::geometry::mesh::TexCoord; 6] = [\n    \
+                 [0,256], [512,256], [512,128], [0,256], [512,128], [0,256],\n];"
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains("Ok(mesh) => match mesh.with_uvs(&UVS) {"),
+            "{text}"
+        );
+        assert!(text.contains("// Texture coordinates: 6 in UVS"), "{text}");
+        assert_eq!(text.matches("pub static MESH").count(), 1, "{text}");
+        let bare = ObjMesh {
+            uvs: Vec::new(),
+            ..quad.clone()
+        };
+        let text = mesh_source(&bare, &STANDARD_KEEP, "quad.obj").unwrap();
+        assert!(!text.contains("UVS"), "{text}");
+        assert!(text.contains("// Texture coordinates: none in the source."));
+    }
+
     #[test]
     fn mixed_polygons_get_a_sizes_table() {
         let pyramid = ObjMesh {
@@ -371,6 +438,7 @@ mod tests {
                 vec![2, 4, 3],
                 vec![3, 4, 0],
             ],
+            ..ObjMesh::default()
         };
         let text = mesh_source(&pyramid, &STANDARD_KEEP, "pyramid.obj").unwrap();
         assert!(

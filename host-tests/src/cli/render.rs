@@ -1440,10 +1440,24 @@ fn object_mesh(o: &ObjectSection, dir: &Path, lines: &LineIndex) -> Result<HostM
             path.display()
         ));
     }
+    // A textured OBJ needs its `vt`; an untextured one loads whatever they are.
+    let uvs = match (&o.obj, &o.texture) {
+        (Some(p), Some(_)) => mesh
+            .texture_coordinates()
+            .map_err(|e| {
+                format!(
+                    "mesh (line {}): {}: texture coordinates: {e}",
+                    at(p),
+                    path.display()
+                )
+            })?
+            .to_vec(),
+        _ => Vec::new(),
+    };
     Ok(HostMesh {
         vertices: mesh.vertices,
         polygons: mesh.polygons,
-        uvs: Vec::new(),
+        uvs,
     })
 }
 
