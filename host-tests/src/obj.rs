@@ -6,7 +6,7 @@
 //! ## Texture coordinates
 //! Per polygon corner ([`ObjMesh::uvs`], parallel to the polygons' indices, as the core's
 //! `Mesh::with_uvs` takes them), in the core's Q8.8
-//! ([`TexCoord`](zscan::geometry::mesh::TexCoord), `1.0 = 256`, `−128 ≤ u, v < 128`): the core's
+//! ([`TexCoord`], `1.0 = 256`, `−128 ≤ u, v < 128`): the core's
 //! `u` is the file's `u`, its `v` is `1 − v` (OBJ's `v` runs up the image, the core's rows run
 //! down it from row 0 at the top), both rounded to the nearest 1/256. A mesh has them when
 //! every corner of every face names a `vt`; they are only needed for a texture, so their

@@ -222,6 +222,35 @@ fn obj_texture_coordinates_give_the_generators_picture() {
     assert_eq!(differing(&pa, &pb), 0);
 }
 
+/// A mirroring scale reverses each polygon and its coordinates together: the mirrored cube
+/// (scale `[−s, s, s]`, the turn about `y` reversed) is the mirror image of the cube, texels
+/// included, up to the pixels whose centres lie on an edge or a texel boundary (the fill rule
+/// and the floors are not mirror-symmetric).
+#[test]
+fn a_mirrored_object_shows_its_texture_mirrored() {
+    let dir = out_dir("mirror");
+    std::fs::copy(scenes().join("grid64.png"), dir.join("grid64.png")).unwrap();
+    let scene = |scale: &str, turn: i32| {
+        format!(
+            "[render]\nbackground = 7\n[[object]]\ngenerator = \"cube\"\ncenter = true\n\
+             scale = {scale}\nrotate_deg = [20, {turn}, 0]\ntexture = \"grid64.png\"\n\
+             texture_lit = false\n"
+        )
+    };
+    let (a, b) = (dir.join("plain.toml"), dir.join("mirrored.toml"));
+    std::fs::write(&a, scene("1.4", 30)).unwrap();
+    std::fs::write(&b, scene("[-1.4, 1.4, 1.4]", -30)).unwrap();
+    let (pa, pb) = (render(&a, &[]).unwrap(), render(&b, &[]).unwrap());
+    let flipped: Vec<u8> = pb
+        .chunks_exact(320)
+        .flat_map(|row| row.iter().rev().copied())
+        .collect();
+    let covered = pa.iter().filter(|&&p| p != 7).count();
+    let d = differing(&pa, &flipped);
+    assert!(covered > 10_000, "{covered}");
+    assert!(d * 100 < covered, "{d} of {covered}");
+}
+
 /// An indexed PNG is taken as its indices (its own palette unread); an RGB one is mapped to
 /// the nearest palette entry: both give the grey PNG's picture. A 3 × 1 texture (not a power
 /// of two) clamps: at `uv_scale = 2` the last texel covers `u ≥ 2/3` of the quad.
@@ -417,6 +446,17 @@ fn bad_textures_are_refused_in_words() {
             "far.obj: texture coordinates: line 5: texture coordinate u = 300 is \
                       outside the core's Q8.8 range"
         ),
+        "{err}"
+    );
+    // In range as read, out of range once scaled.
+    std::fs::write(
+        dir.join("big.obj"),
+        format!("{tri}vt 0 0\nvt 100 0\nf 1/1 2/2 3/1\n"),
+    )
+    .unwrap();
+    let err = fails("big.toml", &format!("{}uv_scale = 2\n", obj("big.obj")));
+    assert!(
+        err.contains("coordinate 100 times 2 is 200, outside the core's Q8.8 range"),
         "{err}"
     );
     let err = fails("bare.toml", &obj("bare.obj"));
