@@ -1,8 +1,8 @@
 //! `zscan render`: draws a scene described in TOML with the zscan core.
 //!
 //! `zscan render SCENE.toml -o out.png [--depth-out depth.png] [--stats stats.json]
-//! [--bands ROWS]`. The commented example `host-tests/scenes/example.toml` uses every key; in
-//! short:
+//! [--bands ROWS]`. The commented example `host-tests/scenes/example.toml` uses every key but
+//! the texture keys, which `host-tests/scenes/textured.toml` shows; in short:
 //!
 //! | section | keys (defaults) |
 //! |---|---|
