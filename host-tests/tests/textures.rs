@@ -524,4 +524,73 @@ fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
         "{e:?}"
     );
     assert!(e.to_string().starts_with("object 1 is textured"), "{e}");
+    // The textured writer stores texels as they are: a dithered or transparent textured
+    // object is refused in words, not drawn opaque and undithered.
+    let door = zscan::scene::Transparency::ScreenDoor(zscan::prelude::Opacity::new(8).unwrap());
+    for (dither, transparency) in [(true, zscan::scene::Transparency::Opaque), (false, door)] {
+        let mut odd = objects;
+        odd[1].dither = dither;
+        odd[1].transparency = transparency;
+        let scene = Scene {
+            objects: &odd,
+            ..scene
+        };
+        let renderer = Renderer::for_scene(&scene).unwrap();
+        let mut fb = Framebuffer::new(&mut fb_px, VW as u16, VH as u16).unwrap();
+        let mut zs = vec![0u16; VW * VH];
+        let mut zb = DepthBuffer::new(&mut zs, VW as u16, VH as u16).unwrap();
+        let e = render_scene(
+            &renderer,
+            &mut fb,
+            &mut zb,
+            &mut scratch,
+            &mut RenderStats::default(),
+        )
+        .unwrap_err();
+        let words = if dither { "dithering" } else { "transparency" };
+        assert!(
+            matches!(e, RenderError::TextureNotDrawable { .. })
+                && e.to_string()
+                    .contains(&format!("does not combine with {words}")),
+            "{e}"
+        );
+    }
+    // The planner never gives a textured object to compact bands (whose vertices hold no
+    // texture coordinates): over a budget only they would fit, it says why.
+    use zscan::visibility::{plan, CompactBlock, LayoutReason, MeshFacts, PlanError};
+    let mut words: Vec<Vec<u32>> = objects
+        .iter()
+        .map(|o| vec![0; MeshFacts::words_needed(&o.mesh)])
+        .collect();
+    let facts: Vec<MeshFacts<'_>> = objects
+        .iter()
+        .zip(words.iter_mut())
+        .map(|(o, w)| MeshFacts::of(&o.mesh, w).unwrap())
+        .collect();
+    let mut order = [0u16; 2];
+    // Compact bands of one row of 16-bit depth: 16 vertices · 8 + 12 polygons + 96 · 3 = 428
+    // bytes; bands of the z-buffer need at least 8 · 28 + 96 · 3 = 512.
+    for budget in [430, 470, 500] {
+        match plan::<4>(&scene, &facts, budget, &mut order) {
+            Ok(p) => assert_ne!(p.layout_reason, LayoutReason::CompactBands, "{budget}: {p}"),
+            Err(PlanError::OverBudget { compact, .. }) => {
+                assert_eq!(
+                    compact,
+                    Some(CompactBlock::Textured { object: 1 }),
+                    "{budget}"
+                )
+            }
+            Err(e) => panic!("{budget}: {e}"),
+        }
+    }
+    let untextured = [plain, plain];
+    let scene = Scene {
+        objects: &untextured,
+        ..scene
+    };
+    // The same budgets do give compact bands to the untextured pair (the check above can fail).
+    assert!([430, 470, 500].into_iter().any(|budget| matches!(
+        plan::<4>(&scene, &facts, budget, &mut order),
+        Ok(p) if p.layout_reason == LayoutReason::CompactBands
+    )));
 }

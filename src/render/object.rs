@@ -264,7 +264,8 @@ impl<const S: u32> Renderer<S> {
 }
 
 /// The texture coordinates of a textured `object`: one per index, and not Phong-lit (its
-/// corners carry a level and the coordinates, no normals).
+/// corners carry a level and the coordinates, no normals), transparent or dithered (the
+/// textured writer stores its texels as they are: refused rather than drawn opaque).
 fn textured_uvs<'a>(
     object: &Object<'a>,
 ) -> Result<&'a [crate::geometry::mesh::TexCoord], RenderError> {
@@ -280,6 +281,18 @@ fn textured_uvs<'a>(
     if uvs.len() != object.mesh.indices().len() {
         return Err(RenderError::TextureNotDrawable {
             reason: "its mesh has no texture coordinates (Mesh::with_uvs)",
+        });
+    }
+    if transparency::kind(object).is_some() {
+        return Err(RenderError::TextureNotDrawable {
+            reason: "a texture does not combine with transparency (its texels are written as \
+                     they are)",
+        });
+    }
+    if object.dither {
+        return Err(RenderError::TextureNotDrawable {
+            reason: "a texture does not combine with dithering (its texels are written as they \
+                     are)",
         });
     }
     if object.shade == ShadeMode::Phong && matches!(object.intensities, Intensities::Lit { .. }) {

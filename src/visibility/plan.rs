@@ -55,7 +55,7 @@
 //!    a level byte per vertex of lit Gouraud objects, a byte per polygon), only when every
 //!    object's bounding box lies inside the frustum within the 16-bit sub-pixel range (the
 //!    renderer's `NotCompact` cannot then occur: every vertex lies in its object's box) and no
-//!    object is lit Phong; bands with the vertex stage run again per band (scratch for the
+//!    object is lit Phong or textured; bands with the vertex stage run again per band (scratch for the
 //!    largest mesh only). Every layout gives the same pixels (`render_in_bands`).
 //! 3. **Depth width**: `u32` in the first layout that fits with it; `u16` only when no `u32`
 //!    layout fits. The picture is then the 16-bit z-buffer's (not always the 32-bit one's: two
@@ -221,6 +221,11 @@ pub enum CompactBlock {
         /// Its index.
         object: usize,
     },
+    /// This object is textured: compact vertices hold no texture coordinates.
+    Textured {
+        /// Its index.
+        object: usize,
+    },
     /// This object's bounding box leaves the frustum or the 16-bit sub-pixel range.
     OutsideRange {
         /// Its index.
@@ -234,6 +239,10 @@ impl core::fmt::Display for CompactBlock {
             CompactBlock::LitPhong { object } => write!(
                 f,
                 "object {object} is lit Phong (compact vertices hold no normals)"
+            ),
+            CompactBlock::Textured { object } => write!(
+                f,
+                "object {object} is textured (compact vertices hold no texture coordinates)"
             ),
             CompactBlock::OutsideRange { object } => write!(
                 f,
@@ -761,6 +770,9 @@ fn compact_fits<const S: u32>(
             });
         if !compact_draws(object) {
             return Err(CompactBlock::LitPhong { object: i });
+        }
+        if object.texture.is_some() {
+            return Err(CompactBlock::Textured { object: i });
         }
         if !(inside && on_screen) {
             return Err(CompactBlock::OutsideRange { object: i });
