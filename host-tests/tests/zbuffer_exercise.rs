@@ -56,30 +56,35 @@ fn draw(k: usize, frame: &mut Framebuffer<'_>, depth: &mut DepthBuffer<'_, u32>)
     }
 }
 
-/// Draws the polygons in `order` into cleared buffers and checks, after the clear and after
-/// each polygon, the depth buffer against `depths` and the picture against `owners` (the
-/// polygon seen at each pixel, 0 for none).
-fn run(order: [usize; 3], depths: [[u32; W]; 4], owners: [[u8; W]; 4]) {
+/// The depth buffer and the picture after the clear and after each polygon of `order`, drawn
+/// into cleared buffers.
+fn steps(order: &[usize]) -> Vec<([u32; W], [u8; W])> {
     let mut pixels = [0u8; W];
     let mut samples = [0u32; W];
     let mut frame = Framebuffer::new(&mut pixels, W as u16, 1).unwrap();
     let mut depth = DepthBuffer::new(&mut samples, W as u16, 1).unwrap();
     frame.clear(0);
     depth.clear();
-    for step in 0..4 {
-        if step > 0 {
-            draw(order[step - 1], &mut frame, &mut depth);
-        }
-        assert_eq!(
-            depth.row(0).unwrap(),
-            &depths[step],
-            "depths, order {order:?}, step {step}"
-        );
-        assert_eq!(
-            frame.row(0).unwrap(),
-            &owners[step],
-            "picture, order {order:?}, step {step}"
-        );
+    let state = |frame: &Framebuffer<'_>, depth: &DepthBuffer<'_, u32>| {
+        let z: [u32; W] = depth.row(0).unwrap().try_into().unwrap();
+        let p: [u8; W] = frame.row(0).unwrap().try_into().unwrap();
+        (z, p)
+    };
+    let mut out = vec![state(&frame, &depth)];
+    for &k in order {
+        draw(k, &mut frame, &mut depth);
+        out.push(state(&frame, &depth));
+    }
+    out
+}
+
+/// Checks the polygons drawn in `order`: after the clear and after each polygon, the depth
+/// buffer against `depths` and the picture against `owners` (the polygon seen at each pixel,
+/// 0 for none).
+fn run(order: [usize; 3], depths: [[u32; W]; 4], owners: [[u8; W]; 4]) {
+    for (step, (z, p)) in steps(&order).into_iter().enumerate() {
+        assert_eq!(z, depths[step], "depths, order {order:?}, step {step}");
+        assert_eq!(p, owners[step], "picture, order {order:?}, step {step}");
     }
 }
 
@@ -92,19 +97,10 @@ fn question_1_each_polygon_alone() {
         [F, F, F, 80, 70, 60, 50, 40],
     ];
     for k in 1..=3 {
-        let mut pixels = [0u8; W];
-        let mut samples = [0u32; W];
-        let mut frame = Framebuffer::new(&mut pixels, W as u16, 1).unwrap();
-        let mut depth = DepthBuffer::new(&mut samples, W as u16, 1).unwrap();
-        frame.clear(0);
-        depth.clear();
-        draw(k, &mut frame, &mut depth);
-        assert_eq!(depth.row(0).unwrap(), &alone[k - 1], "polygon {k}");
-        let seen: Vec<u8> = alone[k - 1]
-            .iter()
-            .map(|&z| if z == F { 0 } else { k as u8 })
-            .collect();
-        assert_eq!(frame.row(0).unwrap(), &seen[..], "polygon {k}");
+        let (z, p) = steps(&[k])[1];
+        assert_eq!(z, alone[k - 1], "polygon {k}");
+        let seen = alone[k - 1].map(|z| if z == F { 0 } else { k as u8 });
+        assert_eq!(p, seen, "polygon {k}");
     }
 }
 

@@ -772,22 +772,26 @@ pub enum ScaleKey {
     Axes([f64; 3]),
 }
 
+/// A TOML number (float or integer) as `f64`, or `None` for a value of another kind.
+fn toml_number(v: &toml::Value) -> Option<f64> {
+    match v {
+        toml::Value::Float(f) => Some(*f),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
 impl TryFrom<toml::Value> for ScaleKey {
     type Error = String;
 
     fn try_from(v: toml::Value) -> Result<Self, String> {
-        let number = |v: &toml::Value| match v {
-            toml::Value::Float(f) => Some(*f),
-            toml::Value::Integer(i) => Some(*i as f64),
-            _ => None,
-        };
         let axes = match &v {
             toml::Value::Array(a) if a.len() == 3 => {
-                a.iter().map(number).collect::<Option<Vec<f64>>>()
+                a.iter().map(toml_number).collect::<Option<Vec<f64>>>()
             }
             _ => None,
         };
-        match (number(&v), axes) {
+        match (toml_number(&v), axes) {
             (Some(s), _) => Ok(ScaleKey::Uniform(s)),
             (None, Some(a)) => Ok(ScaleKey::Axes([a[0], a[1], a[2]])),
             _ => Err(format!(
@@ -915,19 +919,14 @@ impl TryFrom<toml::Value> for UvScaleKey {
     type Error = String;
 
     fn try_from(v: toml::Value) -> Result<Self, String> {
-        let number = |v: &toml::Value| match v {
-            toml::Value::Float(f) => Some(*f),
-            toml::Value::Integer(i) => Some(*i as f64),
-            _ => None,
-        };
         match &v {
             toml::Value::Array(a) if a.len() == 2 => {
-                if let (Some(u), Some(w)) = (number(&a[0]), number(&a[1])) {
+                if let (Some(u), Some(w)) = (toml_number(&a[0]), toml_number(&a[1])) {
                     return Ok(UvScaleKey([u, w]));
                 }
             }
             other => {
-                if let Some(s) = number(other) {
+                if let Some(s) = toml_number(other) {
                     return Ok(UvScaleKey([s, s]));
                 }
             }
