@@ -5,7 +5,7 @@
 //! Numeric contract: band rows are `0..=65535` (a viewport's height is a `u16`); see
 //! `polygon_rows.rs` for the table entries.
 
-use super::compact::{vertex_lit, CompactObject, Rows};
+use super::compact::{compact_refusal, vertex_lit, CompactObject, CompactRefusal, Rows};
 use super::polygon_rows::triangle_rows;
 use super::polygon_stage::{Path, PolygonStage, Visitor};
 use super::{
@@ -408,14 +408,17 @@ fn check_compact_memory(
             });
         }
     }
-    if let Some(object) = scene.objects.iter().position(|o| o.texture.is_some()) {
-        return Err(RenderError::TextureUnsupported {
-            object,
-            method: "compact bands",
-        });
-    }
-    if !scene.objects.iter().all(super::compact::compact_draws) {
-        return Err(RenderError::PhongUnsupported);
+    for (object, o) in scene.objects.iter().enumerate() {
+        match compact_refusal(o) {
+            None => {}
+            Some(CompactRefusal::Textured) => {
+                return Err(RenderError::TextureUnsupported {
+                    object,
+                    method: "compact bands",
+                })
+            }
+            Some(CompactRefusal::LitPhong) => return Err(RenderError::PhongUnsupported),
+        }
     }
     check_transparency(scene, "compact bands", Draws::Both)?;
     Ok(())

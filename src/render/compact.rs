@@ -182,10 +182,31 @@ impl CompactSizes {
     }
 }
 
-/// True when compact bands can draw `object`: all but lit Phong objects (whose per-pixel
-/// normals the compact vertices do not hold, [`RenderError::PhongUnsupported`]).
-pub(crate) fn compact_draws(object: &Object<'_>) -> bool {
-    !(matches!(object.intensities, Intensities::Lit { .. }) && object.shade == ShadeMode::Phong)
+/// Why compact bands cannot draw an object, whatever the view: the one statement of what they
+/// draw, read by the frame's check (`render::bands`) and by the planner (`visibility::plan`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum CompactRefusal {
+    /// A core-lit Phong object: its per-pixel normals have no compact form
+    /// ([`RenderError::PhongUnsupported`]).
+    LitPhong,
+    /// A textured object: compact vertices carry no texture coordinates
+    /// ([`RenderError::TextureUnsupported`]).
+    Textured,
+}
+
+/// `None` when compact bands can draw `object` (in a view that keeps its vertices within the
+/// compact range, which the vertex stage checks), else why not. Texture comes first: a
+/// textured Phong object is refused for its texture.
+pub(crate) fn compact_refusal(object: &Object<'_>) -> Option<CompactRefusal> {
+    if object.texture.is_some() {
+        Some(CompactRefusal::Textured)
+    } else if matches!(object.intensities, Intensities::Lit { .. })
+        && object.shade == ShadeMode::Phong
+    {
+        Some(CompactRefusal::LitPhong)
+    } else {
+        None
+    }
 }
 
 /// True when the vertex stage lights `object`'s vertices (lit Gouraud): its levels need a

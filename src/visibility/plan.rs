@@ -96,7 +96,7 @@ use crate::geometry::vector::Vec3;
 use crate::output::mask_words_needed;
 use crate::project::{require_perspective, Projector};
 use crate::raster::triangle::ShadeMode;
-use crate::render::compact::compact_draws;
+use crate::render::compact::{compact_refusal, CompactRefusal};
 use crate::render::{CompactSizes, PolygonRows, PreparedVertex, RenderError, Renderer};
 use crate::scene::{Intensities, Object, Scene, Transparency};
 
@@ -768,11 +768,10 @@ fn compact_fits<const S: u32>(
                     && s[2] <= i16::MAX as i64
                     && s[3] <= i16::MAX as i64
             });
-        if !compact_draws(object) {
-            return Err(CompactBlock::LitPhong { object: i });
-        }
-        if object.texture.is_some() {
-            return Err(CompactBlock::Textured { object: i });
+        match compact_refusal(object) {
+            None => {}
+            Some(CompactRefusal::LitPhong) => return Err(CompactBlock::LitPhong { object: i }),
+            Some(CompactRefusal::Textured) => return Err(CompactBlock::Textured { object: i }),
         }
         if !(inside && on_screen) {
             return Err(CompactBlock::OutsideRange { object: i });
