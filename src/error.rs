@@ -408,8 +408,14 @@ mod tests {
                 len: 10,
             },
             TargetError::SizeMismatch,
+            TargetError::NotWholePages { top: 4, height: 12 },
         ]);
         assert!(t[0].contains("at least 1"), "{}", t[0]);
+        assert!(
+            t[4].contains("row 4") && t[4].contains("12 rows"),
+            "{}",
+            t[4]
+        );
         assert!(t[1].contains('3') && t[1].contains('4'), "{}", t[1]);
         assert!(t[2].contains("16") && t[2].contains("10"), "{}", t[2]);
         assert!(t[3].contains("depth"), "{}", t[3]);

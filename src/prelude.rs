@@ -71,7 +71,8 @@ pub use crate::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};
 
 // The target buffers, the palette and the display.
 pub use crate::output::{
-    flush, mask_words_needed, shaded_index, BlendTable, DepthBuffer, DepthValue, Framebuffer, Lut,
+    flush, mask_words_needed, pack_pages, page_bytes, shaded_index, BlendTable, DepthBuffer,
+    DepthValue, Framebuffer, Lut,
 };
 
 // Errors.

@@ -58,26 +58,28 @@ mod both_preludes {
 
     #[allow(unused_imports)]
     use self::{
-        draw_plan as _, flush as _, mask_words_needed as _, plan as _, render_in_bands as _,
-        render_scene as _, shade_table as _, shaded_index as _, torus as _, torus_normals as _,
-        torus_sizes as _, torus_uvs as _, triangle_indices as _, unit_cube as _, uv_sphere as _,
-        uv_sphere_normals as _, uv_sphere_sizes as _, uv_sphere_uvs as _, vec3s_from_bits as _,
-        Affine3 as _, Affine3Builder as _, Attenuation as _, BandScratch as _, BandSink as _,
-        BinaryAngle as _, BlendTable as _, Camera as _, CompactVertex as _, Cone as _, Coord as _,
-        DepthBuffer as _, DepthValue as _, DisplaySink as _, DoubleBands as _, Error as _,
-        FovAxis as _, Framebuffer as _, Intensities as _, Lens as _, Light as _, LineStyle as _,
-        LuminanceRamp as _, Lut as _, Material as _, Mesh as _, MeshFacts as _, Object as _,
-        Opacity as _, PlanMemory as _, PlanSizes as _, PolygonRows as _, PolygonSizes as _,
-        PolygonTop as _, PreparedVertex as _, RenderStats as _, Renderer as _, Scene as _,
-        ShadeMode as _, ShadeTable as _, StatsSink as _, StatsWithoutWritten as _, TexCoord as _,
-        Texture as _, TextureMode as _, Texturing as _, Transparency as _, Vec3 as _,
-        Viewport as _, Wireframe as _,
+        draw_plan as _, flush as _, mask_words_needed as _, pack_pages as _, page_bytes as _,
+        plan as _, render_in_bands as _, render_scene as _, shade_table as _, shaded_index as _,
+        torus as _, torus_normals as _, torus_sizes as _, torus_uvs as _, triangle_indices as _,
+        unit_cube as _, uv_sphere as _, uv_sphere_normals as _, uv_sphere_sizes as _,
+        uv_sphere_uvs as _, vec3s_from_bits as _, Affine3 as _, Affine3Builder as _,
+        Attenuation as _, BandScratch as _, BandSink as _, BinaryAngle as _, BlendTable as _,
+        Camera as _, CompactVertex as _, Cone as _, Coord as _, DepthBuffer as _, DepthValue as _,
+        DisplaySink as _, DoubleBands as _, Error as _, FovAxis as _, Framebuffer as _,
+        Intensities as _, Lens as _, Light as _, LineStyle as _, LuminanceRamp as _, Lut as _,
+        Material as _, Mesh as _, MeshFacts as _, Object as _, Opacity as _, PlanMemory as _,
+        PlanSizes as _, PolygonRows as _, PolygonSizes as _, PolygonTop as _, PreparedVertex as _,
+        RenderStats as _, Renderer as _, Scene as _, ShadeMode as _, ShadeTable as _,
+        StatsSink as _, StatsWithoutWritten as _, TexCoord as _, Texture as _, TextureMode as _,
+        Texturing as _, Transparency as _, Vec3 as _, Viewport as _, Wireframe as _,
     };
 
     /// The names above, as `src/prelude.rs` exports them.
     pub const NAMED: &[&str] = &[
         "flush",
         "mask_words_needed",
+        "pack_pages",
+        "page_bytes",
         "render_in_bands",
         "render_scene",
         "shaded_index",

@@ -7,7 +7,7 @@
 //! rounding to nearest: `channel = (base * (shade + 1) + levels / 2) / levels` — shade
 //! `levels - 1` is the full base colour and shade 0 is the darkest non-black step.
 
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use embedded_graphics_core::pixelcolor::{BinaryColor, Rgb565, Rgb888, RgbColor};
 
 /// Why a palette could not be built.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,7 +35,7 @@ impl core::fmt::Display for LutError {
 /// 256 display colours indexed by a palette index.
 ///
 /// ```
-/// use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+/// use embedded_graphics_core::pixelcolor::{BinaryColor, Rgb565, Rgb888, RgbColor};
 /// use zscan::output::Lut;
 ///
 /// // Built at compile time, kept in flash.
@@ -118,6 +118,38 @@ impl Lut<Rgb888> {
         }
         Lut::from_entries(entries)
     };
+}
+
+impl Lut<BinaryColor> {
+    /// The on/off table of a one-bit display ([`pack_pages`](super::pack_pages), or
+    /// [`flush`](super::flush()) to a `DrawTarget<Color = BinaryColor>`): indices `first_on`
+    /// to 255 on, those below off. With the grey ramp's indices (index = grey level), 128 is
+    /// a threshold at mid-grey; a palette of lines on index 0 takes 1. Other tables are built
+    /// entry by entry ([`set`](Lut::set), [`from_entries`](Lut::from_entries)).
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor, prelude::*};
+    /// use zscan::prelude::*;
+    ///
+    /// let mut pixels = [0u8; 4 * 2];
+    /// let mut frame = Framebuffer::new(&mut pixels, 4, 2)?;
+    /// frame.set_pixel(1, 0, 255);
+    /// frame.set_pixel(2, 1, 127);
+    /// static ON_OFF: Lut<BinaryColor> = Lut::<BinaryColor>::threshold(128);
+    /// let mut display = MockDisplay::<BinaryColor>::new(); // any one-bit DrawTarget
+    /// flush(&frame, &ON_OFF, &mut display, None).map_err(|_| zscan::Error::Display)?;
+    /// display.assert_pattern(&[".#..", "...."]);
+    /// # Ok::<(), zscan::Error>(())
+    /// ```
+    pub const fn threshold(first_on: u8) -> Self {
+        let mut entries = [BinaryColor::Off; 256];
+        let mut i = first_on as usize;
+        while i < 256 {
+            entries[i] = BinaryColor::On;
+            i += 1;
+        }
+        Lut::from_entries(entries)
+    }
 }
 
 impl<C: Copy + From<Rgb888>> Lut<C> {

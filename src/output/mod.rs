@@ -21,6 +21,7 @@ mod flush;
 mod framebuffer;
 mod lut;
 mod mask;
+mod pages;
 mod palette_index;
 mod window;
 
@@ -30,6 +31,7 @@ pub use flush::flush;
 pub use framebuffer::Framebuffer;
 pub use lut::{shaded_index, Lut, LutError};
 pub use mask::{mask_words_needed, PaintedMask};
+pub use pages::{pack_pages, page_bytes};
 pub use palette_index::PaletteIndex;
 pub use window::Window;
 
@@ -54,6 +56,14 @@ pub enum TargetError {
     },
     /// A depth buffer does not have the framebuffer's size.
     SizeMismatch,
+    /// A buffer packed into 8-row pages ([`pack_pages`]) does not start on a page or does not
+    /// hold whole pages.
+    NotWholePages {
+        /// Its first row (absolute).
+        top: i32,
+        /// Its rows.
+        height: u16,
+    },
 }
 
 impl core::fmt::Display for TargetError {
@@ -67,6 +77,11 @@ impl core::fmt::Display for TargetError {
                 write!(f, "buffer holds {len} elements but {needed} are needed")
             }
             TargetError::SizeMismatch => write!(f, "depth buffer and framebuffer differ in size"),
+            TargetError::NotWholePages { top, height } => write!(
+                f,
+                "pages are 8 rows: a buffer packed into pages starts on a multiple of 8 rows and \
+                 holds whole pages, this one holds {height} rows from row {top}"
+            ),
         }
     }
 }

@@ -24,7 +24,16 @@
 //! indices, `W·16·2` of depth, `2·W·16·2` of send buffers, then the bunny's vertex scratch
 //! (1,839 × 28 = 51,492 bytes) and polygon table (3,674 × 4 = 14,696 bytes). The bunny's
 //! tables (vertices, indices, normals: 66 KB) stay in flash.
+//!
+//! The one-bit boards' animation (the same bunny and turn as a hidden-line wireframe on a
+//! 128 × 64 monochrome display, packed into the SSD1306's pages) is the `wireframe` module's
+//! `Wire`, with the feature `wireframe`.
 #![no_std]
+
+#[cfg(feature = "wireframe")]
+pub mod wireframe;
+#[cfg(feature = "wireframe")]
+pub use wireframe::{wire_bunny, wire_camera, Wire, WireMemory, MONO_H, MONO_W, PAGES};
 
 use core::fmt::Write as _;
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
@@ -242,7 +251,6 @@ pub fn camera(width: u16, height: u16) -> Result<Camera, zscan::Error> {
 /// turned `frame / frames_per_turn` of a turn about its vertical axis (`frames_per_turn` 0 is
 /// taken as 1).
 pub fn bunny(frame: u32, frames_per_turn: u32) -> Result<Object<'static>, zscan::Error> {
-    let turn = frames_per_turn.max(1);
     let mut bunny = lit_bunny(Material::from_thousandths(150, 750, 300, 16));
     bunny.shade = ShadeMode::GouraudExact;
     bunny.ramp = LuminanceRamp {
@@ -250,9 +258,17 @@ pub fn bunny(frame: u32, frames_per_turn: u32) -> Result<Object<'static>, zscan:
         levels: LEVELS as u16,
     };
     bunny.transform = Affine3::builder()
-        .rotate_y(BinaryAngle::from_turns((frame % turn) as i64, turn))
+        .rotate_y(turn(frame, frames_per_turn))
         .build()?;
     Ok(bunny)
+}
+
+/// The bunny's angle about its vertical axis in frame `frame`: `frame / frames_per_turn` of a
+/// turn (`frames_per_turn` 0 is taken as 1); [`bunny`] and the wireframe's `wire_bunny` turn
+/// alike.
+pub fn turn(frame: u32, frames_per_turn: u32) -> BinaryAngle {
+    let turn = frames_per_turn.max(1);
+    BinaryAngle::from_turns((frame % turn) as i64, turn)
 }
 
 /// The animation's scene: `objects` seen by `camera` under [`LIGHTS`] and [`AMBIENT`], on

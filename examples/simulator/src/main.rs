@@ -10,6 +10,12 @@
 //! ```
 //!
 //! A path ending in `.png` gets the turn's last frame as a PNG instead (scaled × 2).
+//!
+//! With `--ssd1306` first, the one-bit boards' animation instead ([`mono`]): the bunny as a
+//! hidden-line wireframe on a 128 × 64 monochrome display, from the bytes the SSD1306 board
+//! sends.
+mod mono;
+
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::DrawTarget;
@@ -67,8 +73,15 @@ impl BandSink<'static, u16> for Screen {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut args = std::env::args().skip(1);
-    let path = args.next().unwrap_or_else(|| "out/simulator.gif".into());
+    let mut args = std::env::args().skip(1).peekable();
+    let ssd1306 = args.next_if(|a| a == "--ssd1306").is_some();
+    let path = args.next().unwrap_or_else(|| {
+        if ssd1306 {
+            "out/ssd1306.gif".into()
+        } else {
+            "out/simulator.gif".into()
+        }
+    });
     let frames: u32 = match args.next() {
         Some(n) => n.parse().map_err(|e| format!("frames {n:?}: {e}"))?,
         None => FRAMES,
@@ -78,6 +91,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Some(dir) = std::path::Path::new(&path).parent() {
         std::fs::create_dir_all(dir)?;
+    }
+    if ssd1306 {
+        return mono::main(&path, frames);
     }
 
     // The palette, as words (the sink's input) and as RGB (the GIF's colour table).
