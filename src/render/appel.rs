@@ -183,6 +183,13 @@ pub enum AppelError {
         /// The contour edge.
         contour: [u16; 2],
     },
+    /// An edge passes through a front triangle (the mesh intersects itself in screen space).
+    EdgePiercesFace {
+        /// The edge.
+        edge: [u16; 2],
+        /// The triangle's vertices.
+        face: [u16; 3],
+    },
     /// The walked invisibility at the end of an edge differs from the direct count there.
     WalkDisagrees {
         /// The edge.
@@ -225,6 +232,11 @@ impl core::fmt::Display for AppelError {
                 f,
                 "contour edge {}–{} meets edge {}–{} in space inside it",
                 contour[0], contour[1], edge[0], edge[1]
+            ),
+            AppelError::EdgePiercesFace { edge, face } => write!(
+                f,
+                "edge {}–{} passes through face {}–{}–{}: the mesh intersects itself",
+                edge[0], edge[1], face[0], face[1], face[2]
             ),
             AppelError::WalkDisagrees {
                 edge,
@@ -476,51 +488,91 @@ fn walk_object<const S: u32>(
     Ok(())
 }
 
-/// `QI` just after `P0` (`dir = 1`) or just before `P1` (`dir = −1`), counted over the front
-/// triangles of the fans (module doc, step 1).
-fn direct_count(
+/// `QI` just after `P0` and just before `P1`, counted over the front triangles of the fans
+/// (module doc, step 1), for the edge `P0 → P1` of vertices `ends`; refuses an edge that
+/// passes through a front triangle it does not touch at a vertex (the mesh intersects
+/// itself: the walk would miss that change).
+fn direct_counts(
     (p0, p1): (P3, P3),
-    dir: i128,
+    ends: [u16; 2],
     p: &impl Fn(u16) -> P3,
     mesh: &Mesh<'_>,
-) -> i32 {
-    let (start, other) = if dir > 0 { (p0, p1) } else { (p1, p0) };
+) -> Result<(i32, i32), AppelError> {
     let u = [p1[0] - p0[0], p1[1] - p0[1]];
     let n = [-u[1], u[0]];
     let plus = |q: P3, v: [i128; 2]| [q[0] + v[0], q[1] + v[1], q[2]];
-    let mut qi = 0;
+    let lo = [p0[0].min(p1[0]), p0[1].min(p1[1])];
+    let hi = [p0[0].max(p1[0]), p0[1].max(p1[1])];
+    let mut qi = (0, 0);
     for poly in mesh.polygons() {
         for j in 1..poly.len().saturating_sub(1) {
-            let t = [p(poly[0]), p(poly[j]), p(poly[j + 1])];
-            let a2 = area(t[0], t[1], t[2]);
-            if a2 >= 0 {
+            let v = [poly[0], poly[j], poly[j + 1]];
+            let t = v.map(p);
+            if area(t[0], t[1], t[2]) >= 0 {
                 continue;
             }
-            // Inside: each edge's orientation negative (front winding), perturbed.
-            let inside = (0..3).all(|e| {
-                let (x, y) = (t[e], t[(e + 1) % 3]);
-                let at = |q: P3| area(x, y, q);
-                let o0 = at(start);
-                let ou = dir * (at(plus(x, u)) - at(x));
-                let on = at(plus(x, n)) - at(x);
-                first_sign([o0, ou, on]) == Ordering::Less
-            });
-            if !inside {
+            let (tlo, thi) = (
+                [0, 1].map(|k| t[0][k].min(t[1][k]).min(t[2][k])),
+                [0, 1].map(|k| t[0][k].max(t[1][k]).max(t[2][k])),
+            );
+            let holds = |q: P3| (0..2).all(|k| tlo[k] <= q[k] && q[k] <= thi[k]);
+            if (0..2).any(|k| thi[k] < lo[k] || hi[k] < tlo[k]) {
                 continue;
             }
-            // F(q, d) = Σ (d_k − d)·2A_k(q) = area2·(D_T(q) − d): in front when F > 0.
-            let f = |q: P3| {
-                (t[0][2] - q[2]) * area(q, t[1], t[2])
-                    + (t[1][2] - q[2]) * area(t[0], q, t[2])
-                    + (t[2][2] - q[2]) * area(t[0], t[1], q)
+            // In front of `start`, just inside the edge (toward `other`), shifted by ε'n.
+            let in_front = |start: P3, other: P3, dir: i128| {
+                // Inside: each side's orientation negative (front winding), perturbed.
+                let inside = (0..3).all(|e| {
+                    let (x, y) = (t[e], t[(e + 1) % 3]);
+                    let at = |q: P3| area(x, y, q);
+                    let o0 = at(start);
+                    let ou = dir * (at(plus(x, u)) - at(x));
+                    let on = at(plus(x, n)) - at(x);
+                    first_sign([o0, ou, on]) == Ordering::Less
+                });
+                // F(q, d) = Σ (d_k − d)·2A_k(q) = area2·(D_T(q) − d): in front when F > 0.
+                let f = |q: P3| {
+                    (t[0][2] - q[2]) * area(q, t[1], t[2])
+                        + (t[1][2] - q[2]) * area(t[0], q, t[2])
+                        + (t[2][2] - q[2]) * area(t[0], t[1], q)
+                };
+                inside && first_sign([f(start), f(other), 0]) == Ordering::Greater
             };
-            let (fs, fo) = (f(start), f(other));
-            if first_sign([fs, fo, 0]) == Ordering::Greater {
-                qi += 1;
+            if holds(p0) && in_front(p0, p1, 1) {
+                qi.0 += 1;
+            }
+            if holds(p1) && in_front(p1, p0, -1) {
+                qi.1 += 1;
+            }
+            if v.iter().any(|x| ends.contains(x)) {
+                continue;
+            }
+            let sides = [orient3d(t[0], t[1], t[2], p0), orient3d(t[0], t[1], t[2], p1)];
+            if sides[0] == 0 || sides[1] == 0 || (sides[0] > 0) == (sides[1] > 0) {
+                continue;
+            }
+            let around = [0, 1, 2].map(|e| orient3d(p0, p1, t[e], t[(e + 1) % 3]).signum());
+            if around.iter().all(|&o| o >= 0) || around.iter().all(|&o| o <= 0) {
+                return Err(AppelError::EdgePiercesFace {
+                    edge: ends,
+                    face: v,
+                });
             }
         }
     }
-    qi
+    Ok(qi)
+}
+
+/// `det[b − a, c − a, x − a]` in screen space and depth (exact: differences below `2^29`,
+/// `2^29`, `2^33`, products below `2^92`).
+fn orient3d(a: P3, b: P3, c: P3, x: P3) -> i128 {
+    let (u, v, w) = (
+        [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+        [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        [x[0] - a[0], x[1] - a[1], x[2] - a[2]],
+    );
+    u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0])
 }
 
 /// Walks one edge (module doc, steps 1 to 3) and hands its pieces to `sink`.
@@ -611,7 +663,7 @@ fn walk_edge<const S: u32>(
             to: at(to),
         });
     };
-    let mut qi = direct_count((p0, p1), 1, p, mesh);
+    let (mut qi, counted) = direct_counts((p0, p1), [a, b], p, mesh)?;
     let mut open: Option<(i64, i64)> = (qi == 0).then_some((0, 1));
     let mut k = 0;
     while k < list.len() {
@@ -631,7 +683,6 @@ fn walk_edge<const S: u32>(
         }
         k = j;
     }
-    let counted = direct_count((p0, p1), -1, p, mesh);
     if counted != qi {
         return Err(AppelError::WalkDisagrees {
             edge: [a, b],
