@@ -111,8 +111,16 @@ fn compare(name: &str, core: &CoreMesh, v: (i32, i32)) -> (usize, usize, usize, 
     let t = view(core, v);
     let z = hidden(core, t);
     let (a, pieces) = appel(core, &object(core, t)).unwrap();
-    let only_a = a.iter().zip(&z).filter(|(a, z)| **a != 0 && **z == 0).count();
-    let only_z = a.iter().zip(&z).filter(|(a, z)| **a == 0 && **z != 0).count();
+    let only_a = a
+        .iter()
+        .zip(&z)
+        .filter(|(a, z)| **a != 0 && **z == 0)
+        .count();
+    let only_z = a
+        .iter()
+        .zip(&z)
+        .filter(|(a, z)| **a == 0 && **z != 0)
+        .count();
     let lit = z.iter().filter(|&&p| p != 0).count();
     let pixel = |c: i32| (c + 8).div_euclid(16);
     let mut ends = Vec::new();
@@ -125,7 +133,12 @@ fn compare(name: &str, core: &CoreMesh, v: (i32, i32)) -> (usize, usize, usize, 
         }
     }
     let mut far = 0;
-    for (i, _) in a.iter().zip(&z).enumerate().filter(|(_, (a, z))| **a != **z) {
+    for (i, _) in a
+        .iter()
+        .zip(&z)
+        .enumerate()
+        .filter(|(_, (a, z))| **a != **z)
+    {
         let (x, y) = ((i % W) as i32, (i / W) as i32);
         let d = ends
             .iter()
@@ -228,20 +241,18 @@ fn a_mesh_intersecting_itself_is_refused() {
     let n = two.vertices.len() as u16;
     let shift = |v: &Vec3| {
         let b = v.bits();
-        Vec3::from_bits(b[0] + (b[0] >> 1) / 2, b[1] / 2 + (1 << 14), b[2] / 2 + (1 << 13))
+        Vec3::from_bits(
+            b[0] + (b[0] >> 1) / 2,
+            b[1] / 2 + (1 << 14),
+            b[2] / 2 + (1 << 13),
+        )
     };
     let moved: Vec<Vec3> = two.vertices.iter().map(shift).collect();
     two.vertices.extend(moved);
     let again: Vec<u16> = two.indices.iter().map(|i| i + n).collect();
     two.indices.extend(again);
     let e = appel_error(refused(&two, Affine3::IDENTITY, 64));
-    assert!(
-        matches!(
-            e,
-            AppelError::EdgePiercesFace { .. }
-        ),
-        "{e:?}"
-    );
+    assert!(matches!(e, AppelError::EdgePiercesFace { .. }), "{e:?}");
 }
 
 /// An object outside the view volume (Appel needs every vertex projected), short scratch,

@@ -49,7 +49,11 @@ fn svg_holds_the_cores_pieces() {
     std::fs::copy(&scene, &copy).unwrap();
     let svg = dir.join("out.svg");
     let out = zscan(&copy, &[Path::new("--svg"), &svg]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.starts_with("<svg ") && text.trim_end().ends_with("</svg>"));
     let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("<line ")).collect();
@@ -94,5 +98,8 @@ fn appel_refusals_name_the_object() {
     let out = zscan(&none, &[Path::new("--svg"), &dir.join("none.svg")]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{err}");
-    assert!(err.contains("wireframe = \"appel\": the scene has none"), "{err}");
+    assert!(
+        err.contains("wireframe = \"appel\": the scene has none"),
+        "{err}"
+    );
 }

@@ -189,8 +189,15 @@ fn wireframe_cases_draw_and_both_walks_agree() {
         let (_, hidden) = draw(case(&format!("wire_{mesh}_hidden")));
         let lit = |p: &[u8]| p.iter().filter(|&&x| x != 0).count();
         assert!(px as usize >= lit(&appel) && lit(&appel) > 0, "{mesh}");
-        let extra = appel.iter().zip(&hidden).filter(|(a, h)| **a != **h).count();
-        assert!(appel.iter().zip(&hidden).all(|(&a, &h)| a == 0 || h != 0), "{mesh}");
+        let extra = appel
+            .iter()
+            .zip(&hidden)
+            .filter(|(a, h)| **a != **h)
+            .count();
+        assert!(
+            appel.iter().zip(&hidden).all(|(&a, &h)| a == 0 || h != 0),
+            "{mesh}"
+        );
         match mesh {
             "bunny" => assert!(extra * 200 <= lit(&hidden), "{mesh}: {extra}"),
             _ => assert_eq!(extra, 0, "{mesh}"),

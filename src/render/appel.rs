@@ -49,8 +49,10 @@
 //! A mesh that is not closed and consistently wound (every edge of the fans shared by exactly
 //! two triangles, in opposite directions), a vertex outside the view volume (crossing the
 //! near plane, beyond the far plane or the guard band: Appel needs every vertex projected),
-//! a contour edge meeting an edge in space at a point inside it, a walk that disagrees with
-//! the direct count, and scratch too small. Nothing is drawn or handed to the sink before the
+//! a contour edge meeting an edge in space at a point inside it, an edge passing through a
+//! front triangle it does not share a vertex with (the projected mesh intersects itself:
+//! there `QI` changes with no contour crossing, exact `orient3d` tests in the direct counts'
+//! loop), a walk that disagrees with the direct count, and scratch too small. Nothing is drawn or handed to the sink before the
 //! checks of the whole mesh; a refusal during the walk stops it (the sink may have had the
 //! pieces of earlier edges).
 //!
@@ -365,14 +367,12 @@ fn draw_piece<const S: u32>(
     let Ok(Some(line)) = SubpixelLine::new(s.ends[0], s.ends[1], window) else {
         return 0;
     };
-    let (n, travel, unit) = (
-        line.length as i128,
-        line.travel as i128,
-        line.unit as i128,
-    );
+    let (n, travel, unit) = (line.length as i128, line.travel as i128, line.unit as i128);
     let [(na, da), (nb, db)] = s.range.map(|(p, q)| (p as i128, q as i128));
     // Pixel k sits at major distance travel + k·unit: t = that / n.
-    let first = (na * n - travel * da + unit * da - 1).div_euclid(unit * da).max(0);
+    let first = (na * n - travel * da + unit * da - 1)
+        .div_euclid(unit * da)
+        .max(0);
     let last = (nb * n - travel * db).div_euclid(unit * db);
     if n == 0 || last < first {
         return 0;
@@ -547,7 +547,10 @@ fn direct_counts(
             if v.iter().any(|x| ends.contains(x)) {
                 continue;
             }
-            let sides = [orient3d(t[0], t[1], t[2], p0), orient3d(t[0], t[1], t[2], p1)];
+            let sides = [
+                orient3d(t[0], t[1], t[2], p0),
+                orient3d(t[0], t[1], t[2], p1),
+            ];
             if sides[0] == 0 || sides[1] == 0 || (sides[0] > 0) == (sides[1] > 0) {
                 continue;
             }

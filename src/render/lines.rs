@@ -42,6 +42,9 @@
 //!   into depth only (the polygon stage with the writer's depth-only kind, frame untouched),
 //!   then the edges of the faces drawn (as in front mode, the object's own culling),
 //!   depth-tested against them.
+//! - [`Wireframe::Appel`]: hidden lines removed exactly by Appel's quantitative invisibility,
+//!   with no depth buffer (`render::appel`); drawn by [`Renderer::draw_appel`], which takes
+//!   that method's scratch ([`Renderer::draw_wireframe`] refuses the mode in words).
 //!
 //! ## Points
 //! [`Renderer::draw_points`] draws each vertex inside the view volume as a square of

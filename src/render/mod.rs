@@ -73,10 +73,8 @@ mod vertex_stage;
 pub use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
 pub use crate::project::ProjectError;
 pub use crate::stats::{RenderStats, StatsSink, StatsWithoutWritten};
+pub use appel::{AppelCrossing, AppelEdge, AppelError, AppelScratch, AppelSegment, AppelTable};
 pub(crate) use bands::{band_buffers, band_height};
-pub use appel::{
-    AppelCrossing, AppelEdge, AppelError, AppelScratch, AppelSegment, AppelTable,
-};
 pub use bands::{render_in_bands, render_in_compact_bands, BandScratch, CompactBandScratch};
 pub use compact::{CompactSizes, CompactVertex, PolygonTop};
 pub use double_bands::{BandSink, DisplaySink, DoubleBandError, DoubleBands};

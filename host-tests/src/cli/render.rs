@@ -115,9 +115,8 @@ use zscan::lighting::{
 use zscan::output::{BlendTable, DepthBuffer, DepthValue, Framebuffer, Lut, BLEND_ENTRIES};
 use zscan::raster::triangle::{LuminanceRamp, Opacity, ShadeMode};
 use zscan::render::{
-    AppelCrossing, AppelEdge, AppelScratch,
-    BandScratch, LineStyle, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
-    Wireframe,
+    AppelCrossing, AppelEdge, AppelScratch, BandScratch, LineStyle, PolygonRows, PreparedVertex,
+    RenderStats, Renderer, SceneRenderer, Wireframe,
 };
 use zscan::scene::{Intensities, Object, Scene, Transparency};
 use zscan::texture::{shade_table, ShadeTable, Texture, TextureMode, Texturing};
@@ -2063,7 +2062,10 @@ impl LoadedScene {
     }
 
     /// The core objects of the scene, or object `only` alone.
-    pub(crate) fn core_objects(&self, only: Option<usize>) -> Result<Vec<zscan::scene::Object<'_>>, String> {
+    pub(crate) fn core_objects(
+        &self,
+        only: Option<usize>,
+    ) -> Result<Vec<zscan::scene::Object<'_>>, String> {
         self.objects
             .iter()
             .enumerate()
@@ -2274,15 +2276,19 @@ impl LoadedScene {
                     .position(|p| std::ptr::eq(p, *prepared))
                     .map_or(0, |k| k + 1);
                 let mut scratch = vec![PreparedVertex::default(); mesh.vertices().len()];
-                drawn += appel_pieces(object, |memory, scratch| {
-                    renderer.draw_appel(
-                        object,
-                        scratch,
-                        memory,
-                        prepared.line_index,
-                        &mut frame,
-                    )
-                }, &mut scratch)
+                drawn += appel_pieces(
+                    object,
+                    |memory, scratch| {
+                        renderer.draw_appel(
+                            object,
+                            scratch,
+                            memory,
+                            prepared.line_index,
+                            &mut frame,
+                        )
+                    },
+                    &mut scratch,
+                )
                 .map_err(|e| {
                     FrameError::Setup(format!(
                         "object {number} (wireframe \"appel\"): {}",

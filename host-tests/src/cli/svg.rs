@@ -11,8 +11,8 @@
 //! one pixel wide, round caps.
 
 use super::render::{appel_pieces, LoadedScene, SUBPIXEL_BITS};
-use zscan::render::{AppelSegment, Renderer, Wireframe};
 use embedded_graphics::pixelcolor::RgbColor;
+use zscan::render::{AppelSegment, Renderer, Wireframe};
 use zscan::scene::Object;
 
 /// The SVG coordinate of sub-pixel coordinate `c`, exact (module doc).
@@ -57,8 +57,9 @@ pub fn appel_segments(
         })?;
     }
     if !any {
-        return Err("--svg writes the objects drawn with wireframe = \"appel\": the scene has none"
-            .into());
+        return Err(
+            "--svg writes the objects drawn with wireframe = \"appel\": the scene has none".into(),
+        );
     }
     Ok(out)
 }
@@ -75,7 +76,11 @@ pub fn appel_svg(scene: &LoadedScene) -> Result<String, String> {
     let bg = scene.lut.get(scene.background);
     text += &format!(
         "<rect width=\"{}\" height=\"{}\" fill=\"#{:02x}{:02x}{:02x}\"/>\n",
-        vp.width, vp.height, bg.r(), bg.g(), bg.b()
+        vp.width,
+        vp.height,
+        bg.r(),
+        bg.g(),
+        bg.b()
     );
     for (index, s) in appel_segments(scene)? {
         let c = scene.lut.get(index);
