@@ -60,6 +60,10 @@ pub struct Storage {
     /// The edge tables of the cube, sphere and bunny (`Mesh::edges`), computed once here (an
     /// application keeps them in flash beside the mesh).
     pub edges: scene::KeptEdges,
+    /// Appel's half-edges (`render::appel`: three per triangle, 8 bytes each).
+    pub appel_edges: [zscan::render::AppelEdge; 3 * scene::MAX_POLYGONS],
+    /// Appel's crossings of one edge with the contour (24 bytes each).
+    pub appel_crossings: [zscan::render::AppelCrossing; scene::MAX_APPEL_CROSSINGS],
     /// The reverse painter's mask of painted pixels, a bit per pixel (2,400 words).
     pub mask: [u32; zscan::output::mask_words_needed(WIDTH, HEIGHT)],
 }
@@ -77,6 +81,8 @@ impl Storage {
             compact: scene::CompactMemory::new(),
             facts: scene::KeptFacts::new(),
             edges: scene::KeptEdges::new(),
+            appel_edges: [zscan::render::AppelEdge::ZERO; 3 * scene::MAX_POLYGONS],
+            appel_crossings: [zscan::render::AppelCrossing::ZERO; scene::MAX_APPEL_CROSSINGS],
             mask: [0; zscan::output::mask_words_needed(WIDTH, HEIGHT)],
         }
     }
@@ -500,6 +506,18 @@ pub const CASES: &[Case] = &[
         name: "wire_bunny_all_two_ended",
         run: |fb, st| scene::wire(fb, st, scene::BUNNY_ID, Wireframe::All, Walk::TwoEnded),
     },
+    Case {
+        name: "wire_cube_appel",
+        run: |fb, st| scene::wire_appel(fb, st, scene::CUBE_ID),
+    },
+    Case {
+        name: "wire_sphere_appel",
+        run: |fb, st| scene::wire_appel(fb, st, scene::SPHERE_ID),
+    },
+    Case {
+        name: "wire_bunny_appel",
+        run: |fb, st| scene::wire_appel(fb, st, scene::BUNNY_ID),
+    },
 ];
 
 /// FNV-1a (32-bit) of a byte slice: the framebuffer checksum every platform prints.
@@ -665,6 +683,9 @@ pub mod scene {
     /// Stored triangles of the visibility methods: every bunny triangle, or the quad's and
     /// cube's clipped fans and the painter's pieces.
     pub const MAX_STORED: usize = 4096;
+    /// Crossings of one edge with the contour Appel's method holds (the bunny's most: well
+    /// below).
+    pub const MAX_APPEL_CROSSINGS: usize = 1024;
 
     /// The standard frame by back faces alone ([`zscan::visibility::render_back_faces`]: no
     /// depth buffer, right on the convex quad, cube and sphere, wrong where the bunny's front
@@ -748,6 +769,23 @@ pub mod scene {
         let object = object(STANDARD[which], ShadeMode::GouraudExact);
         let edges = st.edges.of(which);
         r.draw_wireframe(&object, edges, mode, &mut st.vertices, &style, fb, &mut zb)
+            .unwrap_or(0)
+    }
+
+    /// The standard scene `which` as a wireframe by Appel's quantitative invisibility
+    /// (`render::appel`, palette index 255, no depth buffer); returns the pixels drawn.
+    pub fn wire_appel(fb: &mut Framebuffer<'_>, st: &mut Storage, which: usize) -> u32 {
+        fb.clear(0);
+        let Some(camera) = camera() else { return 0 };
+        let Ok(r) = Renderer::<4>::new(&camera) else {
+            return 0;
+        };
+        let object = object(STANDARD[which], ShadeMode::GouraudExact);
+        let mut memory = zscan::render::AppelScratch {
+            edges: &mut st.appel_edges,
+            crossings: &mut st.appel_crossings,
+        };
+        r.draw_appel(&object, &mut st.vertices, &mut memory, 255, fb)
             .unwrap_or(0)
     }
 

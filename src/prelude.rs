@@ -63,7 +63,9 @@ pub use crate::render::{
 pub use crate::render::{BandSink, DisplaySink, DoubleBands};
 
 // Lines and points in space: wireframes, line lists, points.
-pub use crate::render::{LineStyle, Wireframe};
+pub use crate::render::{
+    AppelCrossing, AppelEdge, AppelError, AppelScratch, AppelSegment, LineStyle, Wireframe,
+};
 
 // The planner: a plan within a memory budget, drawn from memory it sizes.
 pub use crate::render::{CompactVertex, PolygonTop};

@@ -182,6 +182,27 @@ fn wireframe_cases_draw_and_both_walks_agree() {
             "{mesh}: {all} {front} {hidden}"
         );
     }
+    // Appel's pictures: the cube's and the sphere's are the z-buffer's hidden lines (convex,
+    // `tests/appel.rs`); the bunny's lie inside them, a few pulled pixels short.
+    for mesh in ["cube", "sphere", "bunny"] {
+        let (px, appel) = draw(case(&format!("wire_{mesh}_appel")));
+        let (_, hidden) = draw(case(&format!("wire_{mesh}_hidden")));
+        let lit = |p: &[u8]| p.iter().filter(|&&x| x != 0).count();
+        assert!(px as usize >= lit(&appel) && lit(&appel) > 0, "{mesh}");
+        let extra = appel
+            .iter()
+            .zip(&hidden)
+            .filter(|(a, h)| **a != **h)
+            .count();
+        assert!(
+            appel.iter().zip(&hidden).all(|(&a, &h)| a == 0 || h != 0),
+            "{mesh}"
+        );
+        match mesh {
+            "bunny" => assert!(extra * 200 <= lit(&hidden), "{mesh}: {extra}"),
+            _ => assert_eq!(extra, 0, "{mesh}"),
+        }
+    }
     for mesh in ["sphere", "bunny"] {
         let one = draw(case(&format!("wire_{mesh}_all")));
         let two = draw(case(&format!("wire_{mesh}_all_two_ended")));

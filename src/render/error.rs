@@ -173,6 +173,8 @@ pub enum RenderError {
         /// Vertices in the mesh.
         vertices: usize,
     },
+    /// Appel's quantitative invisibility refused the object (`render::appel`).
+    Appel(super::AppelError),
     /// [`Renderer::draw_points`](super::Renderer::draw_points) was asked for squares of
     /// `size` pixels, outside `1..=max`.
     PointSizeOutOfRange {
@@ -419,6 +421,7 @@ impl core::fmt::Display for RenderError {
                 "segment {segment} names vertex {vertex}, but the mesh has {vertices} vertices \
                  (indices 0 to {vertices} − 1)"
             ),
+            RenderError::Appel(e) => write!(f, "Appel's hidden lines: {e}"),
             RenderError::PointSizeOutOfRange { size, max } => write!(
                 f,
                 "points of {size} × {size} pixels: the side must be 1 to {max}"

@@ -42,6 +42,9 @@
 //!   into depth only (the polygon stage with the writer's depth-only kind, frame untouched),
 //!   then the edges of the faces drawn (as in front mode, the object's own culling),
 //!   depth-tested against them.
+//! - [`Wireframe::Appel`]: hidden lines removed exactly by Appel's quantitative invisibility,
+//!   with no depth buffer (`render::appel`); drawn by [`Renderer::draw_appel`], which takes
+//!   that method's scratch ([`Renderer::draw_wireframe`] refuses the mode in words).
 //!
 //! ## Points
 //! [`Renderer::draw_points`] draws each vertex inside the view volume as a square of
@@ -103,15 +106,19 @@ pub enum Wireframe {
     Front,
     /// Every edge, hidden lines removed through the depth buffer (faces into depth first).
     Hidden,
+    /// Every edge's visible pieces by Appel's quantitative invisibility, no depth buffer
+    /// (`render::appel`; drawn by [`Renderer::draw_appel`], which takes its scratch).
+    Appel,
 }
 
 impl Wireframe {
-    /// The mode's name as scenes write it (`all`, `front`, `hidden`).
+    /// The mode's name as scenes write it (`all`, `front`, `hidden`, `appel`).
     pub const fn name(self) -> &'static str {
         match self {
             Wireframe::All => "all",
             Wireframe::Front => "front",
             Wireframe::Hidden => "hidden",
+            Wireframe::Appel => "appel",
         }
     }
 }
@@ -221,6 +228,9 @@ impl<const S: u32> Renderer<S> {
                 ..*object
             },
             Wireframe::Hidden => *object,
+            Wireframe::Appel => {
+                return Err(RenderError::Appel(super::AppelError::NeedsScratch));
+            }
         };
         self.check_targets(frame, depth)?;
         self.prepare(&object, scratch)?;

@@ -53,6 +53,7 @@
 //! [`Viewport`](crate::geometry::camera::Viewport) holds (sides up to 65 535 pixels) and any
 //! principal point render. Intensities are `0..=255`. Culling in the observer frame uses `i128` (see `cull.rs`).
 
+mod appel;
 mod bands;
 pub(crate) mod compact;
 pub(crate) mod consumer;
@@ -72,6 +73,7 @@ mod vertex_stage;
 pub use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
 pub use crate::project::ProjectError;
 pub use crate::stats::{RenderStats, StatsSink, StatsWithoutWritten};
+pub use appel::{AppelCrossing, AppelEdge, AppelError, AppelScratch, AppelSegment, AppelTable};
 pub(crate) use bands::{band_buffers, band_height};
 pub use bands::{render_in_bands, render_in_compact_bands, BandScratch, CompactBandScratch};
 pub use compact::{CompactSizes, CompactVertex, PolygonTop};

@@ -12,7 +12,7 @@
 //! | `[light]` | host lighting (SCENES.md's model) of objects whose `material` is a ramp index: `direction` towards the light (`[1,1,1]`), `ka` (0.1), `kd` (0.9) |
 //! | `[lighting]` | the core's lighting of objects whose `material` is a table: `ambient` `I_a` (0); `[[lighting.light]]` entries (at most 4), each `point = [x,y,z]`, `toward = [x,y,z]` or `spot = [x,y,z]` with `axis = [x,y,z]` and `cone = [inner, outer]` (half-angles in degrees), `attenuation = [c, l, q]` for a point or spot, and `intensity` `0..=255` |
 //! | `[lut]` | `kind` = `"grey"` \| `"shaded"` (`"grey"`), `colours` = `[[r,g,b], ...]` (shaded: one per material), `levels` per material (32), `first` index of material 0 (shaded: 1, so that index 0 stays free for the background), `entries` = `[[index, r, g, b], ...]` overrides applied last |
-//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `wireframe` = `"all"` \| `"front"` \| `"hidden"` (drawn as lines instead of shaded: every edge, the front faces' edges, hidden lines removed through the depth buffer), `line_index` the lines' palette index (the ramp's brightest); `opacity` = `0..=16` (screen door: pixels drawn of every 4×4 block) or `blend` = `0..=1` (blended over what lies behind through a table built from `[lut]`; drawn after the opaque objects, far to near, by the z-buffer only); `texture`, `texture_mode`, `texture_lit`, `uv_scale` (section "Textures") |
+//! | `[[object]]` | one of `generator`, `obj` (path relative to the TOML file) or `builtin` = `"bunny"`; generator parameters; `center`, `scale`, `rotate_deg`, `translate`; `material` = ramp index (0) or `{ ramp, ka, kd, ks, n }` (defaults 0, 0.1, 0.7, 0.3, 20; lit by the core); `shade`, `cull`, `dither`; `wireframe` = `"all"` \| `"front"` \| `"hidden"` \| `"appel"` (drawn as lines instead of shaded: every edge, the front faces' edges, hidden lines removed through the depth buffer, or by Appel's quantitative invisibility: the object's own hidden lines, drawn over the picture with no depth test, a closed mesh inside the view volume only), `line_index` the lines' palette index (the ramp's brightest); `opacity` = `0..=16` (screen door: pixels drawn of every 4×4 block) or `blend` = `0..=1` (blended over what lies behind through a table built from `[lut]`; drawn after the opaque objects, far to near, by the z-buffer only); `texture`, `texture_mode`, `texture_lit`, `uv_scale` (section "Textures") |
 //! | `[[lines]]` | a 3D line list in world coordinates: `points` = `[[x,y,z], ...]`, `segments` = `[[i, j], ...]` (indices into `points`), `index` palette index (255), `point_size` (0: no points; 1 to 16: each point a square of that side) |
 //!
 //! Generators (the core's [`zscan::geometry::generators`], buffers allocated here):
@@ -115,8 +115,8 @@ use zscan::lighting::{
 use zscan::output::{BlendTable, DepthBuffer, DepthValue, Framebuffer, Lut, BLEND_ENTRIES};
 use zscan::raster::triangle::{LuminanceRamp, Opacity, ShadeMode};
 use zscan::render::{
-    BandScratch, LineStyle, PolygonRows, PreparedVertex, RenderStats, Renderer, SceneRenderer,
-    Wireframe,
+    AppelCrossing, AppelEdge, AppelScratch, BandScratch, LineStyle, PolygonRows, PreparedVertex,
+    RenderStats, Renderer, SceneRenderer, Wireframe,
 };
 use zscan::scene::{Intensities, Object, Scene, Transparency};
 use zscan::texture::{shade_table, ShadeTable, Texture, TextureMode, Texturing};
@@ -159,6 +159,10 @@ pub struct RenderArgs {
     /// K = 1024, M = 1024²). Default: no limit.
     #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
     pub ram_budget: Option<usize>,
+    /// Also write the visible pieces of every object with `wireframe = "appel"` as an SVG
+    /// (one `<line>` per piece, in pixels, the colour of the object's `line_index`).
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
 }
 
 /// `--ram-budget`'s parser: a byte count, optionally followed by `K` (1024) or `M` (1024²).
@@ -259,6 +263,8 @@ pub enum WireKey {
     Front,
     /// Hidden lines removed through the depth buffer.
     Hidden,
+    /// Hidden lines removed by Appel's quantitative invisibility (no depth buffer).
+    Appel,
 }
 
 impl WireKey {
@@ -267,6 +273,7 @@ impl WireKey {
             WireKey::All => Wireframe::All,
             WireKey::Front => Wireframe::Front,
             WireKey::Hidden => Wireframe::Hidden,
+            WireKey::Appel => Wireframe::Appel,
         }
     }
 }
@@ -2055,7 +2062,10 @@ impl LoadedScene {
     }
 
     /// The core objects of the scene, or object `only` alone.
-    fn core_objects(&self, only: Option<usize>) -> Result<Vec<zscan::scene::Object<'_>>, String> {
+    pub(crate) fn core_objects(
+        &self,
+        only: Option<usize>,
+    ) -> Result<Vec<zscan::scene::Object<'_>>, String> {
         self.objects
             .iter()
             .enumerate()
@@ -2220,6 +2230,26 @@ impl LoadedScene {
     }
 }
 
+/// Runs `f` with Appel's scratch for `object` (`render::appel`): the half-edges, and a
+/// crossing per half-edge (no edge crosses more contour edges than the mesh has edges).
+pub(crate) fn appel_pieces<T>(
+    object: &Object<'_>,
+    f: impl FnOnce(
+        &mut AppelScratch<'_>,
+        &mut [PreparedVertex<SUBPIXEL_BITS>],
+    ) -> Result<T, zscan::render::RenderError>,
+    scratch: &mut [PreparedVertex<SUBPIXEL_BITS>],
+) -> Result<T, zscan::render::RenderError> {
+    let n = AppelScratch::edges_needed(&object.mesh);
+    let mut edges = vec![AppelEdge::ZERO; n];
+    let mut crossings = vec![AppelCrossing::ZERO; n];
+    let mut memory = AppelScratch {
+        edges: &mut edges,
+        crossings: &mut crossings,
+    };
+    f(&mut memory, scratch)
+}
+
 impl LoadedScene {
     /// The wireframes `wires` and the line lists `lines` into the finished picture, through
     /// its depth (module doc, "Wireframes, lines and points"). Returns the pixels drawn.
@@ -2239,6 +2269,34 @@ impl LoadedScene {
         let mut drawn = 0;
         for (object, mode, prepared) in wires {
             let mesh = object.mesh;
+            if *mode == Wireframe::Appel {
+                let number = self
+                    .objects
+                    .iter()
+                    .position(|p| std::ptr::eq(p, *prepared))
+                    .map_or(0, |k| k + 1);
+                let mut scratch = vec![PreparedVertex::default(); mesh.vertices().len()];
+                drawn += appel_pieces(
+                    object,
+                    |memory, scratch| {
+                        renderer.draw_appel(
+                            object,
+                            scratch,
+                            memory,
+                            prepared.line_index,
+                            &mut frame,
+                        )
+                    },
+                    &mut scratch,
+                )
+                .map_err(|e| {
+                    FrameError::Setup(format!(
+                        "object {number} (wireframe \"appel\"): {}",
+                        render_error_words(&e)
+                    ))
+                })?;
+                continue;
+            }
             let mut edges = vec![[0u16; 2]; mesh.indices().len()];
             let k = match mode {
                 Wireframe::All => mesh
@@ -2434,6 +2492,10 @@ fn finish<D: DepthValue + Into<u64>>(
     let mut pixels = frame.pixels.clone();
     let fb = Framebuffer::new(&mut pixels, w, h).map_err(|e| format!("frame: {e}"))?;
     crate::image::write_image(&args.output, &fb, &scene.lut).map_err(|e| e.0)?;
+    if let Some(p) = &args.svg {
+        let text = super::svg::appel_svg(scene)?;
+        std::fs::write(p, text).map_err(|e| format!("{}: {e}", p.display()))?;
+    }
     if let Some(p) = &args.depth_out {
         write_grey_png(p, w, h, &depth_to_grey(&frame.depth))?;
     }
