@@ -249,3 +249,62 @@ fn exact_mode_follows_the_f64_definition_on_the_clipped_floor() {
     assert!(both > 30_000, "{both}");
     assert!(other * 50 < both, "{other} of {both}");
 }
+
+/// `zscan chart --textures --no-measure`: one row per scene and mode whose count of texels
+/// differing from the exact mode is the one counted here (0 for the exact mode itself), and
+/// the Cortex-M4 column is read from a saved `zscan bench --no-host` table.
+#[test]
+fn the_texture_chart_table_states_the_counts() {
+    let dir = out_dir();
+    let table = dir.join("m4.txt");
+    std::fs::write(
+        &table,
+        "case              pixels | Cortex-M4 instr  /px ~cycles | checksum\n\
+         frame_tex_cube     16019 |   3524987   220.0   5000000 | 01234567\n\
+         frame_tex_cube_sub8 16019 |  12035232   751.3  15000000 | 01234567\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .args(["chart", "--textures", "--no-measure", "--m4"])
+        .arg(&table)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let modes = [
+        ("exact", TextureMode::Exact),
+        ("sub16", TextureMode::Subdivided16),
+        ("sub8", TextureMode::Subdivided8),
+        ("affine", TextureMode::Affine),
+    ];
+    let mut rows = 0;
+    for scene in TexScene::ALL {
+        let exact = texel_ids(scene, TextureMode::Exact);
+        for (word, mode) in modes {
+            let row: Vec<&str> = text
+                .lines()
+                .map(|l| l.split('|').map(str::trim).collect::<Vec<_>>())
+                .find(|f| f.get(1) == Some(&scene.name()) && f.get(2) == Some(&word))
+                .unwrap_or_else(|| panic!("no row {} {word}:\n{text}", scene.name()));
+            let ids = texel_ids(scene, mode);
+            let want = ids.iter().zip(&exact).filter(|(a, b)| a != b).count();
+            let shown: usize = row[6].split_whitespace().next().unwrap().parse().unwrap();
+            assert_eq!(shown, want, "{} {word}", scene.name());
+            if mode == TextureMode::Exact {
+                assert_eq!(shown, 0);
+            }
+            let m4 = match (scene, mode) {
+                (TexScene::Cube, TextureMode::Exact) => "3524987",
+                (TexScene::Cube, TextureMode::Subdivided8) => "12035232",
+                _ => "-",
+            };
+            assert_eq!(row[5], m4, "{} {word}", scene.name());
+            rows += 1;
+        }
+    }
+    assert_eq!(rows, 12);
+}

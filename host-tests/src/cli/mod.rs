@@ -12,6 +12,7 @@ pub mod out;
 pub mod ranged;
 pub mod render;
 pub mod spans;
+pub mod texture_chart;
 pub mod visibility_chart;
 
 /// Largest picture side the tool draws (`zscan lines`, `zscan render`'s viewport): 4096
