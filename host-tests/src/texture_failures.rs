@@ -50,6 +50,9 @@ pub fn mode_name(mode: TextureMode) -> &'static str {
         .map_or("exact", |(_, n)| n)
 }
 
+/// A triangle's corner coordinates `(u, v)` in `f64` (1.0 = the whole texture).
+pub type CornerUvs = [[f64; 2]; 3];
+
 /// SCENES.md's textured scenes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TexScene {
@@ -93,7 +96,7 @@ impl TexScene {
 
     /// The scene in `f64` (SCENES.md's definition, independent of the bench tables) with
     /// each triangle's corner coordinates `(u, v)` (1.0 = the whole texture).
-    pub fn float_scene(self) -> Result<(Scene, Vec<[[f64; 2]; 3]>), String> {
+    pub fn float_scene(self) -> Result<(Scene, Vec<CornerUvs>), String> {
         match self {
             TexScene::Floor => {
                 let c = |x: f64, z: f64| [x, -1.0, z];
@@ -150,7 +153,7 @@ fn cube_uv(face: usize, i: usize) -> [f64; 2] {
 /// The corners' `(u, v)` of a sphere triangle: segment `j` takes `u = j/32` (the corners that
 /// close the ring, `j = 0` beside `j = 31`, take 1), ring `k` takes `v = k/16`, a pole the mean
 /// `u` of the triangle's two other corners.
-fn sphere_uvs(t: [usize; 3]) -> [[f64; 2]; 3] {
+fn sphere_uvs(t: [usize; 3]) -> CornerUvs {
     let (seg, rings) = (scenes::SPHERE_SEGMENTS, scenes::SPHERE_RINGS);
     let south = 1 + (rings - 1) * seg;
     let pole = |i: usize| i == 0 || i == south;
