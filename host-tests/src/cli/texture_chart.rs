@@ -281,16 +281,17 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
                 Circle::new((*x, h), 5, c.stroke_width(2)),
             ])
             .map_err(|q| e(&q))?;
-        // The affine mode's label below its mark: on the floor it sits beside the exact one.
+        // On the floor the exact, subdivided and affine marks stand close: the affine mode's
+        // label goes below its mark, the 16-pixel one's to the left.
         let (px, py) = chart.backend_coord(&(*x, f));
-        let dy = if p.mode == TextureMode::Affine {
-            18
-        } else {
-            -6
+        let (dx, dy, anchor) = match p.mode {
+            TextureMode::Affine => (8, 18, "start"),
+            TextureMode::Subdivided16 => (-8, -6, "end"),
+            _ => (8, -6, "start"),
         };
         texts.push(format!(
-            r#"<text x="{}" y="{}" font-size="11">{}</text>"#,
-            px + 8,
+            r#"<text x="{}" y="{}" text-anchor="{anchor}" font-size="11">{}</text>"#,
+            px + dx,
             py + dy,
             mode_name(p.mode)
         ));
