@@ -1033,6 +1033,13 @@ pub mod scene {
         intensities: Intensities<'static>,
     }
 
+    impl StandardScene {
+        /// The scene's mesh (the host's accuracy checks read its corners and coordinates).
+        pub const fn mesh(&self) -> Mesh<'static> {
+            self.mesh
+        }
+    }
+
     /// Per-vertex intensities from per-corner ones (the sphere and bunny: corners agree).
     const fn per_vertex<const N: usize>(t: &[[u16; 3]], c: &[[u8; 3]]) -> [u8; N] {
         let mut out = [0u8; N];
@@ -1131,7 +1138,7 @@ pub mod scene {
     /// builds its renderer from it with `Renderer::new` itself: a helper returning the renderer
     /// in an `Option` or a `Result` of another error type costs a copy of its 424 bytes
     /// (measured: 2.6 k Cortex-M4 instructions per frame).
-    fn camera() -> Option<Camera> {
+    pub fn camera() -> Option<Camera> {
         let lens = Lens {
             fov: BinaryAngle::from_degrees(60),
             axis: FovAxis::Vertical,
@@ -1655,6 +1662,24 @@ pub mod scene {
             else {
                 return 0;
             };
+            let texturing = Texturing {
+                texture,
+                mode,
+                shades: Some(shades),
+            };
+            frame_with(fb, st, s, texturing)
+        }
+
+        /// [`frame`]'s frame of scene `s` with any `texturing` (the host's accuracy figures
+        /// draw the same frames with numbered textures to read back which texel each pixel
+        /// shows; the vertex scratch keeps the projected corners). Returns the pixels covered.
+        #[inline(always)]
+        pub fn frame_with(
+            fb: &mut Framebuffer<'_>,
+            st: &mut Storage,
+            s: &StandardScene,
+            texturing: Texturing<'_>,
+        ) -> u32 {
             let Ok(mut zb) =
                 DepthBuffer::new(&mut st.depth, super::super::WIDTH, super::super::HEIGHT)
             else {
@@ -1667,11 +1692,7 @@ pub mod scene {
                 return 0;
             };
             let mut o = object(s, ShadeMode::GouraudExact);
-            o.texture = Some(Texturing {
-                texture,
-                mode,
-                shades: Some(shades),
-            });
+            o.texture = Some(texturing);
             let mut stats = StatsWithoutWritten::default();
             match r.draw_object(&o, &mut st.vertices, fb, &mut zb, &mut stats) {
                 Ok(()) => stats.0.pixels_covered,

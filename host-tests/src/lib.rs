@@ -6,6 +6,8 @@
 //!   definition, ...), kept apart from the production code they check.
 //! - [`cli`]: the subcommands of the `zscan` tool.
 //! - [`failures`]: where the hidden-surface methods fail, as scenes, counts and pictures.
+//! - [`texture_failures`]: where the fast texture modes depart from the exact one and from the
+//!   `f64` definition, as counts and pictures.
 #![deny(missing_docs)]
 // Standard output and error go through `cli::out` (a failure is an error, not a panic).
 #![deny(clippy::print_stdout, clippy::print_stderr)]
@@ -21,4 +23,5 @@ pub mod reference;
 pub mod scenes;
 #[path = "../../src/test_rng.rs"]
 pub mod test_rng;
+pub mod texture_failures;
 pub mod texture_png;

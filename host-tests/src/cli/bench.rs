@@ -227,38 +227,46 @@ fn run_checked(cmd: &mut Command) -> Result<std::process::Output, CliError> {
 
 /// Host figures: one callgrind run per case, collecting only inside the host region.
 fn host_column() -> Result<Column, CliError> {
-    let exe = std::env::current_exe()?;
     let dir = std::env::temp_dir().join(format!("zscan-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
     let mut col = Column::default();
     for case in cases::CASES {
-        let out_file = dir.join(format!("callgrind.{}", case.name));
-        let out = run_checked(
-            Command::new("valgrind")
-                .arg("--tool=callgrind")
-                .arg("--collect-atstart=no")
-                .arg("--toggle-collect=zscan_bench_host_region")
-                .arg(format!("--callgrind-out-file={}", out_file.display()))
-                .arg(&exe)
-                .args(["bench", "--run-case", case.name]),
-        )
-        .map_err(|e| format!("valgrind (is it installed?): {e}"))?;
-        let text = std::fs::read_to_string(&out_file)?;
-        let total = text
-            .lines()
-            .find_map(|l| {
-                l.strip_prefix("totals:")
-                    .or_else(|| l.strip_prefix("summary:"))
-            })
-            .and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok())
-            .ok_or_else(|| format!("no totals in {}", out_file.display()))?;
+        let (total, stdout) = callgrind_case(&dir, case.name)?;
         col.raw.push(total);
-        let stdout = String::from_utf8_lossy(&out.stdout);
         col.checksums
             .push(parse_case_line(&stdout, case.name).map(|(_, s, _)| s));
     }
     let _ = std::fs::remove_dir_all(&dir);
     Ok(col)
+}
+
+/// Host instructions of case `name` (harness overhead included: subtract the `empty` case's),
+/// one callgrind run of this tool's `bench --run-case` collecting only inside the host region
+/// (its output file in `dir`), with the run's standard output.
+pub fn callgrind_case(dir: &Path, name: &str) -> Result<(u64, String), CliError> {
+    let exe = std::env::current_exe()?;
+    let out_file = dir.join(format!("callgrind.{name}"));
+    let out = run_checked(
+        Command::new("valgrind")
+            .arg("--tool=callgrind")
+            .arg("--collect-atstart=no")
+            .arg("--toggle-collect=zscan_bench_host_region")
+            .arg(format!("--callgrind-out-file={}", out_file.display()))
+            .arg(&exe)
+            .args(["bench", "--run-case", name]),
+    )
+    .map_err(|e| format!("valgrind (is it installed?): {e}"))?;
+    let text = std::fs::read_to_string(&out_file)?;
+    let total = text
+        .lines()
+        .find_map(|l| {
+            l.strip_prefix("totals:")
+                .or_else(|| l.strip_prefix("summary:"))
+        })
+        .and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok())
+        .ok_or_else(|| format!("no totals in {}", out_file.display()))?;
+    let _ = std::fs::remove_file(&out_file);
+    Ok((total, String::from_utf8_lossy(&out.stdout).into_owned()))
 }
 
 /// Parses `zscan-bench case <name> pixels=<p> checksum=<hex> [systick_instructions=<n>]`.

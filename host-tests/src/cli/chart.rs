@@ -52,9 +52,10 @@ use zscan::scene::{Intensities, Object};
 /// Arguments of `zscan chart`.
 #[derive(clap::Args, Debug)]
 pub struct ChartArgs {
-    /// Where to write the SVG.
-    #[arg(long, default_value = "docs/chart.svg")]
-    pub out: PathBuf,
+    /// Where to write the SVG (default `docs/chart.svg`; `docs/texture_chart.svg` with
+    /// `--textures`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
     /// Print the error table only (no callgrind, no SVG).
     #[arg(long)]
     pub no_measure: bool,
@@ -66,6 +67,11 @@ pub struct ChartArgs {
     /// whole positive numbers, each checked), the planner's pick marked.
     #[arg(long, value_name = "CSV")]
     pub plan_data: Option<PathBuf>,
+    /// Instead of the shading chart: the texture modes on SCENES.md's textured scenes, their
+    /// instructions per frame (the `frame_tex_*` bench cases) against the share of pixels
+    /// showing another texel than the `f64` definition (`texture_chart`).
+    #[arg(long)]
+    pub textures: bool,
     /// Internal: render one variant inside the measured region (what callgrind runs).
     #[arg(long, hide = true)]
     pub run_variant: Option<String>,
@@ -493,10 +499,14 @@ impl Row {
 
 /// Runs `zscan chart`.
 pub fn run(args: ChartArgs) -> Result<(), CliError> {
+    if args.textures {
+        return super::texture_chart::run(&args);
+    }
+    let out = args.out.clone().unwrap_or_else(|| "docs/chart.svg".into());
     if let Some(data) = &args.plan_data {
         let svg = plan_chart(data)?;
-        std::fs::write(&args.out, svg).map_err(|e| format!("{}: {e}", args.out.display()))?;
-        crate::outln!("wrote {}", args.out.display())?;
+        std::fs::write(&out, svg).map_err(|e| format!("{}: {e}", out.display()))?;
+        crate::outln!("wrote {}", out.display())?;
         return Ok(());
     }
     if let Some(name) = &args.run_variant {
@@ -520,8 +530,8 @@ pub fn run(args: ChartArgs) -> Result<(), CliError> {
     }
     let m4 = m4_per_pixel(&rows, args.m4.as_deref())?;
     let svg = chart(&rows, &m4, &visibility)?;
-    std::fs::write(&args.out, svg)?;
-    crate::note!("zscan chart: wrote {}", args.out.display());
+    std::fs::write(&out, svg)?;
+    crate::note!("zscan chart: wrote {}", out.display());
     Ok(())
 }
 
@@ -873,9 +883,18 @@ fn shading_legend(w: i32, bottom: i32, texts: &mut Vec<String>) {
     }
 }
 
-/// Cortex-M4 instructions per case from a saved `zscan bench` table (cases `lit_<variant>`):
-/// the first instruction column after the pixel count.
+/// Cortex-M4 instructions per case from a saved `zscan bench` table (cases `lit_<variant>`),
+/// keyed by variant.
 fn read_m4(path: &std::path::Path) -> Result<std::collections::HashMap<String, u64>, CliError> {
+    read_counts(path, "lit_")
+}
+
+/// Instructions per case from a saved `zscan bench` table, for the cases named `prefix…`
+/// (keyed by the rest of the name): the first instruction column after the pixel count.
+pub(super) fn read_counts(
+    path: &std::path::Path,
+    prefix: &str,
+) -> Result<std::collections::HashMap<String, u64>, CliError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut out = std::collections::HashMap::new();
@@ -887,7 +906,7 @@ fn read_m4(path: &std::path::Path) -> Result<std::collections::HashMap<String, u
         let Some(name) = head.split_whitespace().next() else {
             continue;
         };
-        let Some(variant) = name.strip_prefix("lit_") else {
+        let Some(variant) = name.strip_prefix(prefix) else {
             continue;
         };
         if let Some(n) = m4.split_whitespace().next().and_then(|v| v.parse().ok()) {

@@ -13,6 +13,7 @@ pub mod ranged;
 pub mod render;
 pub mod spans;
 pub mod svg;
+pub mod texture_chart;
 pub mod visibility_chart;
 
 /// Largest picture side the tool draws (`zscan lines`, `zscan render`'s viewport): 4096
