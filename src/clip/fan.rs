@@ -35,10 +35,13 @@ pub(crate) fn fan<P: Copy, E>(
 
 /// Clips polygon `input` to `volume` (unless `crosses` is false: every vertex is inside),
 /// projects each corner of the result with `project` and hands its fan to `triangle`.
+/// Attributes whose bit is set in `space_linear` are linear in the observer frame (texture
+/// coordinates; [`ClipVolume::clip_attributes`]).
 pub(crate) fn clip_project_fan<V: ClipVolume, const A: usize, P: Copy, E: From<ClipError>>(
     volume: &V,
     input: &[ClipVertex<A>],
     crosses: bool,
+    space_linear: u8,
     project: impl Fn(&ClipVertex<A>) -> Result<P, E>,
     mut triangle: impl FnMut([P; 3]) -> Result<(), E>,
 ) -> Result<(), E> {
@@ -52,7 +55,7 @@ pub(crate) fn clip_project_fan<V: ClipVolume, const A: usize, P: Copy, E: From<C
         fan(corners.len(), |k| corners[k], &mut triangle)
     };
     if crosses {
-        volume.clip_fan::<A, CLIP_CAPACITY, E>(input, project_fan)
+        volume.clip_fan::<A, CLIP_CAPACITY, E>(input, space_linear, project_fan)
     } else {
         project_fan(input)
     }

@@ -145,13 +145,15 @@ impl Plane {
 }
 
 /// The intersection of edge `p`–`q` with the plane, from the inside endpoint `p`
-/// (`dp ≥ 0 > dq`); see the module doc.
+/// (`dp ≥ 0 > dq`); see the module doc. Bit `i` of `space_linear` set: attribute `i` is linear
+/// in the observer frame (a texture coordinate), not in screen space.
 fn intersect<const A: usize>(
     p: &ClipVertex<A>,
     q: &ClipVertex<A>,
     dp: i64,
     dq: i64,
     affine: bool,
+    space_linear: u8,
 ) -> ClipVertex<A> {
     let dp = dp.unsigned_abs();
     let dq = dq.unsigned_abs();
@@ -174,10 +176,15 @@ fn intersect<const A: usize>(
     // s = t·z_q / z(t) (z(t) = the new vertex's z), rounded to nearest. Otherwise (the near
     // plane, an end behind the eye) there is no screen interpolant to keep: linear in 3D.
     // Under a parallel projection (`affine`) the screen parameter is `t` itself: linear in 3D.
+    // Attributes linear in the observer frame (`space_linear`: texture coordinates, which the
+    // raster interpolates perspective-correctly) take the 3D parameter `t` at every plane.
     let z_new = pos.bits()[2] as i128;
     let attrs = if !affine && pp[2] > 0 && qq[2] > 0 && z_new > 0 {
         let (num, den) = (a as i128 * qq[2] as i128, den as i128 * z_new);
         core::array::from_fn(|i| {
+            if space_linear >> i & 1 != 0 {
+                return lerp(p.attrs[i], q.attrs[i]);
+            }
             let delta = q.attrs[i] as i128 - p.attrs[i] as i128;
             // delta < 2^33, num < 2^61: the product < 2^94; round half up.
             let scaled = (2 * delta * num + den).div_euclid(2 * den);
@@ -192,12 +199,15 @@ fn intersect<const A: usize>(
 /// Clips the closed polygon `input` to the inside of `plane`, appending the result to `out`
 /// (Sutherland–Hodgman, one plane). `out` is cleared first. `affine` is true when the result
 /// is projected in parallel (an orthographic camera): the attributes of new vertices then
-/// follow that projection's screen interpolant (see `intersect`).
+/// follow that projection's screen interpolant (see `intersect`). Bit `i` of `space_linear`
+/// set: attribute `i` is linear in the observer frame (a texture coordinate) and new vertices
+/// take its value along the 3D edge at every plane.
 pub fn clip_to_plane<const A: usize, const N: usize>(
     plane: &Plane,
     input: &[ClipVertex<A>],
     out: &mut Vec<ClipVertex<A>, N>,
     affine: bool,
+    space_linear: u8,
 ) -> Result<(), ClipError> {
     out.clear();
     let Some(last) = input.last() else {
@@ -210,10 +220,10 @@ pub fn clip_to_plane<const A: usize, const N: usize>(
         match (ds >= 0, de >= 0) {
             (true, true) => out.push(*e).map_err(|_| ClipError::CapacityExceeded)?,
             (true, false) => out
-                .push(intersect(s, e, ds, de, affine))
+                .push(intersect(s, e, ds, de, affine, space_linear))
                 .map_err(|_| ClipError::CapacityExceeded)?,
             (false, true) => {
-                out.push(intersect(e, s, de, ds, affine))
+                out.push(intersect(e, s, de, ds, affine, space_linear))
                     .map_err(|_| ClipError::CapacityExceeded)?;
                 out.push(*e).map_err(|_| ClipError::CapacityExceeded)?;
             }
@@ -250,8 +260,8 @@ pub(crate) fn clip_segment(
         match (da >= 0, db >= 0) {
             (true, true) => {}
             (false, false) => return None,
-            (true, false) => b = intersect::<0>(&a, &b, da, db, false),
-            (false, true) => a = intersect::<0>(&b, &a, db, da, false),
+            (true, false) => b = intersect::<0>(&a, &b, da, db, false, 0),
+            (false, true) => a = intersect::<0>(&b, &a, db, da, false, 0),
         }
     }
     Some((a.pos, b.pos))
@@ -469,6 +479,20 @@ pub trait ClipVolume {
     where
         Self: Sized,
     {
+        self.clip_attributes(input, 0)
+    }
+
+    /// [`clip`](ClipVolume::clip) with attributes `i` whose bit is set in `space_linear`
+    /// linear in the observer frame (texture coordinates): new vertices take their value along
+    /// the 3D edge, the others the screen interpolant's (module doc).
+    fn clip_attributes<const A: usize, const N: usize>(
+        &self,
+        input: &[ClipVertex<A>],
+        space_linear: u8,
+    ) -> Result<Vec<ClipVertex<A>, N>, ClipError>
+    where
+        Self: Sized,
+    {
         let mut any = 0u8;
         let mut all = 0xFFu8;
         for v in input {
@@ -488,7 +512,7 @@ pub trait ClipVolume {
         let mut b: Vec<ClipVertex<A>, N> = Vec::new();
         for (i, pl) in self.planes().iter().enumerate() {
             if any & (1 << i) != 0 {
-                clip_to_plane(pl, &a, &mut b, self.screen_affine())?;
+                clip_to_plane(pl, &a, &mut b, self.screen_affine(), space_linear)?;
                 core::mem::swap(&mut a, &mut b);
                 if a.len() < 3 {
                     a.clear();
@@ -511,21 +535,24 @@ pub trait ClipVolume {
     ///
     /// Errors: [`ClipError::CapacityExceeded`] only when `input` itself exceeds `N` or `N < 9`
     /// for a fan triangle; `emit`'s own error stops the walk and is returned.
+    /// Attributes whose bit is set in `space_linear` are linear in the observer frame
+    /// ([`clip_attributes`](ClipVolume::clip_attributes)).
     fn clip_fan<const A: usize, const N: usize, E: From<ClipError>>(
         &self,
         input: &[ClipVertex<A>],
+        space_linear: u8,
         mut emit: impl FnMut(&[ClipVertex<A>]) -> Result<(), E>,
     ) -> Result<(), E>
     where
         Self: Sized,
     {
-        match self.clip::<A, N>(input) {
+        match self.clip_attributes::<A, N>(input, space_linear) {
             Ok(poly) if poly.is_empty() => Ok(()),
             Ok(poly) => emit(&poly),
             Err(ClipError::CapacityExceeded) if input.len() <= N => {
                 for k in 1..input.len().saturating_sub(1) {
                     let tri = [input[0], input[k], input[k + 1]];
-                    let piece = self.clip::<A, N>(&tri)?;
+                    let piece = self.clip_attributes::<A, N>(&tri, space_linear)?;
                     if !piece.is_empty() {
                         emit(&piece)?;
                     }
@@ -654,7 +681,7 @@ mod tests {
             cv(-1.0, 1.0, 1.0, 0),
         ];
         let mut out: Vec<ClipVertex<1>, 8> = Vec::new();
-        clip_to_plane(&pl, &sq, &mut out, false).unwrap();
+        clip_to_plane(&pl, &sq, &mut out, false, 0).unwrap();
         assert_eq!(out.len(), 4);
         for p in &out {
             assert!(p.pos.x >= Coord::ZERO);
@@ -664,7 +691,7 @@ mod tests {
         }
         let mut small: Vec<ClipVertex<1>, 3> = Vec::new();
         assert_eq!(
-            clip_to_plane(&pl, &sq, &mut small, false),
+            clip_to_plane(&pl, &sq, &mut small, false, 0),
             Err(ClipError::CapacityExceeded)
         );
     }
@@ -705,7 +732,7 @@ mod tests {
         };
         let mut pieces = 0;
         let mut sum = 0.0;
-        f.clip_fan::<1, 30, ClipError>(&poly, |piece| {
+        f.clip_fan::<1, 30, ClipError>(&poly, 0, |piece| {
             assert!(piece.len() >= 3 && piece.len() <= 9, "{}", piece.len());
             for v in piece {
                 assert!(v.pos.z >= Coord::from_num(0.5), "{v:?}");
@@ -725,7 +752,7 @@ mod tests {
             cv(-0.3, 0.2, 3.0, 255),
         ];
         let mut calls = 0;
-        f.clip_fan::<1, 30, ClipError>(&tri, |piece| {
+        f.clip_fan::<1, 30, ClipError>(&tri, 0, |piece| {
             assert_eq!(piece, f.clip::<1, 30>(&tri).unwrap().as_slice());
             calls += 1;
             Ok(())
@@ -734,7 +761,7 @@ mod tests {
         assert_eq!(calls, 1);
         // Capacity below the input's size is still an error.
         assert_eq!(
-            f.clip_fan::<1, 20, ClipError>(&poly, |_| Ok(())),
+            f.clip_fan::<1, 20, ClipError>(&poly, 0, |_| Ok(())),
             Err(ClipError::CapacityExceeded)
         );
     }

@@ -63,6 +63,11 @@ impl<const S: u32, const N: usize> Corner<S, N> {
 
 /// What the polygon stage hands its triangles to.
 pub(crate) trait TriangleConsumer<const S: u32, const N: usize> {
+    /// Bit `i` set when attribute `i` is linear in the observer frame (texture coordinates,
+    /// drawn perspective-correct), not in screen space (levels, Phong's normals): a corner the
+    /// clipper adds then takes its value along the 3D edge (`clip::frustum`).
+    const SPACE_LINEAR: u8 = 0;
+
     /// Takes one triangle of polygon `polygon` (its index in the mesh). Returns `(covered,
     /// written)`: the pixels it covered inside the buffers and those it wrote (0 where the
     /// consumer does not count them, or draws later).
@@ -74,6 +79,8 @@ pub(crate) trait TriangleConsumer<const S: u32, const N: usize> {
 }
 
 impl<T: TriangleConsumer<S, N>, const S: u32, const N: usize> TriangleConsumer<S, N> for &mut T {
+    const SPACE_LINEAR: u8 = T::SPACE_LINEAR;
+
     #[inline(always)]
     fn triangle(
         &mut self,
@@ -114,8 +121,8 @@ impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> Tri
 }
 
 /// The z-buffer consumer of textured triangles: corners whose attributes are a level and the
-/// Q8.8 texture coordinates `u`, `v` (interpolated in the observer frame at clipped corners,
-/// where they are affine), and whose perspective weight is `A − D` from the corner's depth
+/// Q8.8 texture coordinates `u`, `v` (interpolated along the 3D edge at clipped corners, where
+/// they are affine: [`TriangleConsumer::SPACE_LINEAR`]), and whose perspective weight is `A − D` from the corner's depth
 /// (`origin = Some(A)`; an orthographic camera's weights are equal), drawn at once.
 pub(crate) struct TextureWriter<'a, 't, D, C, T> {
     /// The object's frame and depth buffer (or mask).
@@ -129,6 +136,9 @@ pub(crate) struct TextureWriter<'a, 't, D, C, T> {
 impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> TriangleConsumer<S, 3>
     for TextureWriter<'_, '_, D, C, T>
 {
+    /// `u` and `v` (attributes 1 and 2) are affine in the observer frame.
+    const SPACE_LINEAR: u8 = 0b110;
+
     #[inline(always)]
     fn triangle(&mut self, _: usize, c: [Corner<S, 3>; 3]) -> Result<(u32, u32), RenderError> {
         let v = c.map(|c| c.screen);

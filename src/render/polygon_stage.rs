@@ -339,16 +339,18 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     }
 
     /// Clips a polygon crossing the frustum (Sutherland–Hodgman), projects and draws it.
-    pub(super) fn clipped<const N: usize>(
+    pub(super) fn clipped<C: TriangleConsumer<S, N>, const N: usize>(
         &self,
         pi: usize,
         poly: &[u16],
         stats: &mut RenderStats,
         attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
-        draw: &mut impl TriangleConsumer<S, N>,
+        draw: &mut C,
     ) -> Result<(), RenderError> {
         stats.clipped += 1;
-        self.each_clipped_triangle(pi, poly, attrs, |tri| draw_counted(pi, tri, draw, stats))
+        self.each_clipped_triangle(pi, poly, attrs, C::SPACE_LINEAR, |tri| {
+            draw_counted(pi, tri, draw, stats)
+        })
     }
 
     /// The rows `⌈y_min⌉ .. ⌈y_max⌉` of a clipped polygon's projection, for the band table:
@@ -357,7 +359,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
     /// of it projects.
     pub(super) fn clipped_rows(&self, poly: &[u16]) -> Result<Option<(i32, i32)>, RenderError> {
         let (mut lo, mut hi) = (i32::MAX, i32::MIN);
-        self.each_clipped_triangle(0, poly, &|_, _, _, _| [], |tri: [Corner<S, 0>; 3]| {
+        self.each_clipped_triangle(0, poly, &|_, _, _, _| [], 0, |tri: [Corner<S, 0>; 3]| {
             for c in tri {
                 (lo, hi) = (lo.min(c.screen.y), hi.max(c.screen.y));
             }
@@ -373,6 +375,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
         pi: usize,
         poly: &[u16],
         attrs: &impl Fn(usize, &[u16], usize, Option<&PreparedVertex<S>>) -> [i32; N],
+        space_linear: u8,
         triangle: impl FnMut([Corner<S, N>; 3]) -> Result<(), RenderError>,
     ) -> Result<(), RenderError> {
         let mut input: Vec<ClipVertex<N>, CLIP_CAPACITY> = Vec::new();
@@ -398,7 +401,7 @@ impl<const S: u32> PolygonStage<'_, '_, S> {
             })
         };
         let frustum = &self.renderer.frustum;
-        clip_project_fan(frustum, &input, true, project, triangle)
+        clip_project_fan(frustum, &input, true, space_linear, project, triangle)
     }
 }
 

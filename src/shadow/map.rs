@@ -610,7 +610,7 @@ fn polygon<D: DepthValue>(
         }
         Ok((SubpixelPoint::new(sx as i32, sy as i32), d))
     };
-    clip_project_fan(planes, &pts, any != 0, project, |tri| {
+    clip_project_fan(planes, &pts, any != 0, 0, project, |tri| {
         draw_triangle(target, tri).map_err(PassError)
     })
     .map_err(|e: PassError| e.0)
