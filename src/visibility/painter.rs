@@ -57,14 +57,15 @@
 //! be cut as often as the store holds pieces and the split budget allows; drawn row by row,
 //! each row restricted to the columns whose samples lie on its side of the cut planes, so the
 //! pieces of `P` write exactly `P`'s pixels. The tests judge a piece by its own
-//! polygon: tests 1–4 by its **outline** (`outline.rs`: the triangle clipped by its cuts, a
-//! superset of the piece with exact integer vertices, clipped by its latest three cuts, so what
+//! polygon: tests 1–4 by its **outline** (`outline.rs`: the triangle clipped by its cuts moved
+//! a depth unit outward, a superset of the piece with exact integer vertices, clipped by its
+//! latest three cuts, so what
 //! holds for the outline holds for the piece, and an empty outline is a piece with no sample),
 //! by its cuts (a piece behind `Q`'s plane passes test 3 against `Q`; a plane that cut both,
 //! one behind and one in front, separates them, and so does a third plane that cut one when
-//! the other's outline lies on the other side; samples of both on that plane tie, so the
-//! outline must then lie strictly off it unless the tie rule already gives the pair this
-//! order), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
+//! the other's outline lies on the other side; their rounded depths may tie on that plane, so
+//! the outline must then lie a whole depth unit off it unless the tie rule already gives the
+//! pair this order), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
 //! `P` in the tests' order instead: the painter without test 6, whose wrong pixels
 //! `tests/visibility.rs` counts.
 //!
@@ -458,7 +459,8 @@ fn tie_margin<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> i12
 
 /// [`deciding_test`] when `ta` or `tb` is a piece: tests 1–4 on the outlines (supersets of
 /// the pieces, `outline.rs`) and on the cuts (a piece cut by the other's plane lies on its
-/// side, samples at an equal depth on the side the tie rule gives them: `draw_piece`), test 5
+/// side, samples at an equal rounded depth on the side the tie rule gives them: `draw_piece`),
+/// test 5
 /// on the base triangles. An empty piece (no sample) may go anywhere: counted as test 2.
 fn deciding_test_pieces<const S: u32>(
     all: Store<'_, S>,
@@ -488,7 +490,7 @@ fn deciding_test_pieces<const S: u32>(
     }
     // 3. A behind B's plane (its outline, or a cut that says so), or behind a plane that B
     // is in front of (both cut by it: the plane separates them). A cut keeps the samples at
-    // the plane's depth on the side the tie rule gives them, so a piece behind B's plane
+    // the plane's rounded depth on the side the tie rule gives them, so a piece behind B's plane
     // shows behind B at every sample, ties included, and so does a separated pair.
     let (cuts_a, cuts_b) = (cuts(all.0, ta), cuts(all.0, tb));
     let b_plane = Plane::stored(all, tb.base);
