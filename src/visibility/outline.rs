@@ -5,11 +5,14 @@
 //! clipped by the latest [`OUTLINE_CUTS`] of them. Dropping a cut only enlarges the polygon, so
 //! the outline is still a superset of the piece, which is all the tests need (below).
 //!
-//! A piece of triangle `P` is the part of `P` on one side of each of its cut planes. In `P`'s
-//! plane a cut plane `Q` is a line, and the side of `Q` is an affine function of the point
-//! that takes, at `P`'s corners, the exact `i128` values `q_k` (its oriented side there,
-//! `Plane::oriented`). With barycentric weights `λ ≥ 0` over `P`'s corners the piece is
-//! `{λ : Σ λ_k c_k ≥ 0 for each cut}`, `c = q` for the piece behind `Q` and `c = −q` in front.
+//! A piece of triangle `P` is the part of `P` on one side of each of its cut planes, its
+//! samples sorted by the z-buffer's rounded depths (`painter.rs`'s `draw_piece`): within one
+//! depth unit of the plane a sample may go either way. In `P`'s plane a cut plane `Q` is a
+//! line, and the side of `Q` is an affine function of the point that takes, at `P`'s corners,
+//! the exact `i128` values `q_k` (its oriented side there, `Plane::oriented`), `u` per depth
+//! unit (`Plane::unit`). With barycentric weights `λ ≥ 0` over `P`'s corners the piece lies in
+//! `{λ : Σ λ_k c_k ≥ 0 for each cut}`, `c = q + u` for the piece behind `Q` and `c = u − q` in
+//! front (the cut moved one depth unit outward).
 //!
 //! **Superset, never smaller.** The outline relaxes each cut to small coefficients,
 //! `c'_k = ⌊c_k / 2^m⌋ + 1` when `m > 0` (else `c'_k = c_k`): since `Σ λ_k = 1`,
@@ -26,7 +29,7 @@
 //! a sliver larger than their pieces, which costs nothing but, rarely, a test that would have
 //! passed on the exact piece.
 //!
-//! Numeric contract: corner sides `|c_k| < 2^93` (`painter.rs`). Relaxed coefficients
+//! Numeric contract: corner sides `|c_k| < 2^93 + 2^59 < 2^94` (`painter.rs`, `u < 2^59`). Relaxed coefficients
 //! `|c'| ≤ C = 2^b + 1` (`b` = [`CUT_BITS_TWO`] for pieces of one or two cuts,
 //! [`CUT_BITS_THREE`] for three). Vertex weights: `U_0 = 1`, and a clip makes
 //! `U_{i+1} ≤ 6·C·U_i²`: two cuts at `b = 24` give `U_2 ≤ 216·C³ < 2^80`, three at `b = 10`
@@ -80,11 +83,12 @@ impl Outline {
             CUT_BITS_THREE
         };
         for cut in cuts {
-            let q = Plane::stored(all, cut & !CUT_FRONT).oriented(t);
+            let plane = Plane::stored(all, cut & !CUT_FRONT);
+            let (q, unit) = (plane.oriented(t), plane.unit());
             let c = if cut & CUT_FRONT == 0 {
-                q
+                q.map(|x| x + unit)
             } else {
-                q.map(|x| -x)
+                q.map(|x| unit - x)
             };
             o.clip(relaxed(c, b));
             if o.n == 0 {

@@ -24,15 +24,19 @@
 //! **Ties** follow the z-buffer's rule: where two surfaces are at exactly the same depth, the
 //! z-buffer keeps the one it drew first, the triangle stored first (scene order). So "or on"
 //! in tests 1, 3 and 4 holds only when `Q` was stored before `P` (painting `Q` last keeps it);
-//! when `P` was stored first, `P` must lie strictly behind `Q`. A sample of `P` exactly on a
-//! cut plane goes with the piece behind it when the cutting triangle was stored first, else
-//! with the piece in front, and a triangle touching another's plane (an edge on it) counts as
-//! crossing it on the side the rule gives the touching points, so such pairs are split too.
-//! Exact ties are those of the exact planes through the stored corners: coplanar surfaces
-//! whose projected depth is the same plane (a face seen head-on, two triangles sharing their
-//! corners' depths). Where two planes differ by less than one depth unit at a sample, the
-//! z-buffer's rounded depths may tie where the exact ones do not; there the painter paints
-//! the exactly nearer one (at 32-bit depth, within `2^-32` of the depth range).
+//! when `P` was stored first, `P` must lie strictly behind `Q`. A triangle touching another's
+//! plane (an edge on it) counts as crossing it on the side the rule gives the touching
+//! points, so such pairs are split too. Exact ties are those of the exact planes through the
+//! stored corners: coplanar surfaces whose projected depth is the same plane (a face seen
+//! head-on, two triangles sharing their corners' depths). Where two planes differ by less
+//! than one depth unit at a sample, the z-buffer's rounded depths may tie where the exact
+//! ones do not. A cut sorts `P`'s samples as the z-buffer does, by rounded depths (half up,
+//! as the z-buffer stores them) and on equal ones by the tie rule: a sample goes with the
+//! piece behind `Q`'s plane exactly where the z-buffer would keep `Q` over `P`, so pieces
+//! follow the rounded ties too (two triangles of one polygon whose fan folds over itself, a
+//! few pixels along their shared edge, are the common case). A pair ordered whole by test 3
+//! or 4 is ordered by its exact planes: there the painter paints the exactly nearer one (at
+//! 32-bit depth, within `2^-32` of the depth range).
 //!
 //! When every test fails, `Q` is moved before `P` and marked; a marked `Q` failing again is a
 //! cycle (or interpenetration), and test 6 **splits** `P` by `Q`'s plane into the piece behind
@@ -53,14 +57,15 @@
 //! be cut as often as the store holds pieces and the split budget allows; drawn row by row,
 //! each row restricted to the columns whose samples lie on its side of the cut planes, so the
 //! pieces of `P` write exactly `P`'s pixels. The tests judge a piece by its own
-//! polygon: tests 1–4 by its **outline** (`outline.rs`: the triangle clipped by its cuts, a
-//! superset of the piece with exact integer vertices, clipped by its latest three cuts, so what
+//! polygon: tests 1–4 by its **outline** (`outline.rs`: the triangle clipped by its cuts moved
+//! a depth unit outward, a superset of the piece with exact integer vertices, clipped by its
+//! latest three cuts, so what
 //! holds for the outline holds for the piece, and an empty outline is a piece with no sample),
 //! by its cuts (a piece behind `Q`'s plane passes test 3 against `Q`; a plane that cut both,
 //! one behind and one in front, separates them, and so does a third plane that cut one when
-//! the other's outline lies on the other side; samples of both on that plane tie, so the
-//! outline must then lie strictly off it unless the tie rule already gives the pair this
-//! order), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
+//! the other's outline lies on the other side; their rounded depths may tie on that plane, so
+//! the outline must then lie a whole depth unit off it unless the tie rule already gives the
+//! pair this order), and test 5 by its base triangle. With [`SplitPolicy::Never`] a cycle draws
 //! `P` in the tests' order instead: the painter without test 6, whose wrong pixels
 //! `tests/visibility.rs` counts.
 //!
@@ -454,7 +459,8 @@ fn tie_margin<const S: u32>(a: &StoredTriangle<S>, b: &StoredTriangle<S>) -> i12
 
 /// [`deciding_test`] when `ta` or `tb` is a piece: tests 1–4 on the outlines (supersets of
 /// the pieces, `outline.rs`) and on the cuts (a piece cut by the other's plane lies on its
-/// side, samples at an equal depth on the side the tie rule gives them: `draw_piece`), test 5
+/// side, samples at an equal rounded depth on the side the tie rule gives them: `draw_piece`),
+/// test 5
 /// on the base triangles. An empty piece (no sample) may go anywhere: counted as test 2.
 fn deciding_test_pieces<const S: u32>(
     all: Store<'_, S>,
@@ -484,7 +490,7 @@ fn deciding_test_pieces<const S: u32>(
     }
     // 3. A behind B's plane (its outline, or a cut that says so), or behind a plane that B
     // is in front of (both cut by it: the plane separates them). A cut keeps the samples at
-    // the plane's depth on the side the tie rule gives them, so a piece behind B's plane
+    // the plane's rounded depth on the side the tie rule gives them, so a piece behind B's plane
     // shows behind B at every sample, ties included, and so does a separated pair.
     let (cuts_a, cuts_b) = (cuts(all.0, ta), cuts(all.0, tb));
     let b_plane = Plane::stored(all, tb.base);
@@ -505,17 +511,20 @@ fn deciding_test_pieces<const S: u32>(
         return Some(3);
     }
     // 3 and 4 by a third plane: A cut behind a plane that B lies wholly in front of, or B
-    // cut in front of a plane that A lies wholly behind. Where both have samples on that
-    // plane (a piece keeps them when `draw_piece`'s rule gives them its side, a polygon that
-    // only touches the plane has them), they tie, and painting B last is right only when B
-    // was stored first: otherwise the other must lie strictly off the plane.
+    // cut in front of a plane that A lies wholly behind. The cut piece's samples are at a
+    // rounded depth behind (in front of) the plane's or at the same one, and the other's at
+    // the same rounded depth as the plane's or beyond: where all three tie, painting B last
+    // is right only when B was stored first (the cut then says which of the piece and the
+    // plane was stored first). Otherwise the other must lie a whole depth unit off the
+    // plane (`Plane::unit`), so that its rounded depths differ from the plane's.
     let tie_on = |cut: u32, piece: &StoredTriangle<S>, behind: bool| {
         margin == 1 && ((cut < piece.base) == behind)
     };
     if cuts_a.clone().any(|c| {
         c & CUT_FRONT == 0 && c != tb.base && {
-            let m = tie_on(c, ta, true) as i128;
-            ob.side_bounds(Plane::stored(all, c).oriented(tb)).1 <= -m
+            let plane = Plane::stored(all, c);
+            let m = tie_on(c, ta, true) as i128 * plane.unit();
+            ob.side_bounds(plane.oriented(tb)).1 <= -m
         }
     }) {
         return Some(2);
@@ -523,8 +532,9 @@ fn deciding_test_pieces<const S: u32>(
     if cuts_b.clone().any(|c| {
         let by = c & !CUT_FRONT;
         c & CUT_FRONT != 0 && by != ta.base && {
-            let m = tie_on(by, tb, false) as i128;
-            oa.side_bounds(Plane::stored(all, by).oriented(ta)).0 >= m
+            let plane = Plane::stored(all, by);
+            let m = tie_on(by, tb, false) as i128 * plane.unit();
+            oa.side_bounds(plane.oriented(ta)).0 >= m
         }
     }) {
         return Some(3);
@@ -642,7 +652,15 @@ fn closed_columns<const S: u32>(t: &StoredTriangle<S>, y: i32) -> (i64, i64) {
 }
 
 /// Paints `t` (a whole triangle at once; a piece row by row, each row's columns restricted to
-/// the samples on its side of every cut, found by bisection: the side is affine along a row).
+/// the samples on its side of every cut).
+///
+/// A sample of a piece of `P` cut by `X`'s plane lies behind it when the z-buffer would keep
+/// `X` there: `X`'s depth rounded as the z-buffer rounds it is below `P`'s, or equal with `X`
+/// stored first. The exact depths then differ by less than a unit wherever the rounded and
+/// exact sides disagree, so along a row each cut keeps a run of columns where `P` lies a unit
+/// or more on its side of the plane, within the run where it lies less than a unit on the
+/// other (both found by bisection: the exact side is affine along a row), and the columns
+/// between are decided one by one.
 fn draw_piece<const S: u32, C: crate::raster::triangle::WrittenCount>(
     scene: &Scene<'_>,
     t: &StoredTriangle<S>,
@@ -659,26 +677,65 @@ fn draw_piece<const S: u32, C: crate::raster::triangle::WrittenCount>(
     let ((x_lo, x_hi), _) = boxes(t);
     let (row_lo, row_hi) = t.rows();
     let cols = ((-((-x_lo) >> S)).max(full.x0), (x_hi >> S).min(full.x1 - 1));
+    // Each cut: its plane, whether the piece keeps the samples behind it, and whether the
+    // cutting triangle was stored first (it hides `P`'s samples at its rounded depth).
+    let cut_of = |cut: u32| {
+        let by = cut & !CUT_FRONT;
+        (Plane::stored(all, by), cut & CUT_FRONT == 0, by < t.base)
+    };
+    let kept = |x: i32, y: i32| {
+        let (sx, sy) = ((x as i64) << S, (y as i64) << S);
+        let depth = own.rounded_depth(sx, sy);
+        cuts(all.0, t).all(|cut| {
+            let (plane, keep_behind, first) = cut_of(cut);
+            let other = plane.rounded_depth(sx, sy);
+            (depth > other || (depth == other && first)) == keep_behind
+        })
+    };
     let mut sum = (0, 0);
     for y in row_lo.max(full.y0)..=row_hi.min(full.y1 - 1) {
+        // `a..b`: the columns each cut may keep; `c..d` within: those each cut keeps.
         let (mut a, mut b) = (cols.0, cols.1 + 1);
         for cut in cuts(all.0, t) {
-            let by = cut & !CUT_FRONT;
-            let plane = Plane::stored(all, by);
-            let keep_behind = cut & CUT_FRONT == 0;
-            // A sample at the cutting plane's depth is hidden by it (goes with the samples
-            // behind) when the cutting triangle was stored first: the z-buffer keeps it there.
-            let hidden_on_plane = by < t.base;
-            let keep = |x: i32| {
-                let side = plane.sample_side(&own, (x as i64) << S, (y as i64) << S);
-                (side > 0 || (side == 0 && hidden_on_plane)) == keep_behind
+            let (plane, keep_behind, _) = cut_of(cut);
+            let side = |x: i32, shift: i64| {
+                plane.sample_side_moved(&own, (x as i64) << S, (y as i64) << S, shift)
             };
-            (a, b) = kept_columns(a, b, keep);
+            (a, b) = if keep_behind {
+                kept_columns(a, b, |x| side(x, -1) > 0)
+            } else {
+                kept_columns(a, b, |x| side(x, 1) < 0)
+            };
         }
-        if a < b {
-            target.restrict(Window::new(a, y, b, y + 1));
-            let (c, w) = t.draw(scene, target)?;
-            sum = (sum.0 + c, sum.1 + w);
+        let (mut c, mut d) = (a, b);
+        for cut in cuts(all.0, t) {
+            let (plane, keep_behind, _) = cut_of(cut);
+            let side = |x: i32, shift: i64| {
+                plane.sample_side_moved(&own, (x as i64) << S, (y as i64) << S, shift)
+            };
+            (c, d) = if keep_behind {
+                kept_columns(c, d, |x| side(x, 1) >= 0)
+            } else {
+                kept_columns(c, d, |x| side(x, -1) <= 0)
+            };
+        }
+        if c >= d {
+            (c, d) = (b, b);
+        }
+        // Runs of kept columns: those of `a..c` and `d..b` one by one, `c..d` at once.
+        let mut x = a;
+        while x < b {
+            let start = x;
+            while x < b && (c <= x && x < d || kept(x, y)) {
+                x = if x == c { d } else { x + 1 };
+            }
+            if start < x {
+                target.restrict(Window::new(start, y, x, y + 1));
+                let (n, w) = t.draw(scene, target)?;
+                sum = (sum.0 + n, sum.1 + w);
+            } else {
+                x += 1;
+            }
         }
     }
     target.restrict(full);
@@ -719,8 +776,137 @@ fn kept_columns(a: i32, b: i32, keep: impl Fn(i32) -> bool) -> (i32, i32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::camera::{Camera, Lens, Viewport};
+    use crate::geometry::fixed::Coord;
+    use crate::geometry::generators::unit_cube;
+    use crate::geometry::trig::BinaryAngle;
+    use crate::geometry::vector::Vec3;
+    use crate::output::DepthBuffer;
     use crate::raster::SubpixelPoint;
+    use crate::scene::Object;
     use crate::test_rng::XorShift;
+
+    const W: u16 = 56;
+    const H: u16 = 56;
+    const N: usize = W as usize * H as usize;
+
+    /// A stored whole triangle of object 0: sub-pixel corners, depths and levels.
+    fn stored(v: [(i32, i32); 3], depth: [u32; 3], level: [u8; 3], at: u32) -> StoredTriangle {
+        StoredTriangle {
+            v: v.map(|(x, y)| SubpixelPoint::new(x, y)),
+            depth,
+            level,
+            base: at,
+            ..StoredTriangle::DEFAULT
+        }
+    }
+
+    /// The pictures of `store` (whole triangles of object 0 of `scene`) by the painter's loop
+    /// (Newell's tests and splits, `draw_piece`) and by the 32-bit z-buffer drawing them in
+    /// store order; and the painter's split count.
+    fn painter_and_zbuffer(
+        scene: &Scene<'_>,
+        store: &[StoredTriangle],
+    ) -> ([u8; N], [u8; N], usize) {
+        let n = store.len();
+        let mut triangles = [StoredTriangle::DEFAULT; 16];
+        triangles[..n].copy_from_slice(store);
+        let mut normals = [Normal::DEFAULT; 16];
+        for (normal, t) in normals.iter_mut().zip(store) {
+            *normal = Plane::of(t).normal();
+        }
+        let mut order = [0u32; 16];
+        sort_order(&mut order[..n], |i| Reverse(triangles[i].depth_range().1));
+        let (mut painted, mut zbuffered) = ([0u8; N], [0u8; N]);
+        let mut splits = 0;
+        let mut frame = Framebuffer::new(&mut painted, W, H).unwrap();
+        frame.clear(0);
+        let mut stats = RenderStats::default();
+        without_depth(&mut frame, |frame, depth| {
+            let mut target = RasterTarget::new(frame, depth);
+            let mut painter = Painter {
+                scene,
+                window: target.buffers(),
+                triangles: &mut triangles,
+                normals: &normals,
+                order: &mut order,
+                count: n,
+                stored: n,
+                splits: 0,
+                moves: 0,
+                moved: 0,
+                tests: [0; 5],
+                ambiguities: 0,
+            };
+            while let Some(t) = painter.next(SplitPolicy::Budget(64))? {
+                let all = (&*painter.triangles, &normals[..]);
+                draw_piece(scene, &painter.triangles[t], all, &mut target, &mut stats)?;
+            }
+            splits = painter.splits;
+            Ok(())
+        })
+        .unwrap();
+        let mut frame = Framebuffer::new(&mut zbuffered, W, H).unwrap();
+        frame.clear(0);
+        let mut depths = [0u32; N];
+        let mut depth = DepthBuffer::new(&mut depths, W, H).unwrap();
+        depth.clear();
+        let mut target = RasterTarget::new(&mut frame, &mut depth);
+        for t in store {
+            t.draw(scene, &mut target).unwrap();
+        }
+        (painted, zbuffered, splits)
+    }
+
+    /// Two triangles of one polygon's fan that folds over itself (they share corner 0 and
+    /// overlap): at pixel (22, 15) the second is exactly nearer, by less than a depth unit, and
+    /// both round to the same 32-bit depth, where the z-buffer keeps the first drawn. The
+    /// painter splits the second by the first's plane and must sort that sample as the
+    /// z-buffer does: its picture equals the z-buffer's at every pixel.
+    #[test]
+    fn pieces_follow_the_z_buffers_rounded_ties() {
+        let lens = Lens::new(
+            BinaryAngle::from_degrees(50),
+            Coord::lit("0.5"),
+            Coord::lit("20"),
+        );
+        let (eye, up) = (Vec3::from_int(0, 0, 4), Vec3::from_int(0, 1, 0));
+        let camera = Camera::look_at(eye, Vec3::ZERO, up, lens, Viewport::new(W, H)).unwrap();
+        let mut object = Object::new(unit_cube());
+        object.shade = ShadeMode::GouraudExact;
+        let objects = [object];
+        let scene = Scene {
+            camera,
+            objects: &objects,
+            background: 0,
+            ambient: 255,
+            lights: &[],
+        };
+        let first = stored(
+            [(799, -6), (-449, 447), (827, 815)],
+            [228_737_183, 226_690_414, 228_752_700],
+            [165, 108, 114],
+            0,
+        );
+        let second = stored(
+            [(799, -6), (11, -234), (55, 1095)],
+            [228_737_183, 227_462_940, 227_487_324],
+            [165, 150, 249],
+            1,
+        );
+        // The premise at the sample (22, 15): exact depths differ, rounded ones tie.
+        let (a, b) = (Plane::of(&first), Plane::of(&second));
+        let (x, y) = (22 << 4, 15 << 4);
+        assert_eq!(a.sample_side(&b, x, y), -1, "the second exactly nearer");
+        assert_eq!(a.rounded_depth(x, y), b.rounded_depth(x, y));
+        let (painted, zbuffered, splits) = painter_and_zbuffer(&scene, &[first, second]);
+        assert!(splits > 0, "the pair is split");
+        let at = 15 * W as usize + 22;
+        let alone = painter_and_zbuffer(&scene, &[second]).1;
+        assert_ne!(zbuffered[at], alone[at], "the first one shows at (22, 15)");
+        let differing = (0..N).filter(|&i| painted[i] != zbuffered[i]).count();
+        assert_eq!(differing, 0, "pixels differing from the z-buffer");
+    }
 
     /// `closed_columns` against the definition: every sample of a row tested on the three
     /// edge functions (inside or on each, for either orientation).

@@ -101,14 +101,43 @@ impl Plane {
 
     /// The side of this plane of the sample at pixel `(x, y)` of plane `on`, exactly (as
     /// [`Self::sample_behind`]): 1 behind, 0 on it (the same depth), −1 in front.
+    #[cfg(test)]
     pub(super) fn sample_side(&self, on: &Plane, x: i64, y: i64) -> i128 {
-        let [ox, oy, od] = on.origin;
+        self.sample_side_moved(on, x, y, 0)
+    }
+
+    /// One depth unit in the units of [`Self::oriented`]: `|n_d|` (`< 2^59`), since a point
+    /// at depth `D` over `(X, Y)` has the side `|n_d|·(D − D_plane(X, Y))`.
+    pub(super) fn unit(&self) -> i128 {
+        (self.n[2] as i128).abs()
+    }
+
+    /// The depth of the plane at pixel `(x, y)` as the z-buffer stores it: the exact value
+    /// rounded half up (`raster::triangle::plane`), `⌊D + 1/2⌋ = q + [2r ≥ |n_d|]` with
+    /// `D = q + r/|n_d|` (`|q| < 2^35` within the triangle's bounding box, module doc).
+    pub(super) fn rounded_depth(&self, x: i64, y: i64) -> i128 {
+        let (q, r, den) = self.depth_at(x, y);
+        q + (2 * r >= den) as i128
+    }
+
+    /// `(q, r, |n_d|)` with the plane's exact depth at pixel `(x, y)` equal to `q + r/|n_d|`,
+    /// `0 ≤ r < |n_d|`.
+    fn depth_at(&self, x: i64, y: i64) -> (i128, i128, i128) {
+        let [ox, oy, od] = self.origin;
         let (dx, dy) = (x - ox, y - oy);
-        // D_on = od − (n_x dx + n_y dy)/n_d.
-        let num = -(on.n[0] as i128 * dx as i128 + on.n[1] as i128 * dy as i128);
-        let den = on.n[2] as i128;
+        // D = od − (n_x dx + n_y dy)/n_d.
+        let num = -(self.n[0] as i128 * dx as i128 + self.n[1] as i128 * dy as i128);
+        let den = self.n[2] as i128;
         let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
-        let (q, r) = (num.div_euclid(den) + od as i128, num.rem_euclid(den));
+        (num.div_euclid(den) + od as i128, num.rem_euclid(den), den)
+    }
+
+    /// The side of this plane of the sample at pixel `(x, y)` of plane `on` moved `shift`
+    /// depth units nearer (`|shift| ≤ 1`): the sign of `D_on − shift − D_self` there, exactly
+    /// (as [`Self::sample_side`]).
+    pub(super) fn sample_side_moved(&self, on: &Plane, x: i64, y: i64, shift: i64) -> i128 {
+        let (q, r, den) = on.depth_at(x, y);
+        let q = q - shift as i128;
         let [cx, cy, cd] = self.origin;
         let b = self.n[0] as i128 * (x - cx) as i128
             + self.n[1] as i128 * (y - cy) as i128
