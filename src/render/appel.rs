@@ -495,30 +495,33 @@ fn walk_object<const S: u32>(
 fn direct_counts(
     (p0, p1): (P3, P3),
     ends: [u16; 2],
-    p: &impl Fn(u16) -> P3,
+    (p, xy): (&impl Fn(u16) -> P3, &impl Fn(u16) -> [i32; 2]),
     mesh: &Mesh<'_>,
 ) -> Result<(i32, i32), AppelError> {
     let u = [p1[0] - p0[0], p1[1] - p0[1]];
     let n = [-u[1], u[0]];
     let plus = |q: P3, v: [i128; 2]| [q[0] + v[0], q[1] + v[1], q[2]];
-    let lo = [p0[0].min(p1[0]), p0[1].min(p1[1])];
-    let hi = [p0[0].max(p1[0]), p0[1].max(p1[1])];
+    let lo = [p0[0].min(p1[0]), p0[1].min(p1[1])].map(|c| c as i32);
+    let hi = [p0[0].max(p1[0]), p0[1].max(p1[1])].map(|c| c as i32);
     let mut qi = (0, 0);
     for poly in mesh.polygons() {
         for j in 1..poly.len().saturating_sub(1) {
             let v = [poly[0], poly[j], poly[j + 1]];
-            let t = v.map(p);
-            if area(t[0], t[1], t[2]) >= 0 {
-                continue;
-            }
+            // The cheap rejections first: the bounding boxes (i32), then the facing (i64).
+            let c = v.map(xy);
             let (tlo, thi) = (
-                [0, 1].map(|k| t[0][k].min(t[1][k]).min(t[2][k])),
-                [0, 1].map(|k| t[0][k].max(t[1][k]).max(t[2][k])),
+                [0, 1].map(|k| c[0][k].min(c[1][k]).min(c[2][k])),
+                [0, 1].map(|k| c[0][k].max(c[1][k]).max(c[2][k])),
             );
-            let holds = |q: P3| (0..2).all(|k| tlo[k] <= q[k] && q[k] <= thi[k]);
             if (0..2).any(|k| thi[k] < lo[k] || hi[k] < tlo[k]) {
                 continue;
             }
+            if twice_area(c) >= 0 {
+                continue;
+            }
+            let t = v.map(p);
+            let (tlo, thi) = (tlo.map(|c| c as i128), thi.map(|c| c as i128));
+            let holds = |q: P3| (0..2).all(|k| tlo[k] <= q[k] && q[k] <= thi[k]);
             // In front of `start`, just inside the edge (toward `other`), shifted by ε'n.
             let in_front = |start: P3, other: P3, dir: i128| {
                 // Inside: each side's orientation negative (front winding), perturbed.
@@ -566,6 +569,13 @@ fn direct_counts(
     Ok(qi)
 }
 
+/// Twice the signed area of a projected triangle, exact in `i64` (`cull.rs`'s numeric
+/// contract: differences below `2^29`, products below `2^58`).
+fn twice_area(c: [[i32; 2]; 3]) -> i64 {
+    let d = |k: usize, a: usize| c[k][a] as i64 - c[0][a] as i64;
+    d(1, 0) * d(2, 1) - d(1, 1) * d(2, 0)
+}
+
 /// `det[b − a, c − a, x − a]` in screen space and depth (exact: differences below `2^29`,
 /// `2^29`, `2^33`, products below `2^92`).
 fn orient3d(a: P3, b: P3, c: P3, x: P3) -> i128 {
@@ -594,13 +604,19 @@ fn walk_edge<const S: u32>(
         return Ok(()); // projects to a point: the ends of its neighbours
     }
     let mut count = 0;
+    let (ux, uy) = (u[0] as i64, u[1] as i64);
+    let (x0, y0) = (p0[0] as i64, p0[1] as i64);
     for c in contours {
-        let (q0, q1) = (p(c.a), p(c.b));
-        let side = |q: P3| u[0] * (q[1] - p0[1]) - u[1] * (q[0] - p0[0]);
-        let (s0, s1) = (side(q0), side(q1));
+        // Which side of the line each end lies on: exact in i64 (products below 2^58).
+        let side = |i: u16| {
+            let q = &prepared[i as usize].screen;
+            ux * (q.y as i64 - y0) - uy * (q.x as i64 - x0)
+        };
+        let (s0, s1) = (side(c.a) as i128, side(c.b) as i128);
         if (s0 > 0) == (s1 > 0) {
             continue;
         }
+        let (q0, q1) = (p(c.a), p(c.b));
         let v = [q1[0] - q0[0], q1[1] - q0[1]];
         let cross = u[0] * v[1] - u[1] * v[0];
         let w = [q0[0] - p0[0], q0[1] - p0[1]];
@@ -666,7 +682,11 @@ fn walk_edge<const S: u32>(
             to: at(to),
         });
     };
-    let (mut qi, counted) = direct_counts((p0, p1), [a, b], p, mesh)?;
+    let xy = |i: u16| {
+        let v = &prepared[i as usize].screen;
+        [v.x, v.y]
+    };
+    let (mut qi, counted) = direct_counts((p0, p1), [a, b], (p, &xy), mesh)?;
     let mut open: Option<(i64, i64)> = (qi == 0).then_some((0, 1));
     let mut k = 0;
     while k < list.len() {
