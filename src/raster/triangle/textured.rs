@@ -31,7 +31,13 @@
 //! (`|N| + Q·(|t| + 2) < 2^62` at every covered pixel, checked once per triangle), else in
 //! `i128`; both with wrapping adds, exact at covered pixels, where the true values are in
 //! range (the step past a span's last pixel may leave it, and its value is never read; a
-//! non-positive `Q` there moves nothing).
+//! non-positive `Q` there moves nothing). The span's start (`N`, `Q` at its first pixel and
+//! the floors `⌊N / Q⌋`) is evaluated in the same type: under the `i64` bound the planes'
+//! low 64 bits, multiplied and added modulo `2^64`, give the exact values (they lie in
+//! range at a covered pixel), and the division is a 64-bit one instead of a 128-bit one.
+//! Likewise a segment end's `⌊2^16·N / Q⌋` runs in `i64` when `2^16·|N| < 2^63` and
+//! `Q < 2^62` at every covered pixel (`|N| < 2^47`, checked once per triangle), else in
+//! `i128`.
 
 use super::interpolants::{Constant, Interpolant, SpanStarts};
 use super::kinds::SpanKind;
@@ -94,6 +100,15 @@ impl Plane {
         self.c + self.gx * x as i128 + self.gy * y as i128
     }
 
+    /// The value at pixel `(x, y)` modulo `2^64` (wrapping `i64` arithmetic on the
+    /// coefficients' low words): the value itself wherever it lies in the `i64` range.
+    #[inline(always)]
+    fn at_i64(&self, x: i32, y: i32) -> i64 {
+        let (c, gx, gy) = (self.c as i64, self.gx as i64, self.gy as i64);
+        c.wrapping_add(gx.wrapping_mul(x as i64))
+            .wrapping_add(gy.wrapping_mul(y as i64))
+    }
+
     /// The plane scaled by `k`.
     fn times(self, k: i128) -> Plane {
         Plane {
@@ -116,6 +131,8 @@ pub(crate) struct TexturedKind<'a> {
     n: [Plane; 2],
     /// The pixel planes need `i128` (the `i64` bound does not hold).
     wide: bool,
+    /// The segment ends' `2^16·N` need `i128` (the `i64` bound does not hold).
+    segment_wide: bool,
 }
 
 impl<'a> TexturedKind<'a> {
@@ -145,19 +162,24 @@ impl<'a> TexturedKind<'a> {
         // the texel |t| ≤ side·max |u| / 256 + 1.
         let ad = d.unsigned_abs() as i128;
         let qmax = 256 * ad * q.iter().max().copied().unwrap_or(1) as i128;
-        let fits = |k: usize| {
+        let nmax = |k: usize| {
             let qu = (0..3).map(|i| (q[i] as i128 * corners[i].uv[k] as i128).abs());
-            let umax = corners.iter().map(|c| (c.uv[k] as i128).abs()).max();
-            let nmax = sides[k] * ad * qu.max().unwrap_or(0);
-            let tmax = sides[k] * umax.unwrap_or(0) / 256 + 1;
-            nmax + qmax * (tmax + 2) < 1 << 62
+            sides[k] * ad * qu.max().unwrap_or(0)
         };
+        let fits = |k: usize| {
+            let umax = corners.iter().map(|c| (c.uv[k] as i128).abs()).max();
+            let tmax = sides[k] * umax.unwrap_or(0) / 256 + 1;
+            nmax(k) + qmax * (tmax + 2) < 1 << 62
+        };
+        // The segment ends' bound: `2^16·|N| < 2^63` and `Q < 2^63` at a covered pixel.
+        let segment_fits = |k: usize| nmax(k) < 1 << 47 && qmax < 1 << 62;
         Some(TexturedKind {
             look: Lookup::new(texture, texturing.shades),
             mode: texturing.mode,
             q: Plane::of(t, q.map(|w| w as i128), sign).times(256),
             n: [planes(0), planes(1)],
             wide: !(fits(0) && fits(1)),
+            segment_wide: !(segment_fits(0) && segment_fits(1)),
         })
     }
 
@@ -266,6 +288,8 @@ impl<'a> Lookup<'a> {
 trait Wide: Copy + PartialOrd {
     const ZERO: Self;
     fn from_wide(v: i128) -> Self;
+    /// The plane's value at pixel `(x, y)` (exact where it lies in the type's range).
+    fn at(p: &Plane, x: i32, y: i32) -> Self;
     fn add(self, o: Self) -> Self;
     fn sub(self, o: Self) -> Self;
     fn times(self, t: i32) -> Self;
@@ -278,6 +302,10 @@ impl Wide for i64 {
     #[inline(always)]
     fn from_wide(v: i128) -> Self {
         v as i64
+    }
+    #[inline(always)]
+    fn at(p: &Plane, x: i32, y: i32) -> Self {
+        p.at_i64(x, y)
     }
     #[inline(always)]
     fn add(self, o: Self) -> Self {
@@ -302,6 +330,10 @@ impl Wide for i128 {
     #[inline(always)]
     fn from_wide(v: i128) -> Self {
         v
+    }
+    #[inline(always)]
+    fn at(p: &Plane, x: i32, y: i32) -> Self {
+        p.at(x, y)
     }
     #[inline(always)]
     fn add(self, o: Self) -> Self {
@@ -339,15 +371,16 @@ struct ExactTexels<'a, T, L> {
 impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
     #[inline(always)]
     fn start(k: &TexturedKind<'_>, look: Lookup<'a>, lum: L, x: i32, y: i32) -> Self {
-        let q = k.q.at(x, y);
-        let n = k.n.map(|p| p.at(x, y));
+        let q = T::at(&k.q, x, y);
+        let n = k.n.map(|p| T::at(&p, x, y));
         // A covered pixel has Q > 0 (module doc).
-        let t = n.map(|n| if q > 0 { n.div_euclid(q) as i32 } else { 0 });
-        let r = [0, 1].map(|i| T::from_wide(n[i] - q * t[i] as i128));
-        let e = [0, 1].map(|i| T::from_wide(k.n[i].gx - k.q.gx * t[i] as i128));
+        let t = n.map(|n| if q > T::ZERO { n.floor_div(q) } else { 0 });
+        let r = [0, 1].map(|i| n[i].sub(q.times(t[i])));
+        let dq = T::from_wide(k.q.gx);
+        let e = [0, 1].map(|i| T::from_wide(k.n[i].gx).sub(dq.times(t[i])));
         ExactTexels {
-            q: T::from_wide(q),
-            dq: T::from_wide(k.q.gx),
+            q,
+            dq,
             r,
             e,
             t,
@@ -427,6 +460,8 @@ struct SegmentTexels<'a, L> {
     at: (i32, i32),
     q: Plane,
     n: [Plane; 2],
+    /// The segment ends run in `i128` (`TexturedKind::segment_wide`).
+    wide: bool,
     lum: L,
     look: Lookup<'a>,
 }
@@ -453,6 +488,7 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
             at: (x, y),
             q: k.q,
             n: k.n,
+            wide: k.segment_wide,
             lum,
             look,
         };
@@ -465,6 +501,16 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
     #[inline(never)]
     fn exact(&self, i: u32) -> [i64; 2] {
         let (x, y) = (self.at.0.wrapping_add(i as i32), self.at.1);
+        if !self.wide {
+            let q = self.q.at_i64(x, y);
+            return self.n.map(|p| {
+                if q > 0 {
+                    (p.at_i64(x, y) << 16).div_euclid(q)
+                } else {
+                    0
+                }
+            });
+        }
         let q = self.q.at(x, y);
         self.n.map(|p| {
             if q > 0 {
