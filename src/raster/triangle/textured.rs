@@ -36,8 +36,11 @@
 //! low 64 bits, multiplied and added modulo `2^64`, give the exact values (they lie in
 //! range at a covered pixel), and the division is a 64-bit one instead of a 128-bit one.
 //! Likewise a segment end's `⌊2^16·N / Q⌋` runs in `i64` when `2^16·|N| < 2^63` and
-//! `Q < 2^62` at every covered pixel (`|N| < 2^47`, checked once per triangle), else in
-//! `i128`.
+//! `Q < 2^62` at every covered pixel (`|N| < 2^47`, checked once per triangle); else, under
+//! the exact mode's `i64` bound, as `2^16·t + ⌊2^16·r / Q⌋` with `t = ⌊N / Q⌋` and
+//! `r = N − Q·t` (`0 ≤ r < Q < 2^62`: sixteen steps of long division, each doubling `r`
+//! below `2^63`); else in `i128`. A segment's step divides by its length with a shift when
+//! that is a power of two (the floor either way).
 
 use super::interpolants::{Constant, Interpolant, SpanStarts};
 use super::kinds::SpanKind;
@@ -131,8 +134,8 @@ pub(crate) struct TexturedKind<'a> {
     n: [Plane; 2],
     /// The pixel planes need `i128` (the `i64` bound does not hold).
     wide: bool,
-    /// The segment ends' `2^16·N` need `i128` (the `i64` bound does not hold).
-    segment_wide: bool,
+    /// How the subdivided and affine modes' segment ends are evaluated.
+    segment: SegmentPrecision,
 }
 
 impl<'a> TexturedKind<'a> {
@@ -173,13 +176,21 @@ impl<'a> TexturedKind<'a> {
         };
         // The segment ends' bound: `2^16·|N| < 2^63` and `Q < 2^63` at a covered pixel.
         let segment_fits = |k: usize| nmax(k) < 1 << 47 && qmax < 1 << 62;
+        let wide = !(fits(0) && fits(1));
+        let segment = if segment_fits(0) && segment_fits(1) {
+            SegmentPrecision::Narrow
+        } else if !wide {
+            SegmentPrecision::Split
+        } else {
+            SegmentPrecision::Wide
+        };
         Some(TexturedKind {
             look: Lookup::new(texture, texturing.shades),
             mode: texturing.mode,
             q: Plane::of(t, q.map(|w| w as i128), sign).times(256),
             n: [planes(0), planes(1)],
-            wide: !(fits(0) && fits(1)),
-            segment_wide: !(segment_fits(0) && segment_fits(1)),
+            wide,
+            segment,
         })
     }
 
@@ -442,11 +453,39 @@ impl<T: Wide, L: Interpolant> ExactTexels<'_, T, L> {
     }
 }
 
+/// `⌊2^16·r / q⌋` for `0 ≤ r < q < 2^63`: sixteen steps of binary long division (each
+/// doubles `r < q`, so `2·r < 2^64`); the result is below `2^16`.
+#[inline(always)]
+fn fraction16(mut r: u64, q: u64) -> i64 {
+    let mut f = 0;
+    for _ in 0..16 {
+        r <<= 1;
+        f <<= 1;
+        if r >= q {
+            r -= q;
+            f |= 1;
+        }
+    }
+    f
+}
+
+/// How a triangle's segment ends evaluate `⌊2^16·N / Q⌋` (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SegmentPrecision {
+    /// `2^16·N` and `Q` in `i64`: one 64-bit division.
+    Narrow,
+    /// `N` and `Q` in `i64` (the exact mode's bound): the floor `t = ⌊N / Q⌋`, then the
+    /// sixteen fraction bits of `(N − Q·t) / Q` by long division.
+    Split,
+    /// `i128`.
+    Wide,
+}
+
 /// The subdivided and affine modes' shading: the texel coordinates in 16.16, exact at the
 /// ends of each segment of `segment` pixels (and at the span's last pixel), stepped linearly
 /// between.
 #[derive(Debug, Clone, Copy)]
-struct SegmentTexels<'a, L> {
+struct SegmentTexels<'a, 'k, L> {
     /// Texels in 16.16 at the current pixel, and the step.
     acc: [i64; 2],
     inc: [i64; 2],
@@ -458,18 +497,16 @@ struct SegmentTexels<'a, L> {
     segment: u32,
     /// The span's first pixel.
     at: (i32, i32),
-    q: Plane,
-    n: [Plane; 2],
-    /// The segment ends run in `i128` (`TexturedKind::segment_wide`).
-    wide: bool,
+    /// The triangle's planes (borrowed: a span copies none of them).
+    kind: &'k TexturedKind<'k>,
     lum: L,
     look: Lookup<'a>,
 }
 
-impl<'a, L: Interpolant> SegmentTexels<'a, L> {
+impl<'a, 'k, L: Interpolant> SegmentTexels<'a, 'k, L> {
     #[inline(always)]
     fn start(
-        k: &TexturedKind<'_>,
+        k: &'k TexturedKind<'k>,
         look: Lookup<'a>,
         lum: L,
         x: i32,
@@ -486,9 +523,7 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
             last,
             segment,
             at: (x, y),
-            q: k.q,
-            n: k.n,
-            wide: k.segment_wide,
+            kind: k,
             lum,
             look,
         };
@@ -497,28 +532,47 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
         s
     }
 
-    /// `⌊2^16·N / Q⌋` at offset `i` of the span (texels in 16.16).
+    /// `⌊2^16·N / Q⌋` at offset `i` of the span (texels in 16.16), in the precision the
+    /// triangle's bounds allow (module doc).
     #[inline(never)]
     fn exact(&self, i: u32) -> [i64; 2] {
         let (x, y) = (self.at.0.wrapping_add(i as i32), self.at.1);
-        if !self.wide {
-            let q = self.q.at_i64(x, y);
-            return self.n.map(|p| {
-                if q > 0 {
-                    (p.at_i64(x, y) << 16).div_euclid(q)
-                } else {
-                    0
-                }
-            });
-        }
-        let q = self.q.at(x, y);
-        self.n.map(|p| {
-            if q > 0 {
-                ((p.at(x, y) << 16).div_euclid(q)) as i64
-            } else {
-                0
+        let k = self.kind;
+        match k.segment {
+            SegmentPrecision::Narrow => {
+                let q = k.q.at_i64(x, y);
+                k.n.map(|p| {
+                    if q > 0 {
+                        (p.at_i64(x, y) << 16).div_euclid(q)
+                    } else {
+                        0
+                    }
+                })
             }
-        })
+            SegmentPrecision::Split => {
+                let q = k.q.at_i64(x, y);
+                k.n.map(|p| {
+                    if q > 0 {
+                        let n = p.at_i64(x, y);
+                        let t = n.div_euclid(q);
+                        let r = n.wrapping_sub(q.wrapping_mul(t));
+                        (t << 16) | fraction16(r as u64, q as u64)
+                    } else {
+                        0
+                    }
+                })
+            }
+            SegmentPrecision::Wide => {
+                let q = k.q.at(x, y);
+                k.n.map(|p| {
+                    if q > 0 {
+                        ((p.at(x, y) << 16).div_euclid(q)) as i64
+                    } else {
+                        0
+                    }
+                })
+            }
+        }
     }
 
     /// The segment from the current pixel: its end, the exact values there and the step.
@@ -527,15 +581,20 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
         self.end = self.pos.saturating_add(self.segment).min(self.last);
         if self.end > self.pos {
             self.end_acc = self.exact(self.end);
-            let len = (self.end - self.pos) as i64;
+            let len = self.end - self.pos;
             for k in 0..2 {
-                self.inc[k] = (self.end_acc[k] - self.acc[k]).div_euclid(len);
+                let d = self.end_acc[k] - self.acc[k];
+                self.inc[k] = if len.is_power_of_two() {
+                    d >> len.trailing_zeros()
+                } else {
+                    d.div_euclid(len as i64)
+                };
             }
         }
     }
 }
 
-impl<L: Interpolant> Shading for SegmentTexels<'_, L> {
+impl<L: Interpolant> Shading for SegmentTexels<'_, '_, L> {
     #[inline(always)]
     fn index(&self) -> u8 {
         self.look
