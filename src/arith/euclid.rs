@@ -316,6 +316,34 @@ mod tests {
     }
 
     #[test]
+    fn i128_division_matches_on_both_sides_of_the_i64_range() {
+        let big = i64::MAX as i128;
+        for a in [
+            -(1i128 << 100),
+            -big - 2,
+            -big - 1,
+            -big,
+            -1_000_003,
+            -7,
+            -1,
+            0,
+            6,
+            999_999_937,
+            big,
+            big + 1,
+            1 << 100,
+        ] {
+            for b in [1i128, 2, 7, 1 << 40, big, big + 1, 1 << 90] {
+                assert_eq!(
+                    div_floor_i128(a, b),
+                    (a.div_euclid(b), a.rem_euclid(b)),
+                    "{a} {b}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn matches_euclidean_division() {
         for a in [
             -1_000_003i64,
