@@ -33,6 +33,22 @@ pub fn div_floor_i64(a: i64, b: i64) -> (i64, i64) {
     }
 }
 
+/// `(q, r)` with `a = b·q + r` and `0 ≤ r < b`, for `b > 0`, of `i128` operands.
+///
+/// A 128-bit division has no library routine on 32-bit targets: the compiler expands it into
+/// a bit-serial loop of a couple of thousand instructions on a Cortex-M4. Operands that fit
+/// `i64` (the common case of set-ups whose products need `i128` only at the extremes of
+/// their ranges) take [`div_floor_i64`] instead: the same quotient and remainder. No overflow
+/// for any `a` and `b > 0`.
+#[inline(always)]
+pub fn div_floor_i128(a: i128, b: i128) -> (i128, i128) {
+    if a == a as i64 as i128 && b == b as i64 as i128 {
+        let (q, r) = div_floor_i64(a as i64, b as i64);
+        return (q as i128, r as i128);
+    }
+    (a.div_euclid(b), a.rem_euclid(b))
+}
+
 /// `(q, r)` with `a = b·q + r` and `0 ≤ r < b`, for `b > 0`.
 #[inline(always)]
 pub fn div_floor_i32(a: i32, b: i32) -> (i32, i32) {
@@ -296,6 +312,34 @@ mod tests {
             );
             let b = rnd();
             assert_eq!(mul_high(ua, b), ((ua as u128 * b as u128) >> 64) as u64);
+        }
+    }
+
+    #[test]
+    fn i128_division_matches_on_both_sides_of_the_i64_range() {
+        let big = i64::MAX as i128;
+        for a in [
+            -(1i128 << 100),
+            -big - 2,
+            -big - 1,
+            -big,
+            -1_000_003,
+            -7,
+            -1,
+            0,
+            6,
+            999_999_937,
+            big,
+            big + 1,
+            1 << 100,
+        ] {
+            for b in [1i128, 2, 7, 1 << 40, big, big + 1, 1 << 90] {
+                assert_eq!(
+                    div_floor_i128(a, b),
+                    (a.div_euclid(b), a.rem_euclid(b)),
+                    "{a} {b}"
+                );
+            }
         }
     }
 

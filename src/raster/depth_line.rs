@@ -15,7 +15,10 @@
 //! The walk is incremental and exact: each major step adds `U·(D₁ − D₀)/n` (`U = 2^S`) as a
 //! quotient and a remainder; the remainder of the numerator above is constant modulo 2, so
 //! its half, kept as an error in `[−n, 0)` like the line's own, decides the carries. No
-//! division after set-up; the `i64` error holds `n ≤ 2^31`.
+//! division after set-up; the `i64` error holds `n ≤ 2^31`. The set-up's numerator
+//! (`2·D₀·n + 2·δ·(D₁ − D₀) + n < 2^66`) is an `i128`; its two divisions take the 64-bit
+//! routine when the operands fit `i64` (`n < 2^29` with 32-bit depths, every segment of a
+//! frame in practice: `arith::euclid::div_floor_i128`).
 //!
 //! ## The depth test and its offset
 //! A line pixel at depth `d` is **pulled toward the eye by `offset`** (32-bit depth units,
@@ -32,6 +35,7 @@
 //! negated), so the pixels and their depths are those of the one-ended walk (tested).
 
 use super::line::{Bresenham, SubpixelLine};
+use crate::arith::euclid::div_floor_i128;
 use crate::output::DepthValue;
 use embedded_graphics_core::geometry::Point;
 
@@ -74,10 +78,12 @@ impl DepthStep {
         }
         let delta = d1 as i128 - d0 as i128;
         let num = 2 * d0 as i128 * n + 2 * travel as i128 * delta + n;
-        let depth = num.div_euclid(2 * n) as u32; // between d0 and d1
-        let error = (num.rem_euclid(2 * n) / 2 - n) as i64;
+        let (depth, rem) = div_floor_i128(num, 2 * n);
+        let depth = depth as u32; // between d0 and d1
+        let error = (rem / 2 - n) as i64;
         let step = line.unit as i128 * delta;
-        let (q, r) = (step.div_euclid(n), step.rem_euclid(n) as i64);
+        let (q, r) = div_floor_i128(step, n);
+        let r = r as i64;
         if back {
             DepthStep {
                 depth,

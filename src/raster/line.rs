@@ -86,8 +86,11 @@
 //! to the window is exact and O(1), as for lattice lines: the first and last steps inside come
 //! from a few `i128` divisions at set-up. Range: `|x|, |y| ≤ `[`MAX_COORD`] sub-pixel units
 //! for both ends (then `n, a ≤ 2^31`; the set-up products stay below `2^100` in `i128`).
+//! Those divisions take the 64-bit routine whenever both operands fit `i64`, as they do for
+//! any segment within a few thousand pixels of the window (`arith::euclid::div_floor_i128`).
 
 use super::outcode::Outcode;
+use crate::arith::euclid::div_floor_i128;
 use crate::output::Framebuffer;
 use crate::raster::SubpixelPoint;
 use crate::raster::Window;
@@ -454,10 +457,10 @@ impl SubpixelLine {
         let (n, a) = ((m1 - m0).abs(), (mu1 - mu0).abs());
         // The pixel centres on the major extent, in the direction of travel.
         let (first, last) = if sigma > 0 {
-            (ceil_div(m0, unit), m1.div_euclid(unit))
+            (-((-m0) >> S), m1 >> S)
         } else {
-            (m0.div_euclid(unit), ceil_div(m1, unit))
-        };
+            (m0 >> S, -((-m1) >> S))
+        }; // floors and ceilings of m / U, U = 2^S
         let count = sigma * (last - first) + 1;
         if count <= 0 {
             return None;
@@ -485,7 +488,7 @@ impl SubpixelLine {
             (-(minor_win.1 as i128), -(minor_win.0 as i128))
         };
         let (tk_lo, tk_hi) = if b == 0 {
-            let q = n0.div_euclid(c);
+            let q = div_floor_i128(n0, c).0;
             if q < q_lo || q > q_hi {
                 return None;
             }
@@ -512,9 +515,9 @@ impl SubpixelLine {
         // The pixel at step t and its error r_hi − n (r_hi = remainder / 2U).
         let at = |t: i128| {
             let num = n0 + t * b;
-            let (q, r) = (num.div_euclid(c), num.rem_euclid(c));
+            let (q, r) = div_floor_i128(num, c);
             let point = axis(first + sigma * t, tau * q);
-            (point, (r / (2 * unit) - n) as i64)
+            (point, ((r >> (S + 1)) - n) as i64) // r ≥ 0: the quotient by 2U
         };
         let ((p_first, e_first), (p_last, e_last)) = (at(t_first), at(t_last));
         let steps_left = (t_last - t_first) as u32; // ≤ 2^31
@@ -561,7 +564,7 @@ impl SubpixelLine {
 
 /// `⌈p / q⌉` for `q > 0`.
 fn ceil_div(p: i128, q: i128) -> i128 {
-    -(-p).div_euclid(q)
+    -div_floor_i128(-p, q).0
 }
 
 /// The steps `t` with `lo ≤ origin + sign·t ≤ hi`, as a closed `i64` range (possibly empty or

@@ -31,7 +31,16 @@
 //! (`|N| + Q·(|t| + 2) < 2^62` at every covered pixel, checked once per triangle), else in
 //! `i128`; both with wrapping adds, exact at covered pixels, where the true values are in
 //! range (the step past a span's last pixel may leave it, and its value is never read; a
-//! non-positive `Q` there moves nothing).
+//! non-positive `Q` there moves nothing). The span's start (`N`, `Q` at its first pixel and
+//! the floors `⌊N / Q⌋`) is evaluated in the same type: under the `i64` bound the planes'
+//! low 64 bits, multiplied and added modulo `2^64`, give the exact values (they lie in
+//! range at a covered pixel), and the division is a 64-bit one instead of a 128-bit one.
+//! Likewise a segment end's `⌊2^16·N / Q⌋` runs in `i64` when `2^16·|N| < 2^63` and
+//! `Q < 2^62` at every covered pixel (`|N| < 2^47`, checked once per triangle); else, under
+//! the exact mode's `i64` bound, as `2^16·t + ⌊2^16·r / Q⌋` with `t = ⌊N / Q⌋` and
+//! `r = N − Q·t` (`0 ≤ r < Q < 2^62`: sixteen steps of long division, each doubling `r`
+//! below `2^63`); else in `i128`. A segment's step divides by its length with a shift when
+//! that is a power of two (the floor either way).
 
 use super::interpolants::{Constant, Interpolant, SpanStarts};
 use super::kinds::SpanKind;
@@ -94,6 +103,15 @@ impl Plane {
         self.c + self.gx * x as i128 + self.gy * y as i128
     }
 
+    /// The value at pixel `(x, y)` modulo `2^64` (wrapping `i64` arithmetic on the
+    /// coefficients' low words): the value itself wherever it lies in the `i64` range.
+    #[inline(always)]
+    fn at_i64(&self, x: i32, y: i32) -> i64 {
+        let (c, gx, gy) = (self.c as i64, self.gx as i64, self.gy as i64);
+        c.wrapping_add(gx.wrapping_mul(x as i64))
+            .wrapping_add(gy.wrapping_mul(y as i64))
+    }
+
     /// The plane scaled by `k`.
     fn times(self, k: i128) -> Plane {
         Plane {
@@ -116,6 +134,8 @@ pub(crate) struct TexturedKind<'a> {
     n: [Plane; 2],
     /// The pixel planes need `i128` (the `i64` bound does not hold).
     wide: bool,
+    /// How the subdivided and affine modes' segment ends are evaluated.
+    segment: SegmentPrecision,
 }
 
 impl<'a> TexturedKind<'a> {
@@ -145,19 +165,32 @@ impl<'a> TexturedKind<'a> {
         // the texel |t| ≤ side·max |u| / 256 + 1.
         let ad = d.unsigned_abs() as i128;
         let qmax = 256 * ad * q.iter().max().copied().unwrap_or(1) as i128;
-        let fits = |k: usize| {
+        let nmax = |k: usize| {
             let qu = (0..3).map(|i| (q[i] as i128 * corners[i].uv[k] as i128).abs());
+            sides[k] * ad * qu.max().unwrap_or(0)
+        };
+        let fits = |k: usize| {
             let umax = corners.iter().map(|c| (c.uv[k] as i128).abs()).max();
-            let nmax = sides[k] * ad * qu.max().unwrap_or(0);
             let tmax = sides[k] * umax.unwrap_or(0) / 256 + 1;
-            nmax + qmax * (tmax + 2) < 1 << 62
+            nmax(k) + qmax * (tmax + 2) < 1 << 62
+        };
+        // The segment ends' bound: `2^16·|N| < 2^63` and `Q < 2^63` at a covered pixel.
+        let segment_fits = |k: usize| nmax(k) < 1 << 47 && qmax < 1 << 62;
+        let wide = !(fits(0) && fits(1));
+        let segment = if segment_fits(0) && segment_fits(1) {
+            SegmentPrecision::Narrow
+        } else if !wide {
+            SegmentPrecision::Split
+        } else {
+            SegmentPrecision::Wide
         };
         Some(TexturedKind {
             look: Lookup::new(texture, texturing.shades),
             mode: texturing.mode,
             q: Plane::of(t, q.map(|w| w as i128), sign).times(256),
             n: [planes(0), planes(1)],
-            wide: !(fits(0) && fits(1)),
+            wide,
+            segment,
         })
     }
 
@@ -266,6 +299,8 @@ impl<'a> Lookup<'a> {
 trait Wide: Copy + PartialOrd {
     const ZERO: Self;
     fn from_wide(v: i128) -> Self;
+    /// The plane's value at pixel `(x, y)` (exact where it lies in the type's range).
+    fn at(p: &Plane, x: i32, y: i32) -> Self;
     fn add(self, o: Self) -> Self;
     fn sub(self, o: Self) -> Self;
     fn times(self, t: i32) -> Self;
@@ -278,6 +313,10 @@ impl Wide for i64 {
     #[inline(always)]
     fn from_wide(v: i128) -> Self {
         v as i64
+    }
+    #[inline(always)]
+    fn at(p: &Plane, x: i32, y: i32) -> Self {
+        p.at_i64(x, y)
     }
     #[inline(always)]
     fn add(self, o: Self) -> Self {
@@ -302,6 +341,10 @@ impl Wide for i128 {
     #[inline(always)]
     fn from_wide(v: i128) -> Self {
         v
+    }
+    #[inline(always)]
+    fn at(p: &Plane, x: i32, y: i32) -> Self {
+        p.at(x, y)
     }
     #[inline(always)]
     fn add(self, o: Self) -> Self {
@@ -339,15 +382,16 @@ struct ExactTexels<'a, T, L> {
 impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
     #[inline(always)]
     fn start(k: &TexturedKind<'_>, look: Lookup<'a>, lum: L, x: i32, y: i32) -> Self {
-        let q = k.q.at(x, y);
-        let n = k.n.map(|p| p.at(x, y));
+        let q = T::at(&k.q, x, y);
+        let n = k.n.map(|p| T::at(&p, x, y));
         // A covered pixel has Q > 0 (module doc).
-        let t = n.map(|n| if q > 0 { n.div_euclid(q) as i32 } else { 0 });
-        let r = [0, 1].map(|i| T::from_wide(n[i] - q * t[i] as i128));
-        let e = [0, 1].map(|i| T::from_wide(k.n[i].gx - k.q.gx * t[i] as i128));
+        let t = n.map(|n| if q > T::ZERO { n.floor_div(q) } else { 0 });
+        let r = [0, 1].map(|i| n[i].sub(q.times(t[i])));
+        let dq = T::from_wide(k.q.gx);
+        let e = [0, 1].map(|i| T::from_wide(k.n[i].gx).sub(dq.times(t[i])));
         ExactTexels {
-            q: T::from_wide(q),
-            dq: T::from_wide(k.q.gx),
+            q,
+            dq,
             r,
             e,
             t,
@@ -409,11 +453,39 @@ impl<T: Wide, L: Interpolant> ExactTexels<'_, T, L> {
     }
 }
 
+/// `⌊2^16·r / q⌋` for `0 ≤ r < q < 2^63`: sixteen steps of binary long division (each
+/// doubles `r < q`, so `2·r < 2^64`); the result is below `2^16`.
+#[inline(always)]
+fn fraction16(mut r: u64, q: u64) -> i64 {
+    let mut f = 0;
+    for _ in 0..16 {
+        r <<= 1;
+        f <<= 1;
+        if r >= q {
+            r -= q;
+            f |= 1;
+        }
+    }
+    f
+}
+
+/// How a triangle's segment ends evaluate `⌊2^16·N / Q⌋` (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SegmentPrecision {
+    /// `2^16·N` and `Q` in `i64`: one 64-bit division.
+    Narrow,
+    /// `N` and `Q` in `i64` (the exact mode's bound): the floor `t = ⌊N / Q⌋`, then the
+    /// sixteen fraction bits of `(N − Q·t) / Q` by long division.
+    Split,
+    /// `i128`.
+    Wide,
+}
+
 /// The subdivided and affine modes' shading: the texel coordinates in 16.16, exact at the
 /// ends of each segment of `segment` pixels (and at the span's last pixel), stepped linearly
 /// between.
 #[derive(Debug, Clone, Copy)]
-struct SegmentTexels<'a, L> {
+struct SegmentTexels<'a, 'k, L> {
     /// Texels in 16.16 at the current pixel, and the step.
     acc: [i64; 2],
     inc: [i64; 2],
@@ -425,16 +497,16 @@ struct SegmentTexels<'a, L> {
     segment: u32,
     /// The span's first pixel.
     at: (i32, i32),
-    q: Plane,
-    n: [Plane; 2],
+    /// The triangle's planes (borrowed: a span copies none of them).
+    kind: &'k TexturedKind<'k>,
     lum: L,
     look: Lookup<'a>,
 }
 
-impl<'a, L: Interpolant> SegmentTexels<'a, L> {
+impl<'a, 'k, L: Interpolant> SegmentTexels<'a, 'k, L> {
     #[inline(always)]
     fn start(
-        k: &TexturedKind<'_>,
+        k: &'k TexturedKind<'k>,
         look: Lookup<'a>,
         lum: L,
         x: i32,
@@ -451,8 +523,7 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
             last,
             segment,
             at: (x, y),
-            q: k.q,
-            n: k.n,
+            kind: k,
             lum,
             look,
         };
@@ -461,18 +532,47 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
         s
     }
 
-    /// `⌊2^16·N / Q⌋` at offset `i` of the span (texels in 16.16).
+    /// `⌊2^16·N / Q⌋` at offset `i` of the span (texels in 16.16), in the precision the
+    /// triangle's bounds allow (module doc).
     #[inline(never)]
     fn exact(&self, i: u32) -> [i64; 2] {
         let (x, y) = (self.at.0.wrapping_add(i as i32), self.at.1);
-        let q = self.q.at(x, y);
-        self.n.map(|p| {
-            if q > 0 {
-                ((p.at(x, y) << 16).div_euclid(q)) as i64
-            } else {
-                0
+        let k = self.kind;
+        match k.segment {
+            SegmentPrecision::Narrow => {
+                let q = k.q.at_i64(x, y);
+                k.n.map(|p| {
+                    if q > 0 {
+                        (p.at_i64(x, y) << 16).div_euclid(q)
+                    } else {
+                        0
+                    }
+                })
             }
-        })
+            SegmentPrecision::Split => {
+                let q = k.q.at_i64(x, y);
+                k.n.map(|p| {
+                    if q > 0 {
+                        let n = p.at_i64(x, y);
+                        let t = n.div_euclid(q);
+                        let r = n.wrapping_sub(q.wrapping_mul(t));
+                        (t << 16) | fraction16(r as u64, q as u64)
+                    } else {
+                        0
+                    }
+                })
+            }
+            SegmentPrecision::Wide => {
+                let q = k.q.at(x, y);
+                k.n.map(|p| {
+                    if q > 0 {
+                        ((p.at(x, y) << 16).div_euclid(q)) as i64
+                    } else {
+                        0
+                    }
+                })
+            }
+        }
     }
 
     /// The segment from the current pixel: its end, the exact values there and the step.
@@ -481,15 +581,20 @@ impl<'a, L: Interpolant> SegmentTexels<'a, L> {
         self.end = self.pos.saturating_add(self.segment).min(self.last);
         if self.end > self.pos {
             self.end_acc = self.exact(self.end);
-            let len = (self.end - self.pos) as i64;
+            let len = self.end - self.pos;
             for k in 0..2 {
-                self.inc[k] = (self.end_acc[k] - self.acc[k]).div_euclid(len);
+                let d = self.end_acc[k] - self.acc[k];
+                self.inc[k] = if len.is_power_of_two() {
+                    d >> len.trailing_zeros()
+                } else {
+                    d.div_euclid(len as i64)
+                };
             }
         }
     }
 }
 
-impl<L: Interpolant> Shading for SegmentTexels<'_, L> {
+impl<L: Interpolant> Shading for SegmentTexels<'_, '_, L> {
     #[inline(always)]
     fn index(&self) -> u8 {
         self.look
