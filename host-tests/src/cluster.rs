@@ -25,7 +25,11 @@ pub fn cluster(mesh: &ObjMesh, n: u32) -> Result<ObjMesh, String> {
             CELLS.end()
         ));
     }
-    if let Some(i) = mesh.vertices.iter().position(|v| v.iter().any(|c| !c.is_finite())) {
+    if let Some(i) = mesh
+        .vertices
+        .iter()
+        .position(|v| v.iter().any(|c| !c.is_finite()))
+    {
         return Err(format!("--cluster: vertex {i} is not finite"));
     }
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);

@@ -19,7 +19,7 @@
 //!
 //! Simplification (`--cluster N`, before placement): [`crate::cluster`], vertex clustering on
 //! an `N × N × N` grid, for displays too small for every edge (`examples/flash-mesh`'s coarse
-//! bunny, `--cluster 12`).
+//! bunny, `--cluster 6`).
 //!
 //! Placement ([`crate::scenes::place`]): `--centre` centres the bounding box on the origin
 //! (again after a turn), `--turn-y` turns about `+y` by degrees, then `--scale` multiplies or
