@@ -54,8 +54,8 @@ pub fn cluster(mesh: &ObjMesh, n: u32) -> Result<ObjMesh, String> {
     let mut sums: HashMap<[u32; 3], ([f64; 3], u32)> = HashMap::new();
     for (v, c) in mesh.vertices.iter().zip(&cells) {
         let s = sums.entry(*c).or_insert(([0.0; 3], 0));
-        for k in 0..3 {
-            s.0[k] += v[k];
+        for (sum, x) in s.0.iter_mut().zip(v) {
+            *sum += x;
         }
         s.1 += 1;
     }
