@@ -4,6 +4,7 @@
 //! - [`obj`]: reading Wavefront OBJ meshes (positions and polygons).
 //! - [`mod@reference`]: independent reference implementations (exact rational fill, Bresenham by
 //!   definition, ...), kept apart from the production code they check.
+//! - [`cluster`]: vertex clustering, the coarse meshes of small displays.
 //! - [`cli`]: the subcommands of the `zscan` tool.
 //! - [`failures`]: where the hidden-surface methods fail, as scenes, counts and pictures.
 //! - [`texture_failures`]: where the fast texture modes depart from the exact one and from the
@@ -13,6 +14,7 @@
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 pub mod cli;
+pub mod cluster;
 pub mod core_render;
 pub mod failures;
 pub mod fuzz;

@@ -139,3 +139,22 @@ fn planned_from_its_facts_it_draws_frame_bunny() {
         assert_eq!(cases::fnv1a(&picture), sum);
     }
 }
+
+/// `examples/flash-mesh/src/coarse.rs`, the one-bit boards' bunny, is what `zscan mesh
+/// --cluster 6` writes today from the standard bunny.
+#[test]
+fn the_committed_coarse_module_is_what_the_tool_writes() {
+    let mesh = zscan_host::cluster::cluster(&bunny_mesh().unwrap(), 6).unwrap();
+    let text = mesh_source(
+        &mesh,
+        &STANDARD_BUNNY,
+        "bunny.obj --cluster 6 --centre --turn-y 90 --fit 0.7",
+    )
+    .unwrap();
+    assert!(
+        text == include_str!("../../examples/flash-mesh/src/coarse.rs"),
+        "examples/flash-mesh/src/coarse.rs is stale: regenerate it with `zscan mesh \
+         host-tests/meshes/bunny.obj --cluster 6 --centre --turn-y 90 --fit 0.7 -o \
+         examples/flash-mesh/src/coarse.rs`"
+    );
+}

@@ -4,6 +4,10 @@
 //! planner's facts), so that a device computes nothing at start: [`frame`] plans a frame from
 //! the stored facts and draws it through [`draw_plan`] into the caller's memory.
 //!
+//! `coarse.rs`, the bunny for small one-bit displays (243 triangles, whose front edges stay
+//! apart at 128 × 64), is written by vertex clustering on a 6 × 6 × 6 grid:
+//! `zscan mesh host-tests/meshes/bunny.obj --cluster 6 --centre --turn-y 90 --fit 0.7 -o examples/flash-mesh/src/coarse.rs`
+//!
 //! Build for a Cortex-M0+ (no linker needed, it is a library):
 //! `cargo build --release --target thumbv6m-none-eabi` in this folder.
 //! `host-tests/tests/mesh_module.rs` checks that the module is what the tool writes and that
@@ -14,6 +18,12 @@
 #[allow(clippy::all)]
 pub mod bunny {
     include!("bunny.rs");
+}
+
+/// The coarse bunny's generated tables (`zscan mesh --cluster 6`).
+#[allow(clippy::all)]
+pub mod coarse {
+    include!("coarse.rs");
 }
 
 use zscan::prelude::*;

@@ -17,6 +17,10 @@
 //!   and `MESH` carries them (`Mesh::with_uvs`); the header says why when there are none (the
 //!   PLY reader skips `s`/`t`/`u`/`v` properties, STL has none).
 //!
+//! Simplification (`--cluster N`, before placement): [`crate::cluster`], vertex clustering on
+//! an `N × N × N` grid, for displays too small for every edge (`examples/flash-mesh`'s coarse
+//! bunny, `--cluster 6`).
+//!
 //! Placement ([`crate::scenes::place`]): `--centre` centres the bounding box on the origin
 //! (again after a turn), `--turn-y` turns about `+y` by degrees, then `--scale` multiplies or
 //! `--fit` scales the mesh to SCENES.md's "fit to F" (its height on the standard camera's
@@ -42,6 +46,10 @@ pub struct MeshArgs {
     /// The Rust module to write.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Simplify first: cluster the vertices on an N × N × N grid of the bounding box
+    /// (N in 2..=256; `zscan_host::cluster`), for small displays.
+    #[arg(long, value_name = "N")]
+    pub cluster: Option<u32>,
     /// Centre the bounding box on the origin (again after `--turn-y`).
     #[arg(long)]
     pub centre: bool,
@@ -58,7 +66,10 @@ pub struct MeshArgs {
 
 /// Runs `zscan mesh`.
 pub fn run(args: MeshArgs) -> Result<(), CliError> {
-    let mesh = crate::mesh_files::load_mesh(&args.input)?;
+    let mut mesh = crate::mesh_files::load_mesh(&args.input)?;
+    if let Some(n) = args.cluster {
+        mesh = crate::cluster::cluster(&mesh, n)?;
+    }
     let placement = placement(&args)?;
     let name = args
         .input
@@ -97,6 +108,9 @@ pub fn placement(args: &MeshArgs) -> Result<Placement, String> {
 /// The flags as the header repeats them.
 fn flags(args: &MeshArgs) -> String {
     let mut s = String::new();
+    if let Some(n) = args.cluster {
+        let _ = write!(s, " --cluster {n}");
+    }
     if args.centre {
         s += " --centre";
     }
@@ -302,6 +316,7 @@ mod tests {
         MeshArgs {
             input: "in.obj".into(),
             output: "out.rs".into(),
+            cluster: None,
             centre: true,
             turn_y,
             scale,
