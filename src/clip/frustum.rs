@@ -802,7 +802,7 @@ mod tests {
             if dp < 0 || dq >= 0 {
                 continue;
             }
-            let c = intersect(&p, &q, dp, dq, false);
+            let c = intersect(&p, &q, dp, dq, false, 0);
             let raw = |v: &ClipVertex<1>| v.pos.bits().map(|b| b as f64);
             let (pp, qq, cc) = (raw(&p), raw(&q), raw(&c));
             assert!(cc[2] >= near_raw);
@@ -823,5 +823,27 @@ mod tests {
         // One raw unit at z = near is focal/131 ≈ 1.59 px; on screen (|x/z| < 1) the measured
         // worst is 1.54 px (module doc).
         assert!(worst < 2.0 * focal / near_raw, "{worst}");
+    }
+
+    /// At a side or far plane a screen attribute takes the screen interpolant's value at the new
+    /// vertex's projection and a space-linear one (a texture coordinate) the value along the 3D
+    /// edge: `t` of the cut, here `1/2` exactly (a far plane halfway in depth).
+    #[test]
+    fn space_linear_attributes_follow_the_3d_edge() {
+        let far = Plane::new(
+            Coord::ZERO,
+            Coord::ZERO,
+            Coord::from_num(-1),
+            Coord::from_num(3),
+        )
+        .unwrap();
+        let p = ClipVertex::new(Vec3::from_int(1, 0, 2), [0, 0]);
+        let q = ClipVertex::new(Vec3::from_int(1, 0, 4), [1024, 1024]);
+        let (dp, dq) = (far.distance(p.pos), far.distance(q.pos));
+        let c = intersect(&p, &q, dp, dq, false, 0b10);
+        assert_eq!(c.pos, Vec3::from_int(1, 0, 3));
+        // Along the edge: half-way. On screen (`x/z` from 1/2 to 1/4, 1/3 at the cut): the
+        // screen parameter is (1/2 − 1/3)/(1/2 − 1/4) = 2/3.
+        assert_eq!(c.attrs, [683, 512]);
     }
 }
