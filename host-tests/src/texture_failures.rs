@@ -14,7 +14,7 @@
 //! other (0 is the cleared background). Against two references:
 //! - **the exact mode** of the core: a pixel *differs* when its texel is not the exact mode's
 //!   (the red pixels of the pictures);
-//! - **the `f64` definition** of SCENES.md ([`reference`]): the visible triangle and the
+//! - **the `f64` definition** of SCENES.md ([`reference()`]): the visible triangle and the
 //!   Gouraud intensity from `reference::float_render`, the texture coordinate the barycentric
 //!   combination at the visible 3D point (perspective-correct by construction, course ch. 4
 //!   §2.4), the texel `(⌊64u⌋ mod 64, ⌊64v⌋ mod 64)` and the level `t · I / 255`. Its coverage

@@ -3,7 +3,7 @@
 //!
 //! ## What is measured
 //! For each of SCENES.md's textured scenes (`tex_floor`, `tex_cube`, `tex_sphere`) and each
-//! [`TextureMode`](zscan::texture::TextureMode) (exact, subdivided every 16 or 8 pixels, affine):
+//! [`TextureMode`] (exact, subdivided every 16 or 8 pixels, affine):
 //! - **x, host**: instructions per frame of the bench case `frame_tex_<scene>[_<mode>]`
 //!   (`benches/cases.rs`), counted by valgrind's callgrind inside the bench harness's region
 //!   (`zscan bench --run-case`, the `empty` case subtracted): the figures `zscan bench`
