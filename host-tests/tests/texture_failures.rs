@@ -43,11 +43,23 @@ fn numbered_frame(
         mode,
         shades: None,
     };
-    let mut st = Box::new(cases::Storage::new());
+    let mut st = storage();
     let mut px = vec![0u8; W * H];
     let mut fb = Framebuffer::new(&mut px, W as u16, H as u16).unwrap();
     cases::scene::textured::frame_with(&mut fb, &mut st, scene.tables(), texturing);
     (px, st)
+}
+
+/// The bench cases' storage on the heap. `Storage::new` builds it by value (the firmware's
+/// way, without an allocator), more than a test thread's 2 MiB stack holds with its copy in an
+/// optimised build: it is built on a thread of its own with room for it.
+fn storage() -> Box<cases::Storage> {
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(|| Box::new(cases::Storage::new()))
+        .unwrap()
+        .join()
+        .unwrap()
 }
 
 /// The texel each pixel shows, as one number `64·j + i` (`None`: uncovered), read through two
@@ -70,7 +82,7 @@ fn texel_ids(scene: TexScene, mode: TextureMode) -> Vec<Option<u16>> {
 /// The bench case's frame (grey levels).
 fn case_frame(name: &str) -> Vec<u8> {
     let case = cases::CASES.iter().find(|c| c.name == name).unwrap();
-    let mut st = Box::new(cases::Storage::new());
+    let mut st = storage();
     let mut px = vec![0u8; W * H];
     let mut fb = Framebuffer::new(&mut px, W as u16, H as u16).unwrap();
     (case.run)(&mut fb, &mut st);
