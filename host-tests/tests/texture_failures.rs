@@ -13,7 +13,7 @@
 //!   floor and the cube.
 
 use std::collections::HashMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use zscan::internals::Projector;
@@ -89,6 +89,21 @@ fn case_frame(name: &str) -> Vec<u8> {
     px
 }
 
+/// The standard output of `zscan ARGS PATH`, which must succeed.
+fn zscan(args: &[&str], path: &Path) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
+        .args(args)
+        .arg(path)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
 fn out_dir() -> PathBuf {
     let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("texture-failures-{}", std::process::id()));
@@ -99,16 +114,9 @@ fn out_dir() -> PathBuf {
 #[test]
 fn the_tool_counts_and_marks_the_texels_the_modes_disagree_on() {
     let dir = out_dir();
-    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
-        .args(["failures", "--textures", "--scale", "1", "--out-dir"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let text = zscan(
+        &["failures", "--textures", "--scale", "1", "--out-dir"],
+        &dir,
     );
     // `| `name.png` | caption | count |`
     let counts: HashMap<String, usize> = text
@@ -198,14 +206,7 @@ fn exact_mode_shows_the_rational_reference_texel_on_the_cube_and_sphere() {
         let mut compared = 0;
         for y in 0..H as i64 {
             for x in 0..W as i64 {
-                let mut covering = front
-                    .iter()
-                    .filter(|(v, _, _)| exact_fill::covered(v.as_ref(), S, x, y));
-                let first = covering.next();
-                assert!(
-                    covering.next().is_none(),
-                    "two front triangles at ({x},{y})"
-                );
+                let first = exact_fill::sole_cover(&front, |t| &t.0, S, (x, y)).unwrap();
                 let shown = ids[y as usize * W + x as usize];
                 assert_eq!(first.is_some(), shown.is_some(), "coverage at ({x},{y})");
                 let Some(&(v, uv, q)) = first else { continue };
@@ -293,17 +294,7 @@ fn the_texture_chart_table_states_the_counts() {
          frame_tex_cube_sub8 16019 |  12035232   751.3  15000000 | 01234567\n",
     )
     .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_zscan"))
-        .args(["chart", "--textures", "--no-measure", "--m4"])
-        .arg(&table)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = zscan(&["chart", "--textures", "--no-measure", "--m4"], &table);
     let modes = [
         ("exact", TextureMode::Exact),
         ("sub16", TextureMode::Subdivided16),

@@ -172,20 +172,8 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     sort_order(&mut order[..n], |i| Reverse(triangles[i].depth_range().1));
     without_depth(frame, |frame, depth| {
         let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
-        let mut painter = Painter {
-            scene,
-            window: target.buffers(),
-            triangles,
-            normals,
-            order,
-            count: n,
-            stored: n,
-            splits: 0,
-            moves: 0,
-            moved: 0,
-            tests: [0; 5],
-            ambiguities: 0,
-        };
+        let window = target.buffers();
+        let mut painter = Painter::new(scene, window, triangles, normals, order, n);
         while let Some(t) = painter.next(policy)? {
             let all = (&*painter.triangles, normals);
             draw_piece(scene, &painter.triangles[t], all, &mut target, counts)?;
@@ -221,6 +209,34 @@ struct Painter<'m, const S: u32> {
     /// Pair tests decided by test 1–5, and pairs none decided (`MethodCounts`).
     tests: [u32; 5],
     ambiguities: u32,
+}
+
+impl<'m, const S: u32> Painter<'m, S> {
+    /// The loop over `n` stored triangles, `order[..n]` sorted by farthest depth, descending,
+    /// nothing painted, moved or split yet.
+    fn new(
+        scene: &'m Scene<'m>,
+        window: Window,
+        triangles: &'m mut [StoredTriangle<S>],
+        normals: &'m [Normal],
+        order: &'m mut [u32],
+        n: usize,
+    ) -> Self {
+        Painter {
+            scene,
+            window,
+            triangles,
+            normals,
+            order,
+            count: n,
+            stored: n,
+            splits: 0,
+            moves: 0,
+            moved: 0,
+            tests: [0; 5],
+            ambiguities: 0,
+        }
+    }
 }
 
 impl<const S: u32> Painter<'_, S> {
@@ -824,20 +840,8 @@ mod tests {
         let mut stats = RenderStats::default();
         without_depth(&mut frame, |frame, depth| {
             let mut target = RasterTarget::new(frame, depth);
-            let mut painter = Painter {
-                scene,
-                window: target.buffers(),
-                triangles: &mut triangles,
-                normals: &normals,
-                order: &mut order,
-                count: n,
-                stored: n,
-                splits: 0,
-                moves: 0,
-                moved: 0,
-                tests: [0; 5],
-                ambiguities: 0,
-            };
+            let window = target.buffers();
+            let mut painter = Painter::new(scene, window, &mut triangles, &normals, &mut order, n);
             while let Some(t) = painter.next(SplitPolicy::Budget(64))? {
                 let all = (&*painter.triangles, &normals[..]);
                 draw_piece(scene, &painter.triangles[t], all, &mut target, &mut stats)?;

@@ -229,20 +229,33 @@ pub const AMBIENT: u8 = 40;
 /// SCENES.md's camera for a `width × height` display: eye at `(0, 0, 3)` looking at the
 /// origin, 60° vertical field of view, near 0.5, far 10.
 pub fn camera(width: u16, height: u16) -> Result<Camera, zscan::Error> {
-    // A constant: `Coord::lit` evaluated at run time would link the decimal parser (9 KB on
+    const FOV: BinaryAngle = BinaryAngle::from_degrees(60);
+    looking_at_origin(FOV, width, height)
+}
+
+/// The eye at `(0, 0, 3)`, up `+y`, looking at the origin with vertical field of view `fov`,
+/// near 0.5 and far 10, for a `width × height` display.
+pub(crate) fn looking_at_origin(
+    fov: BinaryAngle,
+    width: u16,
+    height: u16,
+) -> Result<Camera, zscan::Error> {
+    // Constants: `Coord::lit` evaluated at run time would link the decimal parser (9 KB on
     // a Cortex-M0+).
-    const LENS: Lens = Lens {
-        fov: BinaryAngle::from_degrees(60),
+    const NEAR: Coord = Coord::lit("0.5");
+    const FAR: Coord = Coord::lit("10");
+    let lens = Lens {
+        fov,
         axis: FovAxis::Vertical,
-        near: Coord::lit("0.5"),
-        far: Coord::lit("10"),
+        near: NEAR,
+        far: FAR,
     };
     let (eye, up) = (Vec3::from_int(0, 0, 3), Vec3::from_int(0, 1, 0));
     Ok(Camera::look_at(
         eye,
         Vec3::ZERO,
         up,
-        LENS,
+        lens,
         Viewport::new(width, height),
     )?)
 }

@@ -64,20 +64,8 @@ impl Default for WireMemory {
 
 /// The camera of the one-bit display (module doc).
 pub fn wire_camera() -> Result<Camera, zscan::Error> {
-    const LENS: Lens = Lens {
-        fov: BinaryAngle::from_degrees(48),
-        axis: FovAxis::Vertical,
-        near: Coord::lit("0.5"),
-        far: Coord::lit("10"),
-    };
-    let (eye, up) = (Vec3::from_int(0, 0, 3), Vec3::from_int(0, 1, 0));
-    Ok(Camera::look_at(
-        eye,
-        Vec3::ZERO,
-        up,
-        LENS,
-        Viewport::new(MONO_W, MONO_H),
-    )?)
+    const FOV: BinaryAngle = BinaryAngle::from_degrees(48);
+    crate::looking_at_origin(FOV, MONO_W, MONO_H)
 }
 
 /// The coarse bunny of frame `frame` as [`bunny`](crate::bunny) turns the standard one, unlit (lines take their

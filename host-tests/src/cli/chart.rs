@@ -660,27 +660,14 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
         .margin_bottom(MARGINS.3)
         .build_cartesian_2d(0f64..xmax, 0f64..ymax)
         .map_err(|x| e(&x))?;
-    let grey = RGBColor(220, 220, 220);
-    let (sx, sy) = (nice_step(xmax), nice_step(ymax));
-    let mut x = 0.0;
-    while x <= xmax {
-        chart
-            .draw_series(LineSeries::new([(x, 0.0), (x, ymax)], grey))
-            .map_err(|q| e(&q))?;
-        let (px, py) = chart.backend_coord(&(x, 0.0));
-        texts.push(format!(
-            r#"<text x="{px}" y="{}" text-anchor="middle" font-size="12">{x}</text>"#,
-            py + 16
-        ));
-        x += sx;
-    }
-    y_grid(&mut chart, (0.0, xmax), (ymax, sy), (grey, 12), texts)?;
-    chart
-        .draw_series(LineSeries::new(
-            [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
-            BLACK,
-        ))
-        .map_err(|q| e(&q))?;
+    linear_grid(
+        &mut chart,
+        (xmax, ymax),
+        12,
+        &|x| format!("{x}"),
+        &|y| format!("{y:.0}"),
+        texts,
+    )?;
     let (tx, ty) = chart.backend_coord(&(0.0, ymax));
     texts.push(format!(
         r#"<text x="{}" y="{}" font-size="14" font-weight="bold">{title}</text>"#,
@@ -762,6 +749,7 @@ pub(super) fn y_grid<DB, X>(
     (x0, x1): (f64, f64),
     (ymax, step): (f64, f64),
     (grey, size): (plotters::prelude::RGBColor, u32),
+    label: &dyn Fn(f64) -> String,
     texts: &mut Vec<String>,
 ) -> Result<(), CliError>
 where
@@ -776,12 +764,60 @@ where
             .map_err(|q| q.to_string())?;
         let (px, py) = chart.backend_coord(&(x0, y));
         texts.push(format!(
-            r#"<text x="{}" y="{}" text-anchor="end" font-size="{size}">{y:.0}</text>"#,
+            r#"<text x="{}" y="{}" text-anchor="end" font-size="{size}">{}</text>"#,
             px - 6,
-            py + 4
+            py + 4,
+            label(y)
         ));
         y += step;
     }
+    Ok(())
+}
+
+/// A linear panel's grid and axes: grey lines every [`nice_step`] of each axis from 0 to
+/// `xmax` and `ymax`, labelled (font size `size`) below by `x_label` and on the left by
+/// `y_label`, and the two axes in black (the texts collected in `texts`).
+pub(super) fn linear_grid<DB>(
+    chart: &mut plotters::prelude::ChartContext<
+        '_,
+        DB,
+        plotters::prelude::Cartesian2d<
+            plotters::coord::types::RangedCoordf64,
+            plotters::coord::types::RangedCoordf64,
+        >,
+    >,
+    (xmax, ymax): (f64, f64),
+    size: u32,
+    x_label: &dyn Fn(f64) -> String,
+    y_label: &dyn Fn(f64) -> String,
+    texts: &mut Vec<String>,
+) -> Result<(), CliError>
+where
+    DB: plotters::prelude::DrawingBackend,
+{
+    use plotters::prelude::*;
+    let grey = RGBColor(220, 220, 220);
+    let (sx, sy) = (nice_step(xmax), nice_step(ymax));
+    let mut x = 0.0;
+    while x <= xmax {
+        chart
+            .draw_series(LineSeries::new([(x, 0.0), (x, ymax)], grey))
+            .map_err(|q| q.to_string())?;
+        let (px, py) = chart.backend_coord(&(x, 0.0));
+        texts.push(format!(
+            r#"<text x="{px}" y="{}" text-anchor="middle" font-size="{size}">{}</text>"#,
+            py + 16,
+            x_label(x)
+        ));
+        x += sx;
+    }
+    y_grid(chart, (0.0, xmax), (ymax, sy), (grey, size), y_label, texts)?;
+    chart
+        .draw_series(LineSeries::new(
+            [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
+            BLACK,
+        ))
+        .map_err(|q| q.to_string())?;
     Ok(())
 }
 
@@ -828,12 +864,17 @@ fn chart(
         root.present().map_err(|x| e(&x))?;
     }
     shading_legend(width as i32, shading_h as i32, &mut texts);
+    Ok(with_texts(svg, &texts))
+}
+
+/// `svg` with the SVG elements `texts` added before its closing tag (the charts draw their
+/// lines with plotters and their texts as plain SVG, so that no font library is needed).
+pub(super) fn with_texts(svg: String, texts: &[String]) -> String {
     let body = texts.join("\n");
-    let svg = match svg.rfind("</svg>") {
+    match svg.rfind("</svg>") {
         Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
         None => svg,
-    };
-    Ok(svg)
+    }
 }
 
 /// The shading half's title, axis name and legend as plain SVG text (no font library needed),
@@ -1121,11 +1162,7 @@ fn plan_chart(data: &std::path::Path) -> Result<String, CliError> {
     let w = width as i32;
     texts.push(format!(r#"<text x="{}" y="26" text-anchor="middle" font-size="16" font-weight="bold">Visibility methods: caller RAM against instructions per frame, Cortex-M4 (top) and Cortex-M0 (bottom), standard scenes at 320x240</text>"#, w / 2));
     texts.push(format!(r#"<text x="{}" y="46" text-anchor="middle" font-size="12">blue: zscan methods; ringed red: the planner's pick (no budget limit); grey squares: peers (frame + depth, SCENES.md; Cortex-M4F only). x: bytes, log scale; data: docs/plan_chart.csv</text>"#, w / 2));
-    let body = texts.join("\n");
-    Ok(match svg.rfind("</svg>") {
-        Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
-        None => svg,
-    })
+    Ok(with_texts(svg, &texts))
 }
 
 /// One panel of the plan chart: scene `name`'s points on core `core` (0: Cortex-M4, 1:

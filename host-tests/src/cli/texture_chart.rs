@@ -20,7 +20,7 @@
 
 use std::collections::HashMap;
 
-use super::chart::{nice_step, read_counts, ChartArgs, MARGINS};
+use super::chart::{linear_grid, read_counts, with_texts, ChartArgs, MARGINS};
 use super::CliError;
 use crate::texture_failures::{accuracy_table, mode_name, Accuracy, TexScene, MODES};
 use zscan::texture::TextureMode;
@@ -191,11 +191,7 @@ fn chart(points: &[Point]) -> Result<String, CliError> {
         r#"<text x="{x}" y="54" font-size="12">filled: % of pixels whose texel is not the f64 definition's; hollow: % whose texel is not the exact mode's</text>"#
     );
     texts.push(legend);
-    let body = texts.join("\n");
-    Ok(match svg.rfind("</svg>") {
-        Some(i) => format!("{}{}\n{}", &svg[..i], body, &svg[i..]),
-        None => svg,
-    })
+    Ok(with_texts(svg, &texts))
 }
 
 /// One panel: each point at (millions of instructions, percent), both marks joined by a line.
@@ -223,41 +219,14 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
         .margin_bottom(MARGINS.3)
         .build_cartesian_2d(0f64..xmax, 0f64..ymax)
         .map_err(|x| e(&x))?;
-    let grey = RGBColor(220, 220, 220);
-    let (sx, sy) = (nice_step(xmax), nice_step(ymax));
-    let mut x = 0.0;
-    while x <= xmax {
-        chart
-            .draw_series(LineSeries::new([(x, 0.0), (x, ymax)], grey))
-            .map_err(|q| e(&q))?;
-        let (px, py) = chart.backend_coord(&(x, 0.0));
-        texts.push(format!(
-            r#"<text x="{px}" y="{}" text-anchor="middle" font-size="11">{}</text>"#,
-            py + 15,
-            trim(x)
-        ));
-        x += sx;
-    }
-    let mut y = 0.0;
-    while y <= ymax {
-        chart
-            .draw_series(LineSeries::new([(0.0, y), (xmax, y)], grey))
-            .map_err(|q| e(&q))?;
-        let (px, py) = chart.backend_coord(&(0.0, y));
-        texts.push(format!(
-            r#"<text x="{}" y="{}" text-anchor="end" font-size="11">{} %</text>"#,
-            px - 5,
-            py + 4,
-            trim(y)
-        ));
-        y += sy;
-    }
-    chart
-        .draw_series(LineSeries::new(
-            [(0.0, ymax), (0.0, 0.0), (xmax, 0.0)],
-            BLACK,
-        ))
-        .map_err(|q| e(&q))?;
+    linear_grid(
+        &mut chart,
+        (xmax, ymax),
+        11,
+        &trim,
+        &|y| format!("{} %", trim(y)),
+        texts,
+    )?;
     let (tx, ty) = chart.backend_coord(&(0.0, ymax));
     texts.push(format!(
         r#"<text x="{}" y="{}" font-size="13" font-weight="bold">{title}</text>"#,

@@ -248,7 +248,8 @@ fn panel<DB: plotters::prelude::DrawingBackend>(
         ));
     }
     let step = super::chart::nice_step(most);
-    super::chart::y_grid(&mut chart, (x0, x1), (y1, step), (grey, 11), texts)?;
+    let label = |y: f64| format!("{y:.0}");
+    super::chart::y_grid(&mut chart, (x0, x1), (y1, step), (grey, 11), &label, texts)?;
     chart
         .draw_series(LineSeries::new([(x0, y1), (x0, 0.0), (x1, 0.0)], BLACK))
         .map_err(|q| e(&q))?;

@@ -69,6 +69,23 @@ pub fn winding(vertices: &[Vertex], s: u32, x: i64, y: i64) -> i64 {
     w
 }
 
+/// The one item of `items` whose triangle (`corners`) covers pixel `(x, y)`, `Ok(None)` when
+/// none does, or an error naming the pixel when two do (front faces of a closed mesh tile
+/// the screen, so two covering front triangles mean a broken reference scene).
+pub fn sole_cover<T>(
+    items: &[T],
+    corners: impl Fn(&T) -> &[Vertex],
+    s: u32,
+    (x, y): (i64, i64),
+) -> Result<Option<&T>, String> {
+    let mut covering = items.iter().filter(|t| covered(corners(t), s, x, y));
+    let first = covering.next();
+    match covering.next() {
+        Some(_) => Err(format!("two front triangles at ({x},{y})")),
+        None => Ok(first),
+    }
+}
+
 /// True when pixel `(x, y)` is covered (winding number not zero).
 pub fn covered(vertices: &[Vertex], s: u32, x: i64, y: i64) -> bool {
     covered_by(vertices, s, x, y, RefRule::NonZero)
