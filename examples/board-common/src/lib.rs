@@ -229,27 +229,28 @@ pub const AMBIENT: u8 = 40;
 /// SCENES.md's camera for a `width × height` display: eye at `(0, 0, 3)` looking at the
 /// origin, 60° vertical field of view, near 0.5, far 10.
 pub fn camera(width: u16, height: u16) -> Result<Camera, zscan::Error> {
-    const FOV: BinaryAngle = BinaryAngle::from_degrees(60);
-    looking_at_origin(FOV, width, height)
+    const LENS: Lens = lens(60);
+    looking_at_origin(LENS, width, height)
 }
 
-/// The eye at `(0, 0, 3)`, up `+y`, looking at the origin with vertical field of view `fov`,
-/// near 0.5 and far 10, for a `width × height` display.
+/// A vertical field of view of `degrees`, near 0.5, far 10: a `const fn`, for constants
+/// (`Coord::lit` evaluated at run time would link the decimal parser, 9 KB on a Cortex-M0+).
+pub(crate) const fn lens(degrees: i32) -> Lens {
+    Lens {
+        fov: BinaryAngle::from_degrees(degrees),
+        axis: FovAxis::Vertical,
+        near: Coord::lit("0.5"),
+        far: Coord::lit("10"),
+    }
+}
+
+/// The eye at `(0, 0, 3)`, up `+y`, looking at the origin through `lens` on a
+/// `width × height` display.
 pub(crate) fn looking_at_origin(
-    fov: BinaryAngle,
+    lens: Lens,
     width: u16,
     height: u16,
 ) -> Result<Camera, zscan::Error> {
-    // Constants: `Coord::lit` evaluated at run time would link the decimal parser (9 KB on
-    // a Cortex-M0+).
-    const NEAR: Coord = Coord::lit("0.5");
-    const FAR: Coord = Coord::lit("10");
-    let lens = Lens {
-        fov,
-        axis: FovAxis::Vertical,
-        near: NEAR,
-        far: FAR,
-    };
     let (eye, up) = (Vec3::from_int(0, 0, 3), Vec3::from_int(0, 1, 0));
     Ok(Camera::look_at(
         eye,

@@ -64,8 +64,8 @@ impl Default for WireMemory {
 
 /// The camera of the one-bit display (module doc).
 pub fn wire_camera() -> Result<Camera, zscan::Error> {
-    const FOV: BinaryAngle = BinaryAngle::from_degrees(48);
-    crate::looking_at_origin(FOV, MONO_W, MONO_H)
+    const LENS: Lens = crate::lens(48);
+    crate::looking_at_origin(LENS, MONO_W, MONO_H)
 }
 
 /// The coarse bunny of frame `frame` as [`bunny`](crate::bunny) turns the standard one, unlit (lines take their
