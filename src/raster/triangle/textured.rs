@@ -47,6 +47,7 @@ use super::kinds::SpanKind;
 use super::setup::TriangleSetup;
 use super::span::{depth_span, Shading, SpanTest, WrittenCount};
 use crate::texture::{ShadeTable, Texture, TextureMode, Texturing};
+use core::cell::Cell;
 
 /// Significant bits of the normalised perspective weights (`q < 2^16`).
 pub(crate) const WEIGHT_BITS: u32 = 16;
@@ -124,7 +125,7 @@ impl Plane {
 
 /// The per-triangle set-up of a textured triangle (module doc): its three planes, the texture
 /// and how the texel becomes an index.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub(crate) struct TexturedKind<'a> {
     look: Lookup<'a>,
     mode: TextureMode,
@@ -136,6 +137,10 @@ pub(crate) struct TexturedKind<'a> {
     wide: bool,
     /// How the subdivided and affine modes' segment ends are evaluated.
     segment: SegmentPrecision,
+    /// The exact mode's texel at the previous span's first pixel (`[0, 0]` before the first
+    /// span): the first guess at the next span's start, accepted only where its remainder
+    /// proves it (module doc).
+    hint: Cell<[i32; 2]>,
 }
 
 impl<'a> TexturedKind<'a> {
@@ -191,6 +196,7 @@ impl<'a> TexturedKind<'a> {
             n: [planes(0), planes(1)],
             wide,
             segment,
+            hint: Cell::new([0; 2]),
         })
     }
 
@@ -384,9 +390,16 @@ impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
     fn start(k: &TexturedKind<'_>, look: Lookup<'a>, lum: L, x: i32, y: i32) -> Self {
         let q = T::at(&k.q, x, y);
         let n = k.n.map(|p| T::at(&p, x, y));
-        // A covered pixel has Q > 0 (module doc).
-        let t = n.map(|n| if q > T::ZERO { n.floor_div(q) } else { 0 });
-        let r = [0, 1].map(|i| n[i].sub(q.times(t[i])));
+        // A covered pixel has Q > 0 (module doc); there the guess is tried first.
+        let mut t = [0; 2];
+        let mut r = n;
+        if q > T::ZERO {
+            let guess = k.hint.get();
+            for i in 0..2 {
+                (t[i], r[i]) = settle(n[i], q, guess[i]);
+            }
+            k.hint.set(t);
+        }
         let dq = T::from_wide(k.q.gx);
         let e = [0, 1].map(|i| T::from_wide(k.n[i].gx).sub(dq.times(t[i])));
         ExactTexels {
@@ -399,6 +412,30 @@ impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
             look,
         }
     }
+}
+
+/// `(t, N − Q·t)` with `t = ⌊N / Q⌋` for `Q > 0`, from a guess `g`: accepted when its
+/// remainder `N − Q·g` lies in `[0, Q)`, moved by one when the remainder is one `Q` outside,
+/// else the division. Under the `i64` bound (module doc) every value here stays in range when
+/// `|g|` is at most the triangle's texel bound, as any covered pixel's floor is.
+#[inline(always)]
+fn settle<T: Wide>(n: T, q: T, g: i32) -> (i32, T) {
+    let r = n.sub(q.times(g));
+    if r < T::ZERO {
+        let up = r.add(q);
+        if up >= T::ZERO {
+            return (g - 1, up);
+        }
+    } else if r < q {
+        return (g, r);
+    } else {
+        let down = r.sub(q);
+        if down < q {
+            return (g + 1, down);
+        }
+    }
+    let t = n.floor_div(q);
+    (t, n.sub(q.times(t)))
 }
 
 impl<T: Wide, L: Interpolant> Shading for ExactTexels<'_, T, L> {
