@@ -27,6 +27,11 @@
 //! Numeric contract: vertices within the raster's range (`|x|, |y| < 2^28`, `S ≤ 16`, so
 //! `|D| < 2^58` and coordinate differences `< 2^29`), weights `1 ≤ q < 2^16`, coordinates
 //! Q8.8 (`|u| ≤ 2^15`), sides `≤ 2^10`: every set-up product is below `2^101` (`i128`).
+//! The set-up runs in `i64` instead when the given vertices' coordinates and their
+//! differences are below `2^14` in size and the plane's values (`256·q_i`, `W·q_i·u_i`,
+//! `H·q_i·v_i`) below `2^31`, both checked per plane: then `|D| < 2^29`, the gradients are
+//! below `2^47`, and `D·a_0 − gx·X0 − gy·Y0` below `2^60 + 2·2^61 < 2^63`; the shift by `S`
+//! and the sign are applied after widening to `i128`.
 //! Per pixel the planes run in `i64` when their bound over the triangle leaves room
 //! (`|N| + Q·(|t| + 2) < 2^62` at every covered pixel, checked once per triangle), else in
 //! `i128`; both with wrapping adds, exact at covered pixels, where the true values are in
@@ -35,6 +40,11 @@
 //! the floors `⌊N / Q⌋`) is evaluated in the same type: under the `i64` bound the planes'
 //! low 64 bits, multiplied and added modulo `2^64`, give the exact values (they lie in
 //! range at a covered pixel), and the division is a 64-bit one instead of a 128-bit one.
+//! The floors there are first guessed as the previous span's first texels (the same
+//! triangle's, so `|t|` within its bound above, and the remainder `N − Q·t` in range):
+//! a guess is kept when its remainder lies in `[0, Q)`, moved by one when it lies one `Q`
+//! outside, and only otherwise replaced by the division; the floor is the one integer with
+//! that remainder, so the guess changes no texel.
 //! Likewise a segment end's `⌊2^16·N / Q⌋` runs in `i64` when `2^16·|N| < 2^63` and
 //! `Q < 2^62` at every covered pixel (`|N| < 2^47`, checked once per triangle); else, under
 //! the exact mode's `i64` bound, as `2^16·t + ⌊2^16·r / Q⌋` with `t = ⌊N / Q⌋` and
@@ -47,6 +57,7 @@ use super::kinds::SpanKind;
 use super::setup::TriangleSetup;
 use super::span::{depth_span, Shading, SpanTest, WrittenCount};
 use crate::texture::{ShadeTable, Texture, TextureMode, Texturing};
+use core::cell::Cell;
 
 /// Significant bits of the normalised perspective weights (`q < 2^16`).
 pub(crate) const WEIGHT_BITS: u32 = 16;
@@ -78,10 +89,57 @@ struct Plane {
     gy: i128,
 }
 
+/// Below this, the given vertices' coordinates and their differences (sub-pixel units) let a
+/// plane of values `|a_i| < 2^31` be set up in `i64` (module doc).
+const NARROW_COORDINATE: u32 = 1 << 14;
+
 impl Plane {
     /// `D·a(p)` of the values `a` over the given vertices (module doc), negated with `D`
-    /// when `sign` is −1.
+    /// when `sign` is −1: in `i64` when the triangle and the values are small enough
+    /// (`narrow`), else in `i128`.
     fn of<const S: u32>(t: &TriangleSetup<S>, a: [i128; 3], sign: i128) -> Plane {
+        let small = a.iter().all(|v| v.unsigned_abs() < 1 << 31);
+        let narrow = || Self::narrow(t, a.map(|v| v as i64), sign < 0);
+        match small.then(narrow).flatten() {
+            Some(p) => p,
+            None => Self::wide(t, a, sign),
+        }
+    }
+
+    /// [`Plane::of`] in `i64` for values `|a_i| < 2^31`, or `None` when a coordinate or a
+    /// coordinate difference of the given vertices is not below `2^14` (module doc).
+    #[inline(always)]
+    fn narrow<const S: u32>(t: &TriangleSetup<S>, a: [i64; 3], negate: bool) -> Option<Plane> {
+        let [p0, p1, p2] = t.given;
+        let (dx1, dy1) = (p1.x.wrapping_sub(p0.x), p1.y.wrapping_sub(p0.y));
+        let (dx2, dy2) = (p2.x.wrapping_sub(p0.x), p2.y.wrapping_sub(p0.y));
+        let m = [p0.x, p0.y]
+            .into_iter()
+            .chain([dx1, dy1, dx2, dy2])
+            .map(i32::unsigned_abs)
+            .max()
+            .unwrap_or(0);
+        // Differences of coordinates below 2^28 fit an i32 (below 2^29).
+        if m >= NARROW_COORDINATE {
+            return None;
+        }
+        let (x0, y0) = (p0.x as i64, p0.y as i64);
+        let (dx1, dy1, dx2, dy2) = (dx1 as i64, dy1 as i64, dx2 as i64, dy2 as i64);
+        let (da1, da2) = (a[1] - a[0], a[2] - a[0]);
+        let gx = da1 * dy2 - da2 * dy1;
+        let gy = da2 * dx1 - da1 * dx2;
+        let d = dx1 * dy2 - dx2 * dy1;
+        let c = d * a[0] - gx * x0 - gy * y0;
+        let sign = |v: i64| if negate { -(v as i128) } else { v as i128 };
+        Some(Plane {
+            c: sign(c),
+            gx: sign(gx) << S,
+            gy: sign(gy) << S,
+        })
+    }
+
+    /// [`Plane::of`] in `i128`.
+    fn wide<const S: u32>(t: &TriangleSetup<S>, a: [i128; 3], sign: i128) -> Plane {
         let [p0, p1, p2] = t.given;
         let (x0, y0) = (p0.x as i128, p0.y as i128);
         let (dx1, dy1) = (p1.x as i128 - x0, p1.y as i128 - y0);
@@ -111,20 +169,11 @@ impl Plane {
         c.wrapping_add(gx.wrapping_mul(x as i64))
             .wrapping_add(gy.wrapping_mul(y as i64))
     }
-
-    /// The plane scaled by `k`.
-    fn times(self, k: i128) -> Plane {
-        Plane {
-            c: self.c * k,
-            gx: self.gx * k,
-            gy: self.gy * k,
-        }
-    }
 }
 
 /// The per-triangle set-up of a textured triangle (module doc): its three planes, the texture
 /// and how the texel becomes an index.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub(crate) struct TexturedKind<'a> {
     look: Lookup<'a>,
     mode: TextureMode,
@@ -136,6 +185,10 @@ pub(crate) struct TexturedKind<'a> {
     wide: bool,
     /// How the subdivided and affine modes' segment ends are evaluated.
     segment: SegmentPrecision,
+    /// The exact mode's texel at the previous span's first pixel (`[0, 0]` before the first
+    /// span): the first guess at the next span's start, accepted only where its remainder
+    /// proves it (module doc).
+    hint: Cell<[i32; 2]>,
 }
 
 impl<'a> TexturedKind<'a> {
@@ -158,8 +211,8 @@ impl<'a> TexturedKind<'a> {
         let texture = texturing.texture;
         let sides = [texture.width() as i128, texture.height() as i128];
         let planes = |k: usize| {
-            let a = [0, 1, 2].map(|i| q[i] as i128 * corners[i].uv[k] as i128);
-            Plane::of(t, a, sign).times(sides[k])
+            let a = [0, 1, 2].map(|i| sides[k] * q[i] as i128 * corners[i].uv[k] as i128);
+            Plane::of(t, a, sign)
         };
         // The i64 bound: at a covered pixel Q ≤ 256·|D|·max q, |N| ≤ side·|D|·max |q·u|, and
         // the texel |t| ≤ side·max |u| / 256 + 1.
@@ -187,10 +240,11 @@ impl<'a> TexturedKind<'a> {
         Some(TexturedKind {
             look: Lookup::new(texture, texturing.shades),
             mode: texturing.mode,
-            q: Plane::of(t, q.map(|w| w as i128), sign).times(256),
+            q: Plane::of(t, q.map(|w| 256 * w as i128), sign),
             n: [planes(0), planes(1)],
             wide,
             segment,
+            hint: Cell::new([0; 2]),
         })
     }
 
@@ -384,9 +438,16 @@ impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
     fn start(k: &TexturedKind<'_>, look: Lookup<'a>, lum: L, x: i32, y: i32) -> Self {
         let q = T::at(&k.q, x, y);
         let n = k.n.map(|p| T::at(&p, x, y));
-        // A covered pixel has Q > 0 (module doc).
-        let t = n.map(|n| if q > T::ZERO { n.floor_div(q) } else { 0 });
-        let r = [0, 1].map(|i| n[i].sub(q.times(t[i])));
+        // A covered pixel has Q > 0 (module doc); there the guess is tried first.
+        let mut t = [0; 2];
+        let mut r = n;
+        if q > T::ZERO {
+            let guess = k.hint.get();
+            for i in 0..2 {
+                (t[i], r[i]) = settle(n[i], q, guess[i]);
+            }
+            k.hint.set(t);
+        }
         let dq = T::from_wide(k.q.gx);
         let e = [0, 1].map(|i| T::from_wide(k.n[i].gx).sub(dq.times(t[i])));
         ExactTexels {
@@ -399,6 +460,30 @@ impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
             look,
         }
     }
+}
+
+/// `(t, N − Q·t)` with `t = ⌊N / Q⌋` for `Q > 0`, from a guess `g`: accepted when its
+/// remainder `N − Q·g` lies in `[0, Q)`, moved by one when the remainder is one `Q` outside,
+/// else the division. Under the `i64` bound (module doc) every value here stays in range when
+/// `|g|` is at most the triangle's texel bound, as any covered pixel's floor is.
+#[inline(always)]
+fn settle<T: Wide>(n: T, q: T, g: i32) -> (i32, T) {
+    let r = n.sub(q.times(g));
+    if r < T::ZERO {
+        let up = r.add(q);
+        if up >= T::ZERO {
+            return (g - 1, up);
+        }
+    } else if r < q {
+        return (g, r);
+    } else {
+        let down = r.sub(q);
+        if down < q {
+            return (g + 1, down);
+        }
+    }
+    let t = n.floor_div(q);
+    (t, n.sub(q.times(t)))
 }
 
 impl<T: Wide, L: Interpolant> Shading for ExactTexels<'_, T, L> {
@@ -612,6 +697,65 @@ impl<L: Interpolant> Shading for SegmentTexels<'_, '_, L> {
             }
         } else {
             self.acc = [self.acc[0] + self.inc[0], self.acc[1] + self.inc[1]];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::SubpixelPoint;
+
+    fn setup(v: [(i32, i32); 3]) -> TriangleSetup<4> {
+        TriangleSetup::in_range(v.map(|(x, y)| SubpixelPoint { x, y }))
+    }
+
+    fn same(a: Plane, b: Plane) -> bool {
+        (a.c, a.gx, a.gy) == (b.c, b.gx, b.gy)
+    }
+
+    /// At the edge of the narrow set-up's bound (coordinates and differences just below
+    /// `2^14`, values just below `2^31` in size, both signs; overflow checks on in the test
+    /// build) it gives the `i128` planes; one past it, it declines.
+    #[test]
+    fn narrow_set_up_matches_the_wide_one_up_to_its_bound() {
+        let m = NARROW_COORDINATE as i32 - 1;
+        let big = (1i64 << 31) - 1;
+        let values: [[i64; 3]; 4] = [
+            [big, -big, big],
+            [-big, big, -big],
+            [big, big - 1, -big],
+            [0, big, -big],
+        ];
+        let triangles = [
+            [(-m, -m), (0, -m), (-m, 0)],
+            [(m, m), (0, m), (m, 0)],
+            [(0, 0), (m, 0), (0, m)],
+            [(m, -m), (0, 0), (m, 0)],
+            [(-m, m), (-1, 0), (0, m)],
+        ];
+        for v in triangles {
+            let t = setup(v);
+            for a in values {
+                for sign in [1, -1] {
+                    let narrow = Plane::narrow(&t, a, sign < 0).expect("within the bound");
+                    let wide = Plane::wide(&t, a.map(i128::from), sign);
+                    assert!(same(narrow, wide), "{v:?} {a:?} {sign}");
+                    assert!(same(Plane::of(&t, a.map(i128::from), sign), wide));
+                }
+            }
+        }
+        // One past: a coordinate, a difference.
+        let over = NARROW_COORDINATE as i32;
+        for v in [
+            [(over, 0), (over, 1), (over - 1, 0)],
+            [(0, 0), (0, over), (1, 0)],
+            [(-over, 0), (-over, 1), (1 - over, 1)],
+        ] {
+            let t = setup(v);
+            assert!(Plane::narrow(&t, [1, 2, 3], false).is_none(), "{v:?}");
+            let a = [1i128, 2, 3];
+            assert!(same(Plane::of(&t, a, 1), Plane::wide(&t, a, 1)));
         }
     }
 }
