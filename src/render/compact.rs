@@ -58,7 +58,9 @@
 
 use super::consumer::LevelWriter;
 use super::cull::narrow_span;
-use super::polygon_stage::{triangle_rows, BandTable, Path, PolygonStage, Reach, VertexSource, Visitor};
+use super::polygon_stage::{
+    triangle_rows, BandTable, Path, PolygonStage, Reach, VertexSource, Visitor,
+};
 use super::{RenderError, RenderStats, Renderer, StatsSink};
 use crate::geometry::vector::Vec3;
 use crate::output::{DepthBuffer, DepthValue, Framebuffer};

@@ -73,9 +73,9 @@ impl<const S: u32, V: ?Sized + VertexSource<S>, T: ?Sized> PolygonStage<'_, '_, 
     /// [`decide`](Self::decide) for a triangle whose three vertices `v` are in range and
     /// inside every plane: [`Path::Triangle`] or [`Path::Skip`]. `UNBANDED_CULLED` when the
     /// buffers hold every row and the object culls back faces (the flags are then not read).
-    /// Culled in `i32` when the source is narrow ([`front_triangle`]).
+    /// Culled in `i32` when `NARROW` (the source is narrow, [`front_triangle`]).
     #[inline(always)]
-    pub(super) fn decide_triangle<'p, const UNBANDED_CULLED: bool>(
+    pub(super) fn decide_triangle<'p, const UNBANDED_CULLED: bool, const NARROW: bool>(
         &self,
         v: [&'p V::Vertex; 3],
         stats: &mut RenderStats,
@@ -88,7 +88,7 @@ impl<const S: u32, V: ?Sized + VertexSource<S>, T: ?Sized> PolygonStage<'_, '_, 
         }
         let cull = UNBANDED_CULLED || self.object.cull_back_faces;
         let [a, b, c] = v.map(V::screen);
-        if cull && !front_triangle(a, b, c, self.prepared.narrow()) {
+        if cull && !front_triangle(a, b, c, NARROW) {
             stats.culled += 1;
             return Path::Skip;
         }

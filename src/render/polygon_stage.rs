@@ -277,11 +277,14 @@ impl<const S: u32, V: ?Sized + VertexSource<S>, T: ?Sized> PolygonStage<'_, '_, 
         // Triangle meshes (the common case) have their own loops, which read each vertex
         // once; other meshes go through `polygon`.
         if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
-            // The frame's common case, a culled object drawn in one pass, has its own loop.
-            if !self.banded && self.object.cull_back_faces {
-                self.triangles::<true>(stats, visit)
-            } else {
-                self.triangles::<false>(stats, visit)
+            // The frame's common case, a culled object drawn in one pass, has its own loop,
+            // and so has a narrow source (a constant `false` for prepared vertices).
+            let unbanded_culled = !self.banded && self.object.cull_back_faces;
+            match (unbanded_culled, self.prepared.narrow()) {
+                (true, false) => self.triangles::<true, false>(stats, visit),
+                (false, false) => self.triangles::<false, false>(stats, visit),
+                (true, true) => self.triangles::<true, true>(stats, visit),
+                (false, true) => self.triangles::<false, true>(stats, visit),
             }
         } else {
             for (pi, poly) in self.object.mesh.polygons().enumerate() {
@@ -293,9 +296,10 @@ impl<const S: u32, V: ?Sized + VertexSource<S>, T: ?Sized> PolygonStage<'_, '_, 
     }
 
     /// Every triangle of a triangle mesh; `UNBANDED_CULLED` when the buffers hold every row
-    /// and the object culls back faces (the flags are then not read per triangle).
+    /// and the object culls back faces (the flags are then not read per triangle), `NARROW`
+    /// when the source is narrow (culled in `i32`, `cull.rs`).
     #[inline(always)]
-    fn triangles<const UNBANDED_CULLED: bool>(
+    fn triangles<const UNBANDED_CULLED: bool, const NARROW: bool>(
         &self,
         stats: &mut RenderStats,
         visit: &mut impl Visitor<S, V, T>,
@@ -314,7 +318,7 @@ impl<const S: u32, V: ?Sized + VertexSource<S>, T: ?Sized> PolygonStage<'_, '_, 
         let n = triangles.len();
         for poly in triangles {
             let at = (poly.as_ptr() as usize - start) / core::mem::size_of::<u16>();
-            let r = self.triangle::<UNBANDED_CULLED>(at, poly, stats, visit);
+            let r = self.triangle::<UNBANDED_CULLED, NARROW>(at, poly, stats, visit);
             if r.is_err() {
                 return failed_at(stats, at, r);
             }
@@ -328,7 +332,7 @@ impl<const S: u32, V: ?Sized + VertexSource<S>, T: ?Sized> PolygonStage<'_, '_, 
     /// common case) are decided from one read of each
     /// ([`decide_triangle`](Self::decide_triangle)), others by [`decide`](Self::decide).
     #[inline(always)]
-    fn triangle<const UNBANDED_CULLED: bool>(
+    fn triangle<const UNBANDED_CULLED: bool, const NARROW: bool>(
         &self,
         at: usize,
         poly: &[u16],
@@ -337,7 +341,7 @@ impl<const S: u32, V: ?Sized + VertexSource<S>, T: ?Sized> PolygonStage<'_, '_, 
     ) -> Result<(), RenderError> {
         match self.vertex_triangle(poly) {
             Some(v) if V::outcode(v[0]) | V::outcode(v[1]) | V::outcode(v[2]) == 0 => {
-                let path = self.decide_triangle::<UNBANDED_CULLED>(v, stats);
+                let path = self.decide_triangle::<UNBANDED_CULLED, NARROW>(v, stats);
                 visit.polygon(self, at / 3, poly, path, stats)
             }
             _ => self.polygon_at(at, poly, stats, visit),
