@@ -1,13 +1,14 @@
 //! Bands: a picture drawn through one band-sized pair of buffers ([`render_in_bands`]), and the
 //! polygon table ([`PolygonRows`], [`Renderer::polygon_rows`]) that decides each polygon's fate
-//! once per frame.
+//! once per frame, through the polygon stage's one loop (`polygon_stage.rs`) with a visitor
+//! that records rows; [`render_in_compact_bands`], the same frame over compact vertices and
+//! their one-byte table (`compact.rs`), through the same loop.
 //!
 //! Numeric contract: band rows are `0..=65535` (a viewport's height is a `u16`); see
 //! `polygon_rows.rs` for the table entries.
 
 use super::compact::{compact_refusal, vertex_lit, CompactObject, CompactRefusal, Rows};
-use super::polygon_rows::triangle_rows;
-use super::polygon_stage::{Path, PolygonStage, Visitor};
+use super::polygon_stage::{triangle_rows, Path, PolygonStage, Visitor};
 use super::{
     check_transparency, draw_order, render_scene, BandPart, CompactSizes, CompactVertex, Draws,
     PolygonRows, PolygonTop, PreparedVertex, RenderError, RenderStats, Renderer, SceneRenderer,
@@ -65,21 +66,24 @@ struct Classify<'a> {
     out: core::slice::IterMut<'a, PolygonRows>,
 }
 
-impl<const S: u32> Visitor<S> for Classify<'_> {
+impl<const S: u32> Visitor<S, [PreparedVertex<S>], [PolygonRows]> for Classify<'_> {
     #[inline(always)]
     fn polygon(
         &mut self,
         stage: &PolygonStage<'_, '_, S>,
         _: usize,
         poly: &[u16],
-        path: Path<'_, S>,
+        path: Path<'_, PreparedVertex<S>>,
         _: &mut RenderStats,
     ) -> Result<(), RenderError> {
         if let Some(o) = self.out.next() {
             *o = match path {
                 Path::Skip => PolygonRows::NEVER,
                 Path::Projected => stage.projected_rows(poly),
-                Path::Triangle(v) => triangle_rows(v),
+                Path::Triangle(v) => {
+                    let (top, bottom) = triangle_rows::<S, [PreparedVertex<S>]>(v);
+                    PolygonRows::rows(top, bottom)
+                }
                 Path::Clip => match stage.clipped_rows(poly)? {
                     Some((top, bottom)) => PolygonRows::clipped(top, bottom),
                     None => PolygonRows::NEVER,

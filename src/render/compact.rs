@@ -11,14 +11,20 @@
 //! first vertex that does not is reported as [`RenderError::NotCompact`] (draw such a scene
 //! with `render_in_bands` and its full scratch).
 //!
-//! Once per frame, for each object: the vertex stage into [`CompactVertex`]es (and, for lit
-//! Gouraud objects only, one level byte per vertex), then one pass over the polygons that
-//! culls them (the exact projected signed area of `cull.rs`; for triangles in `i32` when the
-//! vertices span less than `2^15` sub-pixel units, where that is exact) and stores each front
-//! polygon's top row in one byte. For each band: the table is scanned, and the polygons whose rows meet
-//! the band are drawn from the compact vertices as fans through the one seam (`Corner`s to a
-//! [`LevelWriter`]), in mesh order, so that every pixel sees its polygons in the order the full
-//! frame draws them: the same pixels, depths and counts.
+//! Compact bands keep only what is theirs: their vertex format and their band table. The
+//! polygon loop, rejection, culling, rows and fans are the one polygon stage's
+//! (`polygon_stage.rs`, decisions in `cull.rs`), which reads the compact vertices as a
+//! [`VertexSource`] (`CompactSource`: every vertex projected, nothing to clip) and the table
+//! as a [`BandTable`] (`CompactTable`); the levels are chosen per object as in the full frame
+//! (`object.rs`, `run_levels`). Once per frame, for each object: the vertex stage into
+//! [`CompactVertex`]es (and, for lit Gouraud objects only, one level byte per vertex), then
+//! the polygon stage's loop over every polygon, which culls it (in `i32` when the object's
+//! vertices span less than `2^15` sub-pixel units, where that is exact) and records each front
+//! polygon's top row in one byte. For each band: the table's scan sends the polygons whose
+//! rows may meet the band to the same loop, which draws them from the compact vertices as
+//! fans through the one seam (`Corner`s to a [`LevelWriter`]), in mesh order, so that every
+//! pixel sees its polygons in the order the full frame draws them: the same pixels, depths
+//! and counts.
 //!
 //! # Memory
 //! For a `width × band_rows` band with `depth_bytes` per depth sample (2 for `u16`, 4 for
@@ -50,18 +56,14 @@
 //! band whose rows are the groups `g0..=g1` draws exactly the entries within `g0 − H ..= g1`
 //! whose rows (from the vertices where the entry alone does not decide) meet it.
 
-use core::cell::Cell;
-
-use super::consumer::{Corner, LevelWriter, TriangleConsumer};
-use super::cull::{front_triangle, screen_area};
-use super::polygon_stage::{draw_counted, fan};
+use super::consumer::LevelWriter;
+use super::cull::narrow_span;
+use super::polygon_stage::{
+    triangle_rows, BandTable, Path, PolygonStage, Reach, VertexSource, Visitor,
+};
 use super::{RenderError, RenderStats, Renderer, StatsSink};
-use crate::clip::frustum::MAX_POLYGON_VERTICES;
-use crate::geometry::mesh::PolygonSizes;
 use crate::geometry::vector::Vec3;
-use crate::lighting::light_polygon;
 use crate::output::{DepthBuffer, DepthValue, Framebuffer};
-use crate::raster::triangle::edge_walker::ceil_shift;
 use crate::raster::triangle::{RasterTarget, ShadeMode};
 use crate::raster::SubpixelPoint;
 use crate::scene::{Intensities, Object, Scene};
@@ -306,7 +308,9 @@ impl<const S: u32> Renderer<S> {
     }
 
     /// The table entry of each polygon of `object` into `table` (as long as its polygon
-    /// table), from its compact vertices; counts `polygons_in` and `culled`.
+    /// table), from its compact vertices: the polygon stage's loop and decisions (`cull.rs`;
+    /// culled in `i32` when the vertices span less than `2^15` sub-pixel units), recording
+    /// each polygon's rows; counts `polygons_in` and `culled`.
     #[inline(never)]
     pub(super) fn compact_table(
         &self,
@@ -316,293 +320,240 @@ impl<const S: u32> Renderer<S> {
         rows: &mut Rows,
         stats: &mut RenderStats,
     ) -> Result<(), RenderError> {
-        let cull = object.cull_back_faces;
-        let screen = |i: u16| vertices.get(i as usize).map(|v| v.screen::<S>());
-        if let PolygonSizes::Uniform(3) = object.mesh.sizes() {
-            stats.polygons_in += table.len().min(object.mesh.polygon_count()) as u32;
-            // Within a span below 2^15 on both axes every coordinate difference fits `i16`,
-            // and the cull's cross product fits `i32` (module doc).
-            if narrow_span(vertices) {
-                classify_triangles::<S, true>(object, vertices, table, rows, stats);
-            } else {
-                classify_triangles::<S, false>(object, vertices, table, rows, stats);
-            }
-            return Ok(());
+        let (mut x, mut y) = ((i32::MAX, i32::MIN), (i32::MAX, i32::MIN));
+        for v in vertices {
+            x = (x.0.min(v.x as i32), x.1.max(v.x as i32));
+            y = (y.0.min(v.y as i32), y.1.max(v.y as i32));
         }
-        for (entry, poly) in table.iter_mut().zip(object.mesh.polygons()) {
-            stats.polygons_in += 1;
-            if poly.len() > MAX_POLYGON_VERTICES {
-                return Err(RenderError::PolygonTooLarge);
-            }
-            // The vertex stage filled every vertex: an index out of range is the mesh's
-            // (already checked by `Mesh::new`), so such a polygon is never drawn.
-            let Some(first) = poly.first().and_then(|&i| screen(i)) else {
-                *entry = PolygonTop::NEVER;
-                continue;
-            };
-            let (mut lo, mut hi, mut ok) = (first.y, first.y, true);
-            for &i in poly {
-                match screen(i) {
-                    Some(p) => (lo, hi) = (lo.min(p.y), hi.max(p.y)),
-                    None => ok = false,
-                }
-            }
-            let area = || screen_area(poly.len(), |k| screen(poly[k]).unwrap_or(first));
-            if !ok {
-                *entry = PolygonTop::NEVER;
-            } else if cull && area() >= 0 {
-                // (As the full frame: a polygon of fewer than 3 corners has no area, culled.)
-                stats.culled += 1;
-                *entry = PolygonTop::NEVER;
-            } else if poly.len() < 3 {
-                *entry = PolygonTop::NEVER;
-            } else {
-                *entry = rows.entry(ceil_shift(lo, S), ceil_shift(hi, S));
-            }
-        }
-        Ok(())
+        let source = CompactSource {
+            vertices,
+            levels: &[],
+            narrow: narrow_span(x, y),
+        };
+        let stage: PolygonStage<'_, '_, S, CompactSource<'_>> = PolygonStage {
+            renderer: self,
+            object,
+            prepared: &source,
+            rows: (0, 0),
+            banded: false,
+            table: None,
+        };
+        let out = table.iter_mut();
+        stage.each(stats, &mut Tops { out, rows })
     }
 
     /// Draws the polygons of `object` that meet the band's rows through the band's buffers
-    /// (`frame`, `depth`), from its compact scratch and table.
+    /// (`frame`, `depth`), from its compact scratch and table: the polygon stage over the
+    /// compact vertices and table, with the levels of the full frame (`run_levels`).
     #[inline(never)]
     pub(super) fn draw_compact_band<D: DepthValue, T: StatsSink>(
         &self,
         object: &Object<'_>,
         scratch: &CompactObject<'_>,
-        (table, rows): (&[PolygonTop], &Rows),
+        (tops, rows): (&[PolygonTop], &Rows),
         frame: &mut Framebuffer<'_>,
         depth: &mut DepthBuffer<'_, D>,
         stats: &mut T,
     ) -> Result<(), RenderError> {
+        if let Some(CompactRefusal::LitPhong) = compact_refusal(object) {
+            return Err(RenderError::PhongUnsupported);
+        }
         let stats = stats.counts();
         let band = (frame.top(), frame.top() + frame.height() as i32);
+        // Levels given per vertex are read from the scene's table, as the full frame reads
+        // its copy in the prepared vertex.
+        let levels = match object.intensities {
+            Intensities::PerVertex(t) => t,
+            _ => scratch.levels,
+        };
+        let source = CompactSource {
+            vertices: scratch.vertices,
+            levels,
+            narrow: false,
+        };
+        let table = CompactTable { tops, rows };
+        let stage = PolygonStage {
+            renderer: self,
+            object,
+            prepared: &source,
+            rows: band,
+            banded: true,
+            table: Some(&table),
+        };
         let mut target = RasterTarget::with_count(frame, depth, T::Count::default());
         let writer = LevelWriter {
             target: &mut target,
             object,
         };
-        let pass = BandPass {
-            object,
-            vertices: scratch.vertices,
-            table,
-            rows,
-            band,
-        };
-        match object.intensities {
-            Intensities::Lit { material, .. } if object.shade == ShadeMode::Flat => {
-                // One level per polygon, lit for its first corner and reused, as in the full
-                // frame (`run_levels`).
-                let model_view = self.model_view(object)?;
-                let last = Cell::new((usize::MAX, 0u8));
-                let level = |pi: usize, poly: &[u16], _| {
-                    if last.get().0 != pi {
-                        let l = light_polygon(
-                            &object.mesh,
-                            poly,
-                            &model_view,
-                            &self.illumination,
-                            &material,
-                        );
-                        last.set((pi, l));
-                    }
-                    last.get().1 as i32
-                };
-                pass.run::<S>(stats, level, writer)
-            }
-            Intensities::Lit { .. } if object.shade == ShadeMode::Phong => {
-                Err(RenderError::PhongUnsupported)
-            }
-            Intensities::Lit { .. } => {
-                let levels = scratch.levels;
-                let level = |_, poly: &[u16], k: usize| {
-                    levels.get(poly[k] as usize).copied().unwrap_or(0) as i32
-                };
-                pass.run::<S>(stats, level, writer)
-            }
-            Intensities::PerVertex(t) => {
-                // Read from the table as the full frame reads its copy in the prepared vertex.
-                let level = |_, poly: &[u16], k: usize| {
-                    t.get(poly[k] as usize).copied().unwrap_or(0) as i32
-                };
-                pass.run::<S>(stats, level, writer)
-            }
-            _ => pass.run::<S>(
-                stats,
-                |pi, poly: &[u16], k| object.intensity(pi, poly[k]) as i32,
-                writer,
-            ),
-        }
+        self.run_levels(&stage, stats, writer, |l, _, _| [l])
     }
 }
 
-/// One object's polygons in one band: the table scan and the fans.
-struct BandPass<'a, 'o> {
-    object: &'a Object<'o>,
+/// Compact vertices as the polygon stage's vertex source: every vertex projected (no
+/// outcode; no observer-frame position, which only the clipper and Phong read, and neither
+/// runs here), the levels in their own bytes.
+pub(super) struct CompactSource<'a> {
     vertices: &'a [CompactVertex],
-    table: &'a [PolygonTop],
-    rows: &'a Rows,
-    /// The band's rows, `band.0 .. band.1`.
-    band: (i32, i32),
+    /// One level per vertex: the vertex stage's (lit Gouraud) or the scene's table (given per
+    /// vertex); empty (never read) otherwise.
+    levels: &'a [u8],
+    /// The vertices span less than `2^15` sub-pixel units on each axis (`cull.rs`).
+    narrow: bool,
 }
 
-impl BandPass<'_, '_> {
-    /// Scans the table and draws every polygon whose rows meet the band, in mesh order, with
-    /// `level(polygon index, polygon, corner k)` per corner, through `draw`.
-    fn run<const S: u32>(
-        &self,
-        stats: &mut RenderStats,
-        level: impl Fn(usize, &[u16], usize) -> i32,
-        mut draw: impl TriangleConsumer<S, 1>,
+impl<const S: u32> VertexSource<S> for CompactSource<'_> {
+    type Vertex = CompactVertex;
+    const CLIPS: bool = false;
+    #[inline(always)]
+    fn vertex(&self, i: u16) -> Option<&CompactVertex> {
+        self.vertices.get(i as usize)
+    }
+    #[inline(always)]
+    fn screen(v: &CompactVertex) -> SubpixelPoint<S> {
+        v.screen()
+    }
+    #[inline(always)]
+    fn depth(v: &CompactVertex) -> u32 {
+        v.depth
+    }
+    #[inline(always)]
+    fn outcode(_: &CompactVertex) -> u8 {
+        0
+    }
+    #[inline(always)]
+    fn view(_: &CompactVertex) -> Vec3 {
+        Vec3::ZERO
+    }
+    #[inline(always)]
+    fn level(&self, i: u16, _: &CompactVertex) -> u8 {
+        self.levels.get(i as usize).copied().unwrap_or(0)
+    }
+    #[inline(always)]
+    fn narrow(&self) -> bool {
+        self.narrow
+    }
+}
+
+/// The compact table pass's visitor: each polygon's entry ([`PolygonTop::NEVER`] when
+/// skipped or with fewer than 3 corners), written in mesh order, widening the frame's spread.
+struct Tops<'a, 'r> {
+    out: core::slice::IterMut<'a, PolygonTop>,
+    rows: &'r mut Rows,
+}
+
+impl<const S: u32, T: ?Sized> Visitor<S, CompactSource<'_>, T> for Tops<'_, '_> {
+    #[inline(always)]
+    fn polygon(
+        &mut self,
+        stage: &PolygonStage<'_, '_, S, CompactSource<'_>, T>,
+        _: usize,
+        poly: &[u16],
+        path: Path<'_, CompactVertex>,
+        _: &mut RenderStats,
     ) -> Result<(), RenderError> {
-        let Rows { shift, spread, .. } = *self.rows;
-        let (g0, g1) = (self.band.0 >> shift, (self.band.1 - 1) >> shift);
-        // Entries `lo ..= g1` may meet the band; 254 and 255 never pass this test (g1 ≤ 253).
-        let lo = g0 - spread;
-        let width = (g1 - lo + 1) as u32;
-        let tall = self.rows.tall_seen;
-        let (level, draw) = (&level, &mut draw);
-        if let PolygonSizes::Uniform(3) = self.object.mesh.sizes() {
-            // The scan is the band's per-polygon cost: out of line, four entries a step, one
-            // subtraction and one comparison each; only candidates come back here.
-            let mut pi = 0;
-            loop {
-                pi = match tall {
-                    false => next_candidate::<false>(self.table, pi, lo, width),
-                    true => next_candidate::<true>(self.table, pi, lo, width),
-                };
-                let Some(&e) = self.table.get(pi) else {
-                    return Ok(());
-                };
-                self.visit_triangle::<S>(pi, e, g0, stats, level, draw)?;
-                pi += 1;
-            }
-        }
-        for (pi, (poly, &e)) in self.object.mesh.polygons().zip(self.table).enumerate() {
-            if is_candidate::<true>(e, lo, width) {
-                self.visit::<S>(pi, poly, e, g0, stats, level, draw)?;
-            }
+        if let Some(o) = self.out.next() {
+            *o = match path {
+                Path::Triangle(v) => {
+                    let (top, bottom) = triangle_rows::<S, CompactSource<'_>>(v);
+                    self.rows.entry(top, bottom)
+                }
+                Path::Projected if poly.len() >= 3 => {
+                    let (top, bottom) = stage.exact_rows(poly);
+                    self.rows.entry(top, bottom)
+                }
+                _ => PolygonTop::NEVER,
+            };
         }
         Ok(())
     }
+}
 
-    /// [`visit`](Self::visit) for triangle `pi` of a triangle mesh (out of line, so that the
-    /// scan keeps its registers).
-    #[inline(never)]
-    fn visit_triangle<const S: u32>(
-        &self,
-        pi: usize,
-        e: PolygonTop,
-        g0: i32,
-        stats: &mut RenderStats,
-        level: &impl Fn(usize, &[u16], usize) -> i32,
-        draw: &mut impl TriangleConsumer<S, 1>,
-    ) -> Result<(), RenderError> {
-        match self.object.mesh.indices().get(3 * pi..3 * pi + 3) {
-            Some(poly) => self.visit::<S>(pi, poly, e, g0, stats, level, draw),
-            None => Ok(()),
+/// One object's compact band table: its one-byte entries and the frame's row groups.
+pub(super) struct CompactTable<'a> {
+    tops: &'a [PolygonTop],
+    rows: &'a Rows,
+}
+
+/// The entries a band may draw: the groups `lo .. lo + width` (and the tall code), from the
+/// band's first group `g0`.
+struct Window {
+    g0: i32,
+    lo: i32,
+    width: u32,
+}
+
+impl CompactTable<'_> {
+    /// The candidates of the band of rows `band.0 .. band.1`: a band whose rows are the groups
+    /// `g0 ..= g1` draws the entries within `g0 − H ..= g1` (`H`, the spread, module doc).
+    #[inline(always)]
+    fn window(&self, band: (i32, i32)) -> Window {
+        let Rows { shift, spread, .. } = *self.rows;
+        let (g0, g1) = (band.0 >> shift, (band.1 - 1) >> shift);
+        // Entries `lo ..= g1` may meet the band; 254 and 255 never pass (g1 ≤ 253).
+        let lo = g0 - spread;
+        Window {
+            g0,
+            lo,
+            width: (g1 - lo + 1) as u32,
         }
     }
 
-    /// Draws polygon `pi` (`poly`, table entry `e`) when its rows meet the band (group `g0`
-    /// is the band's first): without reading its vertices when groups are rows and it starts
-    /// inside the band, else from their rows.
-    #[allow(clippy::too_many_arguments)]
+    /// How the band reaches candidate `e`: drawn without reading its vertices' rows when
+    /// groups are rows and it starts inside the band, else from them.
     #[inline(always)]
-    fn visit<const S: u32>(
-        &self,
-        pi: usize,
-        poly: &[u16],
-        e: PolygonTop,
-        g0: i32,
-        stats: &mut RenderStats,
-        level: &impl Fn(usize, &[u16], usize) -> i32,
-        draw: &mut impl TriangleConsumer<S, 1>,
-    ) -> Result<(), RenderError> {
-        let starts_inside = self.rows.shift == 0 && e.0 as i32 >= g0 && e != PolygonTop::TALL;
-        if !starts_inside && !self.meets::<S>(poly) {
-            return Ok(());
-        }
-        let corner = |k: usize| {
-            let v = self.vertices.get(poly[k] as usize).copied();
-            let v = v.unwrap_or_default();
-            Corner {
-                screen: v.screen(),
-                depth: v.depth,
-                // The level writer reads no observer position (only Phong and the clipper do,
-                // and neither runs here).
-                view: Vec3::ZERO,
-                attrs: [level(pi, poly, k)],
-            }
-        };
-        if let [_, _, _] = poly {
-            draw_counted(pi, [corner(0), corner(1), corner(2)], draw, stats)
+    fn reach_of(&self, e: PolygonTop, w: &Window) -> Reach {
+        if self.rows.shift == 0 && e.0 as i32 >= w.g0 && e != PolygonTop::TALL {
+            Reach::Meets
         } else {
-            fan(pi, poly.len(), corner, draw, stats)
+            Reach::Maybe
         }
-    }
-
-    /// True when the rows of `poly` (from its compact vertices) meet the band.
-    #[inline(always)]
-    fn meets<const S: u32>(&self, poly: &[u16]) -> bool {
-        let (mut lo, mut hi) = (i32::MAX, i32::MIN);
-        for &i in poly {
-            let y = self.vertices.get(i as usize).map_or(0, |v| v.y as i32);
-            (lo, hi) = (lo.min(y), hi.max(y));
-        }
-        ceil_shift(hi, S) > self.band.0 && ceil_shift(lo, S) < self.band.1
     }
 }
 
-/// True when the compact vertices' `x` and `y` each span less than `2^15` sub-pixel units
-/// (so every difference of two coordinates is within `±(2^15 − 1)`).
-fn narrow_span(vertices: &[CompactVertex]) -> bool {
-    let (mut x0, mut x1, mut y0, mut y1) = (i16::MAX, i16::MIN, i16::MAX, i16::MIN);
-    for v in vertices {
-        (x0, x1) = (x0.min(v.x), x1.max(v.x));
-        (y0, y1) = (y0.min(v.y), y1.max(v.y));
+impl BandTable for CompactTable<'_> {
+    #[inline(always)]
+    fn reach(&self, pi: usize, band: (i32, i32)) -> Option<Reach> {
+        let e = *self.tops.get(pi)?;
+        let w = self.window(band);
+        is_candidate::<true>(e, w.lo, w.width).then(|| self.reach_of(e, &w))
     }
-    let span = |lo: i16, hi: i16| (hi as i32 - lo as i32) < 1 << 15;
-    vertices.is_empty() || span(x0, x1) && span(y0, y1)
+
+    /// The scan is the band's per-polygon cost: out of line, four entries a step, one
+    /// subtraction and one comparison each; only candidates come back, and are drawn out of
+    /// line (so that the scan keeps its registers).
+    #[inline(always)]
+    fn scan(
+        &self,
+        n: usize,
+        band: (i32, i32),
+        mut one: impl FnMut(usize, Reach) -> Result<(), RenderError>,
+    ) -> Result<(), RenderError> {
+        let table = self.tops.get(..n).unwrap_or(self.tops);
+        let w = self.window(band);
+        let tall = self.rows.tall_seen;
+        let mut pi = 0;
+        loop {
+            pi = match tall {
+                false => next_candidate::<false>(table, pi, w.lo, w.width),
+                true => next_candidate::<true>(table, pi, w.lo, w.width),
+            };
+            let Some(&e) = table.get(pi) else {
+                return Ok(());
+            };
+            out_of_line(&mut one, pi, self.reach_of(e, &w))?;
+            pi += 1;
+        }
+    }
 }
 
-/// The table entries of a triangle mesh's triangles (see `compact_table`), culled in `i32`
-/// when `NARROW` (every coordinate difference within `±(2^15 − 1)`: each product below
-/// `2^30`, their difference below `2^31`, the sign of [`front_triangle`]'s exact sum), else
-/// by [`front_triangle`]. Counts `culled`.
-#[inline(always)]
-fn classify_triangles<const S: u32, const NARROW: bool>(
-    object: &Object<'_>,
-    vertices: &[CompactVertex],
-    table: &mut [PolygonTop],
-    rows: &mut Rows,
-    stats: &mut RenderStats,
-) {
-    let cull = object.cull_back_faces;
-    let front = |a: CompactVertex, b: CompactVertex, c: CompactVertex| {
-        if NARROW {
-            let (bx, by) = (b.x as i32 - a.x as i32, b.y as i32 - a.y as i32);
-            let (cx, cy) = (c.x as i32 - a.x as i32, c.y as i32 - a.y as i32);
-            bx * cy - by * cx < 0
-        } else {
-            front_triangle::<S>(a.screen(), b.screen(), c.screen())
-        }
-    };
-    let vertex = |i: u16| vertices.get(i as usize).copied();
-    for (entry, t) in table.iter_mut().zip(object.mesh.indices().chunks_exact(3)) {
-        *entry = match (vertex(t[0]), vertex(t[1]), vertex(t[2])) {
-            (Some(a), Some(b), Some(c)) => {
-                if cull && !front(a, b, c) {
-                    stats.culled += 1;
-                    PolygonTop::NEVER
-                } else {
-                    let (lo, hi) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
-                    rows.entry(ceil_shift(lo as i32, S), ceil_shift(hi as i32, S))
-                }
-            }
-            _ => PolygonTop::NEVER,
-        };
-    }
+/// `one(pi, reach)`, out of line.
+#[inline(never)]
+fn out_of_line(
+    one: &mut impl FnMut(usize, Reach) -> Result<(), RenderError>,
+    pi: usize,
+    reach: Reach,
+) -> Result<(), RenderError> {
+    one(pi, reach)
 }
 
 /// True when entry `e` may meet a band whose candidates are the groups `lo .. lo + width` (or
@@ -681,50 +632,6 @@ mod tests {
                 assert_eq!(found, expect, "lo {lo} width {width} tall {tall}");
             }
         }
-    }
-
-    /// The `i32` cull of narrow spans agrees with `front_triangle` at the range's extremes and
-    /// on random triangles; a span of `2^15` is not narrow.
-    #[test]
-    fn narrow_cull_agrees_with_front_triangle() {
-        let mut rng = crate::test_rng::XorShift(0x5EED_0FC0_4AC7_u64);
-        let v = |x: i32, y: i32| CompactVertex {
-            x: x as i16,
-            y: y as i16,
-            depth: 0,
-        };
-        let mut agree = 0;
-        for n in 0..20_000 {
-            let (base, span) = if n % 2 == 0 {
-                (-16384, 32767)
-            } else {
-                (-40, 80)
-            };
-            let mut c = || base + (rng.next_u64() % (span as u64 + 1)) as i32;
-            let mut t = [v(c(), c()), v(c(), c()), v(c(), c())];
-            if n < 8 {
-                let (lo, hi) = (-16384, 16383);
-                t = [
-                    v(lo, lo),
-                    v(hi, [lo, hi][n % 2]),
-                    v([lo, hi][n / 2 % 2], hi),
-                ];
-                if n >= 4 {
-                    t.swap(1, 2);
-                }
-            }
-            assert!(narrow_span(&t));
-            let (a, b, c2) = (t[0], t[1], t[2]);
-            let (bx, by) = (b.x as i32 - a.x as i32, b.y as i32 - a.y as i32);
-            let (cx, cy) = (c2.x as i32 - a.x as i32, c2.y as i32 - a.y as i32);
-            let narrow = bx * cy - by * cx < 0;
-            let exact = front_triangle::<4>(a.screen(), b.screen(), c2.screen());
-            assert_eq!(narrow, exact, "{t:?}");
-            agree += exact as u32;
-        }
-        assert!((5_000..15_000).contains(&agree), "{agree}");
-        assert!(!narrow_span(&[v(-16384, 0), v(16384, 0)]));
-        assert!(narrow_span(&[v(-16384, 0), v(16383, 0)]));
     }
 
     /// The row-group shift keeps every top row of the picture below the codes, and a polygon

@@ -17,7 +17,7 @@
 //! (I16F16), `attrs` a level (`0..=255` at prepared vertices, interpolated at clipped ones)
 //! or an observer-frame normal (Q15 components).
 
-use super::{PreparedVertex, RenderError};
+use super::RenderError;
 use crate::geometry::vector::Vec3;
 use crate::output::DepthValue;
 use crate::raster::triangle::setup::TriangleSetup;
@@ -46,19 +46,6 @@ pub(crate) struct Corner<const S: u32, const N: usize> {
     pub(crate) view: Vec3,
     /// The corner's attributes.
     pub(crate) attrs: [i32; N],
-}
-
-impl<const S: u32, const N: usize> Corner<S, N> {
-    /// The corner of a prepared (projected) vertex with attributes `attrs`.
-    #[inline(always)]
-    pub(crate) fn prepared(p: &PreparedVertex<S>, attrs: [i32; N]) -> Self {
-        Corner {
-            screen: p.screen,
-            depth: p.depth,
-            view: p.view,
-            attrs,
-        }
-    }
 }
 
 /// What the polygon stage hands its triangles to.

@@ -1,10 +1,16 @@
 //! One object's polygon pass: which attributes its corners carry (a level given, lit per
 //! vertex or per polygon, or a normal for Phong) and which consumer draws its triangles.
+//!
+//! Role in the pipeline: between the vertex stage and the polygon stage (`polygon_stage.rs`),
+//! for every frame that draws an object's triangles: one pass, bands, the visibility methods
+//! that collect triangles and compact bands (`compact.rs`), which hand their own vertex source
+//! and band table to the same [`Renderer::run_levels`]. Numeric contract: levels are
+//! `0..=255` (`i32` attributes), texture coordinates and normals as `consumer.rs` states.
 
 use core::cell::Cell;
 
 use super::consumer::{LevelWriter, PhongWriter, TextureWriter, TriangleConsumer};
-use super::polygon_stage::PolygonStage;
+use super::polygon_stage::{BandTable, PolygonStage, VertexSource};
 use super::transparency;
 use super::{
     IntensityTable, PolygonRows, PreparedVertex, RenderError, RenderStats, Renderer, StatsSink,
@@ -217,13 +223,17 @@ impl<const S: u32> Renderer<S> {
     /// the prepared vertex for Gouraud-lit or given per-vertex levels, else given per polygon
     /// or uniform; `with(level, polygon, corner k)` makes the corner's attributes of it (the
     /// level alone, or with the texture coordinates).
-    fn run_levels<const N: usize>(
+    pub(super) fn run_levels<V, T, const N: usize>(
         &self,
-        stage: &PolygonStage<'_, '_, S>,
+        stage: &PolygonStage<'_, '_, S, V, T>,
         stats: &mut RenderStats,
         consumer: impl TriangleConsumer<S, N>,
         with: impl Fn(i32, &[u16], usize) -> [i32; N],
-    ) -> Result<(), RenderError> {
+    ) -> Result<(), RenderError>
+    where
+        V: ?Sized + VertexSource<S>,
+        T: ?Sized + BandTable,
+    {
         let object = stage.object;
         let mesh = &object.mesh;
         match object.intensities {
@@ -246,11 +256,13 @@ impl<const S: u32> Renderer<S> {
                 )
             }
             Intensities::Lit { .. } | Intensities::PerVertex(_) => {
-                // Gouraud-lit or given per vertex: the level the vertex stage stored in the
-                // prepared vertex, read with it.
+                // Gouraud-lit or given per vertex: the level the vertex stage stored beside the
+                // vertex (in the prepared vertex, read with it; in compact bands' level bytes).
+                let source = stage.prepared;
+                let level = |i: u16, p: Option<&V::Vertex>| p.map_or(0, |p| source.level(i, p));
                 stage.run(
                     stats,
-                    |_, poly, k, p| with(p.map_or(0, |p| p.level as i32), poly, k),
+                    |_, poly, k, p| with(level(poly[k], p) as i32, poly, k),
                     consumer,
                 )
             }

@@ -1,5 +1,6 @@
-//! A polygon's rows: [`PolygonRows`], the 4-byte entry of a band's polygon table, and the rows
-//! a projected triangle touches.
+//! A polygon's rows: [`PolygonRows`], the 4-byte entry of `render_in_bands`' polygon table,
+//! that table's scan (its [`BandTable`] side: which polygons a band visits), and the exact
+//! rows of a projected polygon ([`exact_rows`]), which every band table and band test reads.
 //!
 //! Numeric contract: band rows are `0..=65535` (a viewport's height is a `u16`); a polygon's
 //! rows are clamped to that range, which keeps the overlap test with any band exact.
@@ -13,7 +14,8 @@
 //! down to even, a clipped one's down to odd, and a clipped polygon from row 0 has a top of
 //! 65535 (`CLIPPED_FROM_ROW_0`, read as 0): at most one band more than the exact rows is visited.
 
-use super::PreparedVertex;
+use super::polygon_stage::{BandTable, Reach};
+use super::RenderError;
 use crate::raster::triangle::edge_walker::ceil_shift;
 
 /// A polygon's fate in a frame drawn in bands, decided once by
@@ -106,13 +108,76 @@ fn clamp_row(r: i32) -> u16 {
     r.clamp(0, u16::MAX as i32) as u16
 }
 
-/// The rows of a triangle whose vertices all projected: `⌈y_min⌉ .. ⌈y_max⌉`, as
-/// `PolygonStage::projected_rows` gives for any polygon.
+/// The exact rows `⌈y_lo / 2^S⌉ .. ⌈y_hi / 2^S⌉` of a projected polygon whose sub-pixel `y`
+/// run from `y_lo` to `y_hi`.
 #[inline(always)]
-pub(super) fn triangle_rows<const S: u32>(v: [&PreparedVertex<S>; 3]) -> PolygonRows {
-    let (y0, y1, y2) = (v[0].screen.y, v[1].screen.y, v[2].screen.y);
-    let (lo, hi) = (y0.min(y1).min(y2), y0.max(y1).max(y2));
-    PolygonRows::rows(ceil_shift(lo, S), ceil_shift(hi, S))
+pub(super) fn exact_rows<const S: u32>(y_lo: i32, y_hi: i32) -> (i32, i32) {
+    (ceil_shift(y_lo, S), ceil_shift(y_hi, S))
+}
+
+/// The 4-byte table of `render_in_bands`: each entry tells the band its polygon's exact rows
+/// (conservative, see the module doc) and whether it is drawn through the clipper.
+impl BandTable for [PolygonRows] {
+    #[inline(always)]
+    fn reach(&self, pi: usize, band: (i32, i32)) -> Option<Reach> {
+        let r = *self.get(pi)?;
+        match (r.meets(band), r.is_clipped()) {
+            (false, _) => None,
+            (true, true) => Some(Reach::Clip),
+            (true, false) => Some(Reach::Meets),
+        }
+    }
+
+    #[inline(always)]
+    fn scan(
+        &self,
+        n: usize,
+        band: (i32, i32),
+        mut one: impl FnMut(usize, Reach) -> Result<(), RenderError>,
+    ) -> Result<(), RenderError> {
+        let table = self.get(..n).unwrap_or(self);
+        // The scan finds the entries that `reach` may send with one or two tests for most: rows
+        // below the band's end (clamped so that rows up to 65535 pass) and above its start (or
+        // a clipped polygon from row 0, `PolygonRows::CLIPPED_FROM_ROW_0`); `reach` then decides
+        // exactly.
+        let (b0, b1) = band;
+        let (c0, c1) = (
+            b0.clamp(-1, u16::MAX as i32 - 1),
+            b1.min(u16::MAX as i32 + 1),
+        );
+        // `bottom > c0` on the packed word: `c0 + 1` is in `0..=65535`.
+        let below = ((c0 + 1) as u32) << 16;
+        let maybe = |r: &PolygonRows| {
+            r.packed >= below
+                && ((r.top() as i32) < c1 || r.top() == PolygonRows::CLIPPED_FROM_ROW_0)
+        };
+        let mut visit = |pi: usize, r: PolygonRows| match (r.meets(band), r.is_clipped()) {
+            (false, _) => Ok(()),
+            (true, true) => one(pi, Reach::Clip),
+            (true, false) => one(pi, Reach::Meets),
+        };
+        // Two entries per step: most pairs are passed over with two tests.
+        let pairs = table.chunks_exact(2);
+        let odd = pairs.remainder();
+        for (j, pair) in pairs.enumerate() {
+            if let [r0, r1] = *pair {
+                if maybe(&r0) || maybe(&r1) {
+                    if maybe(&r0) {
+                        visit(2 * j, r0)?;
+                    }
+                    if maybe(&r1) {
+                        visit(2 * j + 1, r1)?;
+                    }
+                }
+            }
+        }
+        if let [r] = *odd {
+            if maybe(&r) {
+                visit(table.len() - 1, r)?;
+            }
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
