@@ -383,7 +383,7 @@ fn a_hand_made_plan_is_refused_in_words() {
         .unwrap_err();
         assert_eq!(
             e,
-            RenderError::NotPlanned {
+            VisibilityError::NotPlanned {
                 method: visibility.name(),
                 depth_bytes: depth.bytes()
             }

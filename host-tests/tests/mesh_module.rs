@@ -127,7 +127,7 @@ fn planned_from_its_facts_it_draws_frame_bunny() {
             for (y, row) in band.rows() {
                 picture[y as usize * w..][..w].copy_from_slice(row);
             }
-            Ok::<(), RenderError>(())
+            Ok::<(), zscan::visibility::VisibilityError>(())
         })
         .unwrap();
         let wrong = picture

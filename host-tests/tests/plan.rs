@@ -707,7 +707,7 @@ fn a_bad_drawing_order_names_the_object() {
     .unwrap_err();
     assert_eq!(
         err,
-        RenderError::NoSuchObject {
+        VisibilityError::NoSuchObject {
             index: 1,
             objects: 1
         }
