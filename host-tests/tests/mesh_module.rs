@@ -11,7 +11,7 @@ mod bunny {
 use zscan::output::{DepthBuffer, Framebuffer};
 use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
-    CompactVertex, PolygonRows, PolygonTop, PreparedVertex, RenderError, RenderStats, Renderer,
+    CompactVertex, PolygonRows, PolygonTop, PreparedVertex, RenderStats, Renderer,
 };
 use zscan::scene::{Intensities, Object};
 use zscan::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};

@@ -5,9 +5,9 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::vector::Vec3;
 use zscan::raster::triangle::ShadeMode;
-use zscan::render::{RenderError, Renderer};
+use zscan::render::Renderer;
 use zscan::scene::{Object, Scene};
-use zscan::visibility::Visibility;
+use zscan::visibility::{Visibility, VisibilityError};
 use zscan_host::cli::render::load_scene;
 use zscan_host::core_render::{render_visible, scene_of, to_core};
 use zscan_host::failures::{
@@ -29,7 +29,7 @@ fn both(
     method: Visibility,
     splits: Option<usize>,
     band_rows: u16,
-) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+) -> Result<(Vec<u8>, Vec<u8>), VisibilityError> {
     let renderer = Renderer::for_scene(scene)?;
     let (m, _) = render_visible(&renderer, (w, h), method, splits, band_rows)?;
     let (z, _) = render_visible(&renderer, (w, h), Visibility::ZBuffer, None, h)?;
@@ -650,7 +650,7 @@ fn painter_and_z(
     camera: zscan::geometry::camera::Camera,
     size: (u16, u16),
     splits: usize,
-) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+) -> Result<(Vec<u8>, Vec<u8>), VisibilityError> {
     let objects: Vec<Object<'_>> = tables
         .iter()
         .map(|(v, i, l)| soup_objects(v, i, l))
