@@ -827,7 +827,10 @@ fn fast_gouraud_is_drawn_whole_or_refused_by_name() {
             if refused {
                 let e = r.err();
                 assert!(
-                    matches!(e, Some(VisibilityError::FastGouraudInParts { object: 0 | 1 })),
+                    matches!(
+                        e,
+                        Some(VisibilityError::FastGouraudInParts { object: 0 | 1 })
+                    ),
                     "{method}: {e:?}"
                 );
             } else {

@@ -515,8 +515,14 @@ fn direct_counts<const S: u32>(
             // The cheap rejections first: the bounding boxes (i32), then the facing (i64).
             let c = v.map(xy);
             let (tlo, thi) = (
-                [c[0].x.min(c[1].x).min(c[2].x), c[0].y.min(c[1].y).min(c[2].y)],
-                [c[0].x.max(c[1].x).max(c[2].x), c[0].y.max(c[1].y).max(c[2].y)],
+                [
+                    c[0].x.min(c[1].x).min(c[2].x),
+                    c[0].y.min(c[1].y).min(c[2].y),
+                ],
+                [
+                    c[0].x.max(c[1].x).max(c[2].x),
+                    c[0].y.max(c[1].y).max(c[2].y),
+                ],
             );
             if (0..2).any(|k| thi[k] < lo[k] || hi[k] < tlo[k]) {
                 continue;

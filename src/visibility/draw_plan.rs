@@ -229,8 +229,8 @@ pub fn draw_plan<E: From<VisibilityError>, const S: u32>(
             let vertices = cut(memory.vertices, sizes.vertices, BandPart::PreparedVertices)?;
             // `cut` gave exactly the plan's `width × height` pixels, which `new` accepts.
             let given = pixels.len();
-            let mut frame =
-                Framebuffer::new(pixels, w, h).map_err(|_| RenderError::BandMemoryTooSmall {
+            let mut frame = Framebuffer::new(pixels, w, h)
+                .map_err(|_| RenderError::BandMemoryTooSmall {
                     part: BandPart::Pixels,
                     given,
                     needed: sizes.pixels,
@@ -244,8 +244,8 @@ pub fn draw_plan<E: From<VisibilityError>, const S: u32>(
             let vertices = cut(memory.vertices, sizes.vertices, BandPart::PreparedVertices)?;
             let mask = cut(memory.mask, sizes.mask, BandPart::MaskWords)?;
             let given = pixels.len();
-            let mut frame =
-                Framebuffer::new(pixels, w, h).map_err(|_| RenderError::BandMemoryTooSmall {
+            let mut frame = Framebuffer::new(pixels, w, h)
+                .map_err(|_| RenderError::BandMemoryTooSmall {
                     part: BandPart::Pixels,
                     given,
                     needed: sizes.pixels,
@@ -293,7 +293,8 @@ fn zbuffer<D: DepthValue, E: From<VisibilityError>, const S: u32>(
     let frame = (vp.width, vp.height, plan.band_rows);
     let pixels = cut(memory.pixels, sizes.pixels, BandPart::Pixels)?;
     // The banded entries take an error type that takes the pipeline's errors: `Through<E>`.
-    let flush = |band: &mut Framebuffer<'_>, _: &DepthBuffer<'_, D>| band_done(band).map_err(Through);
+    let flush =
+        |band: &mut Framebuffer<'_>, _: &DepthBuffer<'_, D>| band_done(band).map_err(Through);
     if plan.layout_reason == LayoutReason::CompactBands {
         let scratch = CompactBandScratch {
             vertices: cut(

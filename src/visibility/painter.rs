@@ -97,11 +97,11 @@ use super::outline::Outline;
 pub use super::plane::Normal;
 use super::plane::{Plane, Store};
 use super::store::{collect, cuts, sort_order, StoredTriangle, CUT_FRONT};
+use super::VisibilityError;
 use crate::output::{Framebuffer, NoDepth};
 use crate::raster::triangle::{RasterTarget, ShadeMode};
 use crate::raster::Window;
 use crate::render::{check_transparency, Draws};
-use super::VisibilityError;
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 

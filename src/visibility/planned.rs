@@ -93,7 +93,14 @@ impl<const S: u32> BackFaceFrame<'_, '_, S> {
         let order = self.order.iter().map(|&i| i as usize);
         let (scene, renderer) = (self.renderer.scene(), self.renderer.renderer());
         let draw = (order, self.first_prepared);
-        Ok(draw_objects(renderer, scene, draw, frame, self.scratch, stats)?)
+        Ok(draw_objects(
+            renderer,
+            scene,
+            draw,
+            frame,
+            self.scratch,
+            stats,
+        )?)
     }
 }
 

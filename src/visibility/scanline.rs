@@ -64,8 +64,8 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<VisibilityError>, 
     mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
     let scene = renderer.scene();
-    let band_rows = band_height(renderer.renderer(), (width, height, band_rows))
-        .map_err(through::<E>)?;
+    let band_rows =
+        band_height(renderer.renderer(), (width, height, band_rows)).map_err(through::<E>)?;
     check_transparency(renderer.scene(), "the scan-line", Draws::ScreenDoor)
         .map_err(through::<E>)?;
     let ScanLineMemory {
@@ -102,8 +102,8 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<VisibilityError>, 
             live += 1;
         }
         counts.method.active_peak = counts.method.active_peak.max(live as u32);
-        let (mut frame, mut depth) = band_buffers((&mut *pixels, &mut *depths), (width, rows, top))
-            .map_err(through::<E>)?;
+        let (mut frame, mut depth) =
+            band_buffers((&mut *pixels, &mut *depths), (width, rows, top)).map_err(through::<E>)?;
         frame.clear(scene.background);
         depth.clear();
         {

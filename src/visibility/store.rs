@@ -172,7 +172,11 @@ impl<const S: u32> TriangleConsumer<S, 1> for Collector<'_, S> {
             return Ok((0, 0));
         }
         let capacity = self.store.len().min(MAX_STORED);
-        match self.store.get_mut(..capacity).and_then(|s| s.get_mut(self.len)) {
+        match self
+            .store
+            .get_mut(..capacity)
+            .and_then(|s| s.get_mut(self.len))
+        {
             Some(slot) => {
                 *slot = t;
                 self.len += 1;

@@ -59,11 +59,11 @@
 
 use super::backface::without_depth;
 use super::store::{collect, StoredTriangle};
+use super::VisibilityError;
 use crate::output::{DepthValue, Framebuffer, NoDepth};
 use crate::raster::triangle::{RasterTarget, ShadeMode, WrittenCount};
 use crate::raster::Window;
 use crate::render::{check_transparency, Draws};
-use super::VisibilityError;
 use crate::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer, StatsSink};
 use crate::scene::Scene;
 

@@ -23,8 +23,8 @@ use embedded_graphics::primitives::Rectangle;
 use zscan::output::{DepthValue, Framebuffer, Lut};
 use zscan::raster::triangle::ShadeMode;
 use zscan::render::{
-    BandScratch, BandSink, DoubleBands, PolygonRows, PreparedVertex, RenderStats,
-    Renderer, SceneRenderer,
+    BandScratch, BandSink, DoubleBands, PolygonRows, PreparedVertex, RenderStats, Renderer,
+    SceneRenderer,
 };
 use zscan::scene::Object;
 use zscan::visibility::{
