@@ -1010,7 +1010,7 @@ pub mod scene {
                         out.copy_from_slice(row);
                     }
                 }
-                Ok::<(), zscan::render::RenderError>(())
+                Ok::<(), zscan::visibility::VisibilityError>(())
             },
         );
         drawn.map_or(0, |()| stats.0.pixels_covered)

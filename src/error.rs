@@ -14,7 +14,12 @@
 //!
 //! Most messages live here; the enums whose files already printed themselves
 //! ([`LutError`], [`TargetError`], [`FillError`], [`CircleError`], [`LineError`],
-//! [`ShadowError`], [`RenderError`]) keep their `Display` beside their definition.
+//! [`ShadowError`], [`RenderError`], [`VisibilityError`]) keep their `Display` beside their
+//! definition.
+//!
+//! A hidden-surface method's error ([`VisibilityError`]) that only wraps the pipeline's
+//! ([`VisibilityError::Render`]) converts into [`Error::Render`], as the z-buffer's frames
+//! report it; the methods' own refusals into [`Error::Visibility`].
 
 use core::fmt;
 
@@ -33,6 +38,7 @@ use crate::raster::triangle::plane::PlaneError;
 use crate::raster::triangle::DrawError;
 use crate::render::RenderError;
 use crate::shadow::ShadowError;
+use crate::visibility::VisibilityError;
 
 impl fmt::Display for ProjectError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -249,8 +255,13 @@ impl core::error::Error for RenderError {}
 /// Defines [`Error`] with one variant per stage error (and [`Error::Display`]), each stage
 /// error's `From` conversion and the `Display` that prints the stage error's own message: the
 /// list of stages is written once.
+/// Variants after the `;` get no `From` (it is written by hand).
 macro_rules! stage_errors {
-    ($($(#[$doc:meta])* $variant:ident($ty:ty),)*) => {
+    (
+        $($(#[$doc:meta])* $variant:ident($ty:ty),)*
+        ;
+        $($(#[$own_doc:meta])* $own:ident($own_ty:ty),)*
+    ) => {
         /// Any error of the crate: one variant per stage error, each with a `From`
         /// conversion, so `?` turns a stage's error into this one (and this one, like every
         /// stage error, into `Box<dyn std::error::Error>` on a host).
@@ -277,6 +288,7 @@ macro_rules! stage_errors {
         #[non_exhaustive]
         pub enum Error {
             $($(#[$doc])* $variant($ty),)*
+            $($(#[$own_doc])* $own($own_ty),)*
             /// The display's driver rejected the pixels sent to it (its error type is the
             /// driver's: map it with `.map_err(|_| zscan::Error::Display)`).
             Display,
@@ -294,6 +306,7 @@ macro_rules! stage_errors {
             fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
                 match self {
                     $(Error::$variant(e) => fmt::Display::fmt(e, f),)*
+                    $(Error::$own(e) => fmt::Display::fmt(e, f),)*
                     Error::Display => write!(f, "the display rejected the pixels sent to it"),
                 }
             }
@@ -342,7 +355,21 @@ stage_errors!(
     Opacity(crate::raster::triangle::OpacityError),
     /// A blend table could not be built.
     Blend(crate::output::BlendError),
+    ;
+    /// A hidden-surface method refused a frame (its memory, its budget, an object or scene
+    /// outside its rule: `visibility`).
+    Visibility(VisibilityError),
 );
+
+impl From<VisibilityError> for Error {
+    /// The pipeline's error a method only passed on becomes [`Error::Render`].
+    fn from(e: VisibilityError) -> Error {
+        match e {
+            VisibilityError::Render(e) => Error::Render(e),
+            e => Error::Visibility(e),
+        }
+    }
+}
 
 impl From<core::convert::Infallible> for Error {
     fn from(e: core::convert::Infallible) -> Error {
@@ -664,6 +691,55 @@ mod tests {
         let sizes = ["100", "1839", "compact vertices"];
         assert!(sizes.iter().all(|w| t[9].contains(w)), "{}", t[9]);
         assert!(t[10].contains("vertex 17 of object 2"), "{}", t[10]);
+    }
+
+    #[test]
+    fn visibility_error_names_the_limits() {
+        let t = messages(&[
+            VisibilityError::TriangleStoreFull { capacity: 300 },
+            VisibilityError::SplitBudgetExhausted { budget: 7 },
+            VisibilityError::PainterCycle,
+            VisibilityError::SubdivisionStackFull { capacity: 40 },
+            VisibilityError::SubdivisionCandidatesFull { capacity: 900 },
+            VisibilityError::ActiveTableFull { capacity: 12 },
+            VisibilityError::FastGouraudInParts { object: 3 },
+            VisibilityError::TooManyObjects { max: 256 },
+            VisibilityError::NoSuchObject {
+                index: 5,
+                objects: 2,
+            },
+            VisibilityError::ReverseRefused(crate::visibility::MethodReason::Empty),
+            VisibilityError::NotPlanned {
+                method: "warnock",
+                depth_bytes: 4,
+            },
+        ]);
+        let has = |k: usize, words: &[&str]| {
+            assert!(words.iter().all(|w| t[k].contains(w)), "{}", t[k]);
+        };
+        has(0, &["triangle store", "300"]);
+        has(1, &["painter", "7 splits"]);
+        has(2, &["cycle"]);
+        has(3, &["stack of 40 windows"]);
+        has(4, &["900 candidate entries"]);
+        has(5, &["active table", "12"]);
+        has(6, &["object 3", "fast Gouraud"]);
+        has(7, &["more than 256 objects"]);
+        has(8, &["index 5", "2 objects"]);
+        has(9, &["reverse painter", "no object"]);
+        has(10, &["warnock", "4 bytes"]);
+    }
+
+    /// A method's error that only wraps the pipeline's converts into [`Error::Render`], its
+    /// own refusals into [`Error::Visibility`]; the message is the same either way.
+    #[test]
+    fn visibility_error_converts_to_the_stage_that_failed() {
+        let render = RenderError::PolygonTooLarge;
+        let wrapped = VisibilityError::from(render);
+        assert_eq!(wrapped.to_string(), render.to_string());
+        assert_eq!(Error::from(wrapped), Error::Render(render));
+        let own = VisibilityError::PainterCycle;
+        assert_eq!(Error::from(own), Error::Visibility(own));
     }
 
     /// `?` goes from a stage error into [`Error`] and from both into a boxed error.

@@ -78,4 +78,5 @@ pub use crate::output::{
 };
 
 // Errors.
+pub use crate::visibility::VisibilityError;
 pub use crate::Error;

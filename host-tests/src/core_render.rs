@@ -20,8 +20,8 @@ use zscan::render::{
 use zscan::scene::{Intensities, Object, Scene as CoreScene};
 use zscan::visibility::{
     render_back_faces, render_painter, render_reverse_painter, render_scan_lines, render_warnock,
-    Area, Convexity, MeshFacts, Normal, PainterMemory, ReverseError, ScanLineMemory, SplitPolicy,
-    StoredTriangle, Visibility, WarnockMemory,
+    Area, Convexity, MeshFacts, Normal, PainterMemory, ScanLineMemory, SplitPolicy, StoredTriangle,
+    Visibility, VisibilityError, WarnockMemory,
 };
 
 use crate::scenes::Scene;
@@ -356,7 +356,7 @@ pub fn render_visible<const SB: u32>(
     visibility: Visibility,
     splits: Option<usize>,
     band_rows: u16,
-) -> Result<(Vec<u8>, RenderStats), RenderError> {
+) -> Result<(Vec<u8>, RenderStats), VisibilityError> {
     render_visible_at::<u32, SB>(renderer, size, visibility, splits, band_rows)
 }
 
@@ -370,7 +370,7 @@ pub fn render_visible_at<D: DepthValue, const SB: u32>(
     visibility: Visibility,
     splits: Option<usize>,
     band_rows: u16,
-) -> Result<(Vec<u8>, RenderStats), RenderError> {
+) -> Result<(Vec<u8>, RenderStats), VisibilityError> {
     let scene = renderer.scene();
     let vertices: usize = scene.objects.iter().map(|o| o.mesh.vertices().len()).sum();
     let polygons: usize = scene.objects.iter().map(|o| o.mesh.polygon_count()).sum();
@@ -386,17 +386,8 @@ pub fn render_visible_at<D: DepthValue, const SB: u32>(
             measured(|| render_back_faces(renderer, &mut frame, &mut scratch, &mut stats))?;
             Ok((pixels, stats))
         }
-        Visibility::ReversePainter => {
-            // A refused scene (outside the planner's rule 1) has no `RenderError` of its own:
-            // it comes back as `NotPlanned`; `reverse_picture` gives the refusal in words.
-            reverse_picture(renderer, (w, h)).map_err(|e| match e {
-                ReverseError::Render(e) => e,
-                ReverseError::Refused(_) => RenderError::NotPlanned {
-                    method: Visibility::ReversePainter.name(),
-                    depth_bytes: 0,
-                },
-            })
-        }
+        // A scene outside the planner's rule 1 is `VisibilityError::ReverseRefused`, in words.
+        Visibility::ReversePainter => reverse_picture(renderer, (w, h)),
         Visibility::Painter => {
             let mut pixels = vec![0u8; total];
             let mut frame = whole_frame(&mut pixels, w, h)?;
@@ -462,11 +453,11 @@ pub fn render_visible_at<D: DepthValue, const SB: u32>(
 /// The whole `w × h` picture of `scene` by the reverse painter
 /// ([`render_reverse_painter`]): each mesh's facts computed here, a mask of
 /// `mask_words_needed(w, h)` words. A scene outside the planner's rule 1 is
-/// [`ReverseError::Refused`], naming why.
+/// [`VisibilityError::ReverseRefused`], naming why.
 pub fn reverse_picture<const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     (w, h): (u16, u16),
-) -> Result<(Vec<u8>, RenderStats), ReverseError> {
+) -> Result<(Vec<u8>, RenderStats), VisibilityError> {
     let scene = renderer.scene();
     let largest = scene.objects.iter().map(|o| o.mesh.vertices().len()).max();
     let mut scratch = vec![PreparedVertex::default(); largest.unwrap_or(0).max(1)];
@@ -514,7 +505,7 @@ fn scan_line_picture<D: DepthValue, const SB: u32>(
     scratch: &mut [PreparedVertex<SB>],
     capacity: usize,
     stats: &mut RenderStats,
-) -> Result<Vec<u8>, RenderError> {
+) -> Result<Vec<u8>, VisibilityError> {
     // A 0 is passed on for the core to refuse (`BadBandRows`).
     let n = w as usize * band_rows.min(h.max(1)) as usize;
     let (mut band_pixels, mut band_depths) = (vec![0u8; n], vec![D::FAR; n]);
@@ -540,7 +531,7 @@ fn scan_line_picture<D: DepthValue, const SB: u32>(
                     let at = y as usize * w as usize;
                     pixels[at..at + w as usize].copy_from_slice(row);
                 }
-                Ok::<(), RenderError>(())
+                Ok::<(), VisibilityError>(())
             },
         )
     })?;
@@ -695,8 +686,8 @@ pub fn render_planned<const SB: u32>(
     })
 }
 
-/// A render error in words, for [`render_planned`].
-fn render_words(e: RenderError) -> String {
+/// A frame's error in words, for [`render_planned`].
+fn render_words(e: VisibilityError) -> String {
     format!("render: {e}")
 }
 
@@ -708,7 +699,7 @@ pub fn draw_plan<const SB: u32>(
     renderer: &SceneRenderer<'_, SB>,
     plan: &zscan::visibility::Plan,
     order: &[u16],
-) -> Result<(Vec<u8>, RenderStats), RenderError> {
+) -> Result<(Vec<u8>, RenderStats), VisibilityError> {
     use zscan::render::{CompactVertex, PolygonTop};
     use zscan::visibility::{PlanMemory, PlanSizes};
     let scene = renderer.scene();
@@ -741,7 +732,7 @@ pub fn draw_plan<const SB: u32>(
                 let at = y as usize * w;
                 picture[at..at + w].copy_from_slice(row);
             }
-            Ok::<(), RenderError>(())
+            Ok::<(), VisibilityError>(())
         })
     })?;
     Ok((picture, stats))

@@ -23,7 +23,7 @@ use zscan::render::{
     BandScratch, PolygonRows, PreparedVertex, RenderError, Renderer, SceneRenderer,
 };
 use zscan::scene::{Intensities, Object};
-use zscan::visibility::Visibility;
+use zscan::visibility::{Visibility, VisibilityError};
 
 use zscan::output::DepthValue;
 
@@ -227,8 +227,8 @@ impl Trap {
     /// `f` of the scene's renderer.
     pub fn with<R>(
         self,
-        f: impl FnOnce(&SceneRenderer<'_, 4>) -> Result<R, RenderError>,
-    ) -> Result<R, RenderError> {
+        f: impl FnOnce(&SceneRenderer<'_, 4>) -> Result<R, VisibilityError>,
+    ) -> Result<R, VisibilityError> {
         let (w, h) = SMALL;
         let (soup, camera) = match self {
             Trap::Bunny => {
@@ -329,7 +329,7 @@ impl Method {
 
     /// The whole picture of `renderer`'s scene drawn by this method (palette indices,
     /// row-major).
-    pub fn draw(self, renderer: &SceneRenderer<'_, 4>) -> Result<Vec<u8>, RenderError> {
+    pub fn draw(self, renderer: &SceneRenderer<'_, 4>) -> Result<Vec<u8>, VisibilityError> {
         let vp = *renderer.scene().camera.viewport();
         let size = (vp.width, vp.height);
         let visible = |method, splits, bands| {
@@ -341,12 +341,11 @@ impl Method {
             Method::Painter => visible(Visibility::Painter, Some(PAINTER_SPLITS), 1),
             Method::ScanLine => visible(Visibility::ScanLine, None, 16),
             Method::Warnock => visible(Visibility::Warnock, None, 1),
-            Method::ZBuffer16 => z_buffer::<u16>(renderer, None),
-            Method::ZBuffer32 => z_buffer::<u32>(renderer, None),
-            Method::Bands16 => z_buffer::<u16>(renderer, Some(16)),
-            Method::Compact11 => {
-                render_compact_picture::<u16, 4>(renderer, size, 11).map(|(pixels, _, _)| pixels)
-            }
+            Method::ZBuffer16 => Ok(z_buffer::<u16>(renderer, None)?),
+            Method::ZBuffer32 => Ok(z_buffer::<u32>(renderer, None)?),
+            Method::Bands16 => Ok(z_buffer::<u16>(renderer, Some(16))?),
+            Method::Compact11 => Ok(render_compact_picture::<u16, 4>(renderer, size, 11)
+                .map(|(pixels, _, _)| pixels)?),
         }
     }
 }
@@ -372,7 +371,7 @@ fn z_buffer<D: DepthValue>(
 }
 
 /// `method`'s picture of `trap` and the 32-bit z-buffer's.
-pub fn against_z32(trap: Trap, method: Method) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+pub fn against_z32(trap: Trap, method: Method) -> Result<(Vec<u8>, Vec<u8>), VisibilityError> {
     trap.with(|r| Ok((method.draw(r)?, Method::ZBuffer32.draw(r)?)))
 }
 
@@ -381,7 +380,7 @@ pub fn against_z32(trap: Trap, method: Method) -> Result<(Vec<u8>, Vec<u8>), Ren
 pub fn on_bunny(
     method: Visibility,
     splits: Option<usize>,
-) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+) -> Result<(Vec<u8>, Vec<u8>), VisibilityError> {
     Trap::Bunny.with(|r| {
         let vp = *r.scene().camera.viewport();
         let (m, _) = render_visible(r, (vp.width, vp.height), method, splits, 1)?;
@@ -390,7 +389,7 @@ pub fn on_bunny(
 }
 
 /// Every failure the docs show, in the docs' order.
-pub fn failures() -> Result<Vec<Failure>, RenderError> {
+pub fn failures() -> Result<Vec<Failure>, VisibilityError> {
     let case = |name, caption, trap: Trap, method| {
         let (method, reference) = against_z32(trap, method)?;
         let size = if trap == Trap::Bunny {
@@ -398,7 +397,7 @@ pub fn failures() -> Result<Vec<Failure>, RenderError> {
         } else {
             SMALL
         };
-        Ok::<_, RenderError>(Failure {
+        Ok::<_, VisibilityError>(Failure {
             name,
             caption,
             size,

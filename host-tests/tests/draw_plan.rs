@@ -19,6 +19,7 @@ use zscan::render::{BandPart, BandScratch, PreparedVertex, RenderError, RenderSt
 use zscan::scene::{Intensities, Object, Scene};
 use zscan::visibility::{
     draw_plan, plan, DepthWidth, LayoutReason, Plan, PlanMemory, PlanSizes, Visibility,
+    VisibilityError,
 };
 use zscan_host::core_render::{self, mesh_facts, render_picture, scene_of, to_core};
 use zscan_host::scenes::standard_scene;
@@ -324,7 +325,7 @@ fn a_short_part_of_the_memory_is_named_with_its_sizes() {
         let mut stats = RenderStats::default();
         let e = draw_plan(&renderer, &plan, &order, memory, &mut stats, |_| {
             bands += 1;
-            Ok::<(), RenderError>(())
+            Ok::<(), VisibilityError>(())
         })
         .unwrap_err();
         let needed = match short {
@@ -333,11 +334,11 @@ fn a_short_part_of_the_memory_is_named_with_its_sizes() {
             BandPart::Vertices => n.compact_vertices,
             _ => n.tops,
         };
-        let expected = RenderError::BandMemoryTooSmall {
+        let expected = VisibilityError::Render(RenderError::BandMemoryTooSmall {
             part: short,
             given: needed - 1,
             needed,
-        };
+        });
         assert_eq!((e, bands), (expected, 0));
         let words = e.to_string();
         assert!(words.contains(&needed.to_string()), "{words}");
@@ -378,12 +379,12 @@ fn a_hand_made_plan_is_refused_in_words() {
         };
         let mut stats = RenderStats::default();
         let e = draw_plan(&renderer, &hand, &order, memory, &mut stats, |_| {
-            Ok::<(), RenderError>(())
+            Ok::<(), VisibilityError>(())
         })
         .unwrap_err();
         assert_eq!(
             e,
-            RenderError::NotPlanned {
+            VisibilityError::NotPlanned {
                 method: visibility.name(),
                 depth_bytes: depth.bytes()
             }

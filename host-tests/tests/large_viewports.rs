@@ -310,7 +310,10 @@ fn zero_band_rows_are_an_error_in_every_banded_entry() {
     let scene = scene_of(&objects, mesh.camera);
     let renderer = Renderer::for_scene(&scene).unwrap();
     let scan = render_visible(&renderer, (32, 24), Visibility::ScanLine, None, 0);
-    assert_eq!(scan.unwrap_err(), RenderError::BadBandRows { band_rows: 0 });
+    assert_eq!(
+        scan.unwrap_err(),
+        RenderError::BadBandRows { band_rows: 0 }.into()
+    );
     let compact = render_compact_picture::<u16, 4>(&renderer, (32, 24), 0);
     assert_eq!(
         compact.unwrap_err(),

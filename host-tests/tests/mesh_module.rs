@@ -11,7 +11,7 @@ mod bunny {
 use zscan::output::{DepthBuffer, Framebuffer};
 use zscan::raster::triangle::{LuminanceRamp, ShadeMode};
 use zscan::render::{
-    CompactVertex, PolygonRows, PolygonTop, PreparedVertex, RenderError, RenderStats, Renderer,
+    CompactVertex, PolygonRows, PolygonTop, PreparedVertex, RenderStats, Renderer,
 };
 use zscan::scene::{Intensities, Object};
 use zscan::visibility::{draw_plan, plan, MeshFacts, PlanMemory, PlanSizes};
@@ -127,7 +127,7 @@ fn planned_from_its_facts_it_draws_frame_bunny() {
             for (y, row) in band.rows() {
                 picture[y as usize * w..][..w].copy_from_slice(row);
             }
-            Ok::<(), RenderError>(())
+            Ok::<(), zscan::visibility::VisibilityError>(())
         })
         .unwrap();
         let wrong = picture

@@ -682,7 +682,8 @@ fn a_mirrored_box_is_decided_as_drawn() {
 #[test]
 fn a_bad_drawing_order_names_the_object() {
     use zscan::output::Framebuffer;
-    use zscan::render::{PreparedVertex, RenderError, RenderStats, SceneRenderer};
+    use zscan::render::{PreparedVertex, RenderStats, SceneRenderer};
+    use zscan::visibility::VisibilityError;
     let core = standard("cube");
     let objects = [core.object(ShadeMode::GouraudExact).unwrap()];
     let scene = Scene {
@@ -707,7 +708,7 @@ fn a_bad_drawing_order_names_the_object() {
     .unwrap_err();
     assert_eq!(
         err,
-        RenderError::NoSuchObject {
+        VisibilityError::NoSuchObject {
             index: 1,
             objects: 1
         }
@@ -748,7 +749,8 @@ fn a_short_scratch_plans_the_same_and_the_frame_names_what_it_lacks() {
         Err(RenderError::ScratchTooSmall {
             given: 100,
             needed: 482
-        })
+        }
+        .into())
     );
 }
 

@@ -72,7 +72,8 @@ mod both_preludes {
         PlanSizes as _, PolygonRows as _, PolygonSizes as _, PolygonTop as _, PreparedVertex as _,
         RenderStats as _, Renderer as _, Scene as _, ShadeMode as _, ShadeTable as _,
         StatsSink as _, StatsWithoutWritten as _, TexCoord as _, Texture as _, TextureMode as _,
-        Texturing as _, Transparency as _, Vec3 as _, Viewport as _, Wireframe as _,
+        Texturing as _, Transparency as _, Vec3 as _, Viewport as _, VisibilityError as _,
+        Wireframe as _,
     };
 
     /// The names above, as `src/prelude.rs` exports them.
@@ -110,6 +111,7 @@ mod both_preludes {
         "DepthBuffer",
         "DepthValue",
         "Error",
+        "VisibilityError",
         "FovAxis",
         "Framebuffer",
         "Intensities",

@@ -18,7 +18,7 @@ use zscan::output::{mask_words_needed, Framebuffer};
 use zscan::raster::triangle::ShadeMode;
 use zscan::render::{BandPart, PreparedVertex, RenderError, RenderStats, Renderer};
 use zscan::scene::{Intensities, Object, Scene};
-use zscan::visibility::{render_reverse_painter, MethodReason, ReverseError, Visibility};
+use zscan::visibility::{render_reverse_painter, MethodReason, Visibility, VisibilityError};
 use zscan_host::core_render::{
     mesh_facts, render_planned, render_visible, reverse_picture, scene_of,
 };
@@ -133,7 +133,7 @@ fn lit_scene<'a>(objects: &'a [Object<'a>]) -> Scene<'a> {
 }
 
 /// The reverse painter's picture of `scene` (whole frame), or its refusal.
-fn reverse(scene: &Scene<'_>) -> Result<(Vec<u8>, RenderStats), ReverseError> {
+fn reverse(scene: &Scene<'_>) -> Result<(Vec<u8>, RenderStats), VisibilityError> {
     let renderer = Renderer::for_scene(scene).unwrap();
     let vp = *scene.camera.viewport();
     reverse_picture(&renderer, (vp.width, vp.height))
@@ -208,7 +208,7 @@ fn random_separable_scenes_draw_the_z_buffer_picture() {
                 // paint twice.
                 hidden += (stats.pixels_covered > stats.pixels_written) as u32;
             }
-            Err(ReverseError::Refused(reason)) => {
+            Err(VisibilityError::ReverseRefused(reason)) => {
                 assert_eq!(plan.visibility, Visibility::ZBuffer, "case {case}");
                 assert_eq!(plan.method_reason, reason, "case {case}");
                 refused += 1;
@@ -278,7 +278,7 @@ fn a_short_mask_names_its_words() {
     .unwrap_err();
     assert_eq!(
         e,
-        ReverseError::Render(RenderError::BandMemoryTooSmall {
+        VisibilityError::Render(RenderError::BandMemoryTooSmall {
             part: BandPart::MaskWords,
             given: 46,
             needed: 47

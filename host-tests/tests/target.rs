@@ -426,6 +426,9 @@ fn buffers_smaller_than_the_viewport_are_refused() {
             viewport: (vw, vh),
         })
     };
+    // The visibility methods report the pipeline's error wrapped in their own.
+    let method_too_small =
+        |buffer, size: (u16, u16)| too_small(buffer, size).map_err(VisibilityError::Render);
     let mut scratch = [PreparedVertex::default(); 8];
     let mut stats = RenderStats::default();
     let message = too_small(TargetBuffer::Frame, (31, 24))
@@ -519,16 +522,20 @@ fn buffers_smaller_than_the_viewport_are_refused() {
             &mut scratch,
             memory,
             &mut stats,
-            |_, _| Ok::<(), RenderError>(()),
+            |_, _| Ok::<(), VisibilityError>(()),
         );
-        assert_eq!(r, too_small(TargetBuffer::Frame, size), "scan-line");
+        assert_eq!(r, method_too_small(TargetBuffer::Frame, size), "scan-line");
     }
 
     // The methods without a depth buffer.
     let mut pixels = vec![0u8; 32 * 24];
     let mut frame = Framebuffer::new(&mut pixels, 32, 23).unwrap();
     let r = render_back_faces(&renderer, &mut frame, &mut scratch, &mut stats);
-    assert_eq!(r, too_small(TargetBuffer::Frame, (32, 23)), "back faces");
+    assert_eq!(
+        r,
+        method_too_small(TargetBuffer::Frame, (32, 23)),
+        "back faces"
+    );
     let (mut triangles, mut order) = (vec![StoredTriangle::DEFAULT; 16], vec![0u32; 16]);
     let mut normals = vec![Normal::DEFAULT; 16];
     let memory = PainterMemory {
@@ -545,7 +552,11 @@ fn buffers_smaller_than_the_viewport_are_refused() {
         policy,
         &mut stats,
     );
-    assert_eq!(r, too_small(TargetBuffer::Frame, (32, 23)), "painter");
+    assert_eq!(
+        r,
+        method_too_small(TargetBuffer::Frame, (32, 23)),
+        "painter"
+    );
     let (mut candidates, mut windows) = (vec![0u32; 32], vec![Area::DEFAULT; 16]);
     let memory = WarnockMemory {
         triangles: &mut triangles,
@@ -553,7 +564,11 @@ fn buffers_smaller_than_the_viewport_are_refused() {
         windows: &mut windows,
     };
     let r = render_warnock(&renderer, &mut frame, &mut scratch, memory, &mut stats);
-    assert_eq!(r, too_small(TargetBuffer::Frame, (32, 23)), "Warnock");
+    assert_eq!(
+        r,
+        method_too_small(TargetBuffer::Frame, (32, 23)),
+        "Warnock"
+    );
     assert!(
         pixels.iter().all(|&p| p == 0),
         "nothing drawn, not even cleared"

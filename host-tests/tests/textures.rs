@@ -400,7 +400,7 @@ fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
         RenderStats, Renderer,
     };
     use zscan::scene::{Object, Scene};
-    use zscan::visibility::{render_warnock, Area, StoredTriangle, WarnockMemory};
+    use zscan::visibility::{render_warnock, Area, StoredTriangle, VisibilityError, WarnockMemory};
 
     const VW: usize = 96;
     const VH: usize = 72;
@@ -513,7 +513,10 @@ fn bands_draw_the_whole_frames_picture_and_stored_methods_refuse() {
     )
     .unwrap_err();
     assert!(
-        matches!(e, RenderError::TextureUnsupported { object: 1, .. }),
+        matches!(
+            e,
+            VisibilityError::Render(RenderError::TextureUnsupported { object: 1, .. })
+        ),
         "{e:?}"
     );
     assert!(e.to_string().starts_with("object 1 is textured"), "{e}");

@@ -209,6 +209,7 @@ fn screen_doors_in_every_method() {
                 kind: TransparencyKind::ScreenDoor,
                 method: "Warnock's subdivision"
             }
+            .into()
         );
         let words = err.to_string();
         assert!(
@@ -374,6 +375,7 @@ fn refusals_name_the_object_and_the_method() {
                 kind: TransparencyKind::Blended,
                 method: words
             }
+            .into()
         );
         let text = err.to_string();
         assert!(

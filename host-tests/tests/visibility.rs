@@ -5,9 +5,9 @@ use zscan::geometry::fixed::Coord;
 use zscan::geometry::mesh::{Mesh, PolygonSizes};
 use zscan::geometry::vector::Vec3;
 use zscan::raster::triangle::ShadeMode;
-use zscan::render::{RenderError, Renderer};
+use zscan::render::Renderer;
 use zscan::scene::{Object, Scene};
-use zscan::visibility::Visibility;
+use zscan::visibility::{Visibility, VisibilityError};
 use zscan_host::cli::render::load_scene;
 use zscan_host::core_render::{render_visible, scene_of, to_core};
 use zscan_host::failures::{
@@ -29,7 +29,7 @@ fn both(
     method: Visibility,
     splits: Option<usize>,
     band_rows: u16,
-) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+) -> Result<(Vec<u8>, Vec<u8>), VisibilityError> {
     let renderer = Renderer::for_scene(scene)?;
     let (m, _) = render_visible(&renderer, (w, h), method, splits, band_rows)?;
     let (z, _) = render_visible(&renderer, (w, h), Visibility::ZBuffer, None, h)?;
@@ -236,18 +236,18 @@ fn warnock_names_each_exhausted_capacity() {
     assert_eq!(run(stored, peak, m.stack_peak as usize).unwrap(), stats);
     assert_eq!(
         run(stored - 1, 8192, 64).err(),
-        Some(RenderError::TriangleStoreFull {
+        Some(VisibilityError::TriangleStoreFull {
             capacity: stored - 1
         })
     );
     assert_eq!(
         run(stored, peak - 1, 64).err(),
-        Some(RenderError::SubdivisionCandidatesFull { capacity: peak - 1 })
+        Some(VisibilityError::SubdivisionCandidatesFull { capacity: peak - 1 })
     );
     let windows = m.stack_peak as usize - 1;
     assert_eq!(
         run(stored, 8192, windows).err(),
-        Some(RenderError::SubdivisionStackFull { capacity: windows })
+        Some(VisibilityError::SubdivisionStackFull { capacity: windows })
     );
 }
 
@@ -292,7 +292,7 @@ fn painter_draws_the_bunny_and_names_a_short_split_budget() {
     assert_eq!(renderer_stats(Some(needed)).unwrap(), m);
     assert_eq!(
         renderer_stats(Some(needed - 1)).err(),
-        Some(RenderError::SplitBudgetExhausted { budget: needed - 1 })
+        Some(VisibilityError::SplitBudgetExhausted { budget: needed - 1 })
     );
     let (p, z) = on_bunny(Visibility::Painter, None).unwrap();
     assert_eq!(differing(&p, &z), 0, "without test 6");
@@ -315,7 +315,7 @@ fn painter_needs_test_6_on_a_cycle_of_three() {
     let r = both(&scene, (160, 120), Visibility::Painter, Some(0), 1);
     assert_eq!(
         r.err(),
-        Some(RenderError::SplitBudgetExhausted { budget: 0 })
+        Some(VisibilityError::SplitBudgetExhausted { budget: 0 })
     );
     let (scan, _) = both(&scene, (160, 120), Visibility::ScanLine, None, 1).unwrap();
     assert_eq!(differing(&scan, &z), 0);
@@ -387,7 +387,7 @@ fn random_scenes_agree_with_the_z_buffer() {
                 painter_wrong += differing(&p, &z);
                 drawn += 1;
             }
-            Err(RenderError::PainterCycle) => refused += 1,
+            Err(VisibilityError::PainterCycle) => refused += 1,
             Err(e) => panic!("case {case}: {e}"),
         }
     }
@@ -650,7 +650,7 @@ fn painter_and_z(
     camera: zscan::geometry::camera::Camera,
     size: (u16, u16),
     splits: usize,
-) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+) -> Result<(Vec<u8>, Vec<u8>), VisibilityError> {
     let objects: Vec<Object<'_>> = tables
         .iter()
         .map(|(v, i, l)| soup_objects(v, i, l))
@@ -782,7 +782,7 @@ fn painter_draws_interpenetrating_cubes_from_any_view() {
         assert_eq!(again, p);
         assert_eq!(
             render_visible(&renderer, size, Visibility::Painter, Some(needed - 1), 1).err(),
-            Some(RenderError::SplitBudgetExhausted { budget: needed - 1 })
+            Some(VisibilityError::SplitBudgetExhausted { budget: needed - 1 })
         );
     }
 }
@@ -804,7 +804,7 @@ fn fast_gouraud_is_drawn_whole_or_refused_by_name() {
     assert_eq!(differing(&p, &z), 0);
     assert_eq!(
         both(&scene, size, Visibility::Warnock, None, 1).err(),
-        Some(RenderError::FastGouraudInParts { object: 0 })
+        Some(VisibilityError::FastGouraudInParts { object: 0 })
     );
     // Two interpenetrating triangles, one per object, levels per vertex: the painter splits one.
     let (vs, is, _) = interpenetrating();
@@ -827,7 +827,10 @@ fn fast_gouraud_is_drawn_whole_or_refused_by_name() {
             if refused {
                 let e = r.err();
                 assert!(
-                    matches!(e, Some(RenderError::FastGouraudInParts { object: 0 | 1 })),
+                    matches!(
+                        e,
+                        Some(VisibilityError::FastGouraudInParts { object: 0 | 1 })
+                    ),
                     "{method}: {e:?}"
                 );
             } else {

@@ -83,6 +83,7 @@ use super::{PreparedVertex, RenderError, Renderer};
 use crate::geometry::mesh::Mesh;
 use crate::output::Framebuffer;
 use crate::raster::line::SubpixelLine;
+use crate::raster::triangle::twice_area;
 use crate::raster::SubpixelPoint;
 use crate::scene::Object;
 use core::cmp::Ordering;
@@ -294,7 +295,10 @@ fn point<const S: u32>(v: &PreparedVertex<S>) -> P3 {
     [v.screen.x as i128, v.screen.y as i128, v.depth as i128]
 }
 
-/// Twice the signed area of `(a, b, c)` in screen space (exact: differences below `2^30`).
+/// Twice the signed area of `(a, b, c)` in screen space (exact: differences below `2^31`), for
+/// the direct counts' perturbation tests, whose points include a vertex moved by an edge's
+/// direction or normal (`plus`): those may leave the raster's range, which the one
+/// orientation of projected vertices, [`twice_area`], assumes.
 fn area(a: P3, b: P3, c: P3) -> i128 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }
@@ -400,6 +404,7 @@ fn walk_object<const S: u32>(
         return Err(AppelError::VertexOutsideView { vertex: v as u16 });
     }
     let p = |i: u16| point(&prepared[i as usize]);
+    let screen = |i: u16| prepared[i as usize].screen;
     // 1. The half-edges of the fans, each with its triangle's third vertex and facing.
     let needed = AppelScratch::edges_needed(mesh);
     let given = appel.edges.len();
@@ -416,7 +421,7 @@ fn walk_object<const S: u32>(
         let m = poly.len();
         for j in 1..m.saturating_sub(1) {
             let tri = [poly[0], poly[j], poly[j + 1]];
-            let front = area(p(tri[0]), p(tri[1]), p(tri[2])) < 0;
+            let front = twice_area(screen(tri[0]), screen(tri[1]), screen(tri[2])) < 0;
             for e in 0..3 {
                 // A fan's own edges: v0–v1 of the first triangle, vj–vj+1, the last's closing.
                 let own = match e {
@@ -453,7 +458,7 @@ fn walk_object<const S: u32>(
             });
         }
         let (xf, yf) = (x.flags & FRONT != 0, y.flags & FRONT != 0);
-        let back = |e: &AppelEdge| area(p(e.a), p(e.b), p(e.third)) > 0;
+        let back = |e: &AppelEdge| twice_area(screen(e.a), screen(e.b), screen(e.third)) > 0;
         // A contour edge keeps its front triangle's winding and third vertex.
         let mut rec = if yf && !xf { y } else { x };
         rec.flags &= OWN;
@@ -492,10 +497,10 @@ fn walk_object<const S: u32>(
 /// (module doc, step 1), for the edge `P0 → P1` of vertices `ends`; refuses an edge that
 /// passes through a front triangle it does not touch at a vertex (the mesh intersects
 /// itself: the walk would miss that change).
-fn direct_counts(
+fn direct_counts<const S: u32>(
     (p0, p1): (P3, P3),
     ends: [u16; 2],
-    (p, xy): (&impl Fn(u16) -> P3, &impl Fn(u16) -> [i32; 2]),
+    (p, xy): (&impl Fn(u16) -> P3, &impl Fn(u16) -> SubpixelPoint<S>),
     mesh: &Mesh<'_>,
 ) -> Result<(i32, i32), AppelError> {
     let u = [p1[0] - p0[0], p1[1] - p0[1]];
@@ -510,13 +515,19 @@ fn direct_counts(
             // The cheap rejections first: the bounding boxes (i32), then the facing (i64).
             let c = v.map(xy);
             let (tlo, thi) = (
-                [0, 1].map(|k| c[0][k].min(c[1][k]).min(c[2][k])),
-                [0, 1].map(|k| c[0][k].max(c[1][k]).max(c[2][k])),
+                [
+                    c[0].x.min(c[1].x).min(c[2].x),
+                    c[0].y.min(c[1].y).min(c[2].y),
+                ],
+                [
+                    c[0].x.max(c[1].x).max(c[2].x),
+                    c[0].y.max(c[1].y).max(c[2].y),
+                ],
             );
             if (0..2).any(|k| thi[k] < lo[k] || hi[k] < tlo[k]) {
                 continue;
             }
-            if twice_area(c) >= 0 {
+            if twice_area(c[0], c[1], c[2]) >= 0 {
                 continue;
             }
             let t = v.map(p);
@@ -567,13 +578,6 @@ fn direct_counts(
         }
     }
     Ok(qi)
-}
-
-/// Twice the signed area of a projected triangle, exact in `i64` (`cull.rs`'s numeric
-/// contract: differences below `2^29`, products below `2^58`).
-fn twice_area(c: [[i32; 2]; 3]) -> i64 {
-    let d = |k: usize, a: usize| c[k][a] as i64 - c[0][a] as i64;
-    d(1, 0) * d(2, 1) - d(1, 1) * d(2, 0)
 }
 
 /// `det[b − a, c − a, x − a]` in screen space and depth (exact: differences below `2^29`,
@@ -682,10 +686,7 @@ fn walk_edge<const S: u32>(
             to: at(to),
         });
     };
-    let xy = |i: u16| {
-        let v = &prepared[i as usize].screen;
-        [v.x, v.y]
-    };
+    let xy = |i: u16| prepared[i as usize].screen;
     let (mut qi, counted) = direct_counts((p0, p1), [a, b], (p, &xy), mesh)?;
     let mut open: Option<(i64, i64)> = (qi == 0).then_some((0, 1));
     let mut k = 0;

@@ -1,4 +1,10 @@
-//! Why a frame or an object could not be rendered: [`RenderError`], one variant per stage.
+//! Why a frame or an object could not be rendered: [`RenderError`], one variant per stage of
+//! the shared pipeline (set-up, vertex and polygon stages, writer, buffers, bands, lines).
+//!
+//! The hidden-surface methods' own refusals (a store or stack too small, a split budget, a
+//! scene outside a method's rule) are not here: they are `visibility`'s vocabulary
+//! (`visibility::VisibilityError`), which wraps this one. So `render` names no method and
+//! does not import `visibility`.
 
 use super::TransparencyKind;
 use crate::clip::frustum::{ClipError, MAX_POLYGON_VERTICES};
@@ -57,49 +63,9 @@ pub enum RenderError {
     Draw(DrawError),
     /// The lights could not be set up (too many, a zero direction).
     Lighting(LightingError),
-    /// A visibility method that stores triangles before drawing them (painter, scan-line,
-    /// Warnock) was given more front triangles than its caller memory holds.
-    TriangleStoreFull {
-        /// Triangles the store holds.
-        capacity: usize,
-    },
-    /// The painter's overlap resolution needed more splits (Newell's test 6) than its budget.
-    SplitBudgetExhausted {
-        /// Splits the caller's budget allows.
-        budget: usize,
-    },
-    /// The painter's tests could not order a group of pieces that no further split separates
-    /// (each already cut by the others' planes; the tests judge a piece by an outline a sliver
-    /// larger than it): the frame is refused rather than drawn in a wrong order.
-    PainterCycle,
-    /// Warnock's subdivision needed more windows on its stack than the caller's memory holds.
-    SubdivisionStackFull {
-        /// Windows the stack holds.
-        capacity: usize,
-    },
-    /// Warnock's subdivision needed more candidate entries (the lists of the windows being
-    /// subdivided, one after the other) than the caller's memory holds.
-    SubdivisionCandidatesFull {
-        /// Entries the candidate stack holds.
-        capacity: usize,
-    },
-    /// The scan-line method's active table holds fewer triangles than reach one band.
-    ActiveTableFull {
-        /// Triangles the active table holds.
-        capacity: usize,
-    },
     /// The visibility methods that store triangles keep a level per corner; a Phong object
     /// carries normals (draw it with the z-buffer or back-face only).
     PhongUnsupported,
-    /// The painter would split a triangle of a fast Gouraud object, or Warnock's subdivision
-    /// was given one: both draw parts of triangles (a piece row by row, a window), where the
-    /// 16.16 luminance steps start at the part's first pixel instead of the whole span's, so
-    /// some pixels would differ by a level from the z-buffer's (draw the object with exact
-    /// Gouraud, or the frame with the scan-line or the z-buffer).
-    FastGouraudInParts {
-        /// The object's index in the scene.
-        object: usize,
-    },
     /// A textured object given to a method that does not draw textures (the visibility
     /// methods that store triangles, compact bands): draw it with the depth buffer, whole or
     /// in bands.
@@ -126,15 +92,6 @@ pub enum RenderError {
         kind: TransparencyKind,
         /// The method or shading that refuses it.
         method: &'static str,
-    },
-    /// A scene with more objects than a stored triangle can name (256).
-    TooManyObjects,
-    /// A drawing order names an object the scene does not have.
-    NoSuchObject {
-        /// The index named.
-        index: u16,
-        /// Objects in the scene.
-        objects: usize,
     },
     /// [`render_in_bands`](crate::render::render_in_bands) was asked for bands of
     /// `band_rows` rows, below its minimum of 1.
@@ -182,14 +139,6 @@ pub enum RenderError {
         size: u8,
         /// The largest side ([`MAX_POINT_SIZE`](super::MAX_POINT_SIZE)).
         max: u8,
-    },
-    /// [`draw_plan`](crate::visibility::draw_plan) was given a plan whose method and depth
-    /// width the planner never makes together (a `Plan` built by hand).
-    NotPlanned {
-        /// The plan's method, by its name (`Visibility::name`).
-        method: &'static str,
-        /// The plan's bytes of depth per sample.
-        depth_bytes: usize,
     },
 }
 
@@ -323,30 +272,6 @@ impl core::fmt::Display for RenderError {
             RenderError::Clip(e) => write!(f, "clipping: {e}"),
             RenderError::Draw(e) => write!(f, "raster: {e}"),
             RenderError::Lighting(e) => write!(f, "lighting: {e}"),
-            RenderError::TriangleStoreFull { capacity } => write!(
-                f,
-                "more front triangles than the triangle store's {capacity}"
-            ),
-            RenderError::SplitBudgetExhausted { budget } => write!(
-                f,
-                "the painter's overlaps need more than its budget of {budget} splits"
-            ),
-            RenderError::PainterCycle => write!(
-                f,
-                "the painter's tests cannot order a cycle of pieces (use the scan-line or z-buffer)"
-            ),
-            RenderError::SubdivisionStackFull { capacity } => write!(
-                f,
-                "Warnock's subdivision needs more than its stack of {capacity} windows"
-            ),
-            RenderError::SubdivisionCandidatesFull { capacity } => write!(
-                f,
-                "Warnock's subdivision needs more than its {capacity} candidate entries"
-            ),
-            RenderError::ActiveTableFull { capacity } => write!(
-                f,
-                "more triangles reach one band than the active table's {capacity}"
-            ),
             RenderError::PhongUnsupported => write!(
                 f,
                 "a Phong object cannot be stored by this visibility method (use the z-buffer)"
@@ -359,12 +284,6 @@ impl core::fmt::Display for RenderError {
             RenderError::TextureNotDrawable { reason } => {
                 write!(f, "a textured object cannot be drawn: {reason}")
             }
-            RenderError::FastGouraudInParts { object } => write!(
-                f,
-                "object {object} is fast Gouraud, whose 16.16 shading steps differ from the \
-                 z-buffer's when a triangle is drawn in parts (the painter's pieces, Warnock's \
-                 windows): use exact Gouraud, the scan-line or the z-buffer"
-            ),
             RenderError::TransparencyRefused {
                 object,
                 kind,
@@ -392,12 +311,6 @@ impl core::fmt::Display for RenderError {
                     }
                 })
             }
-            RenderError::TooManyObjects => write!(f, "more than 256 objects in the scene"),
-            RenderError::NoSuchObject { index, objects } => write!(
-                f,
-                "the drawing order names object index {index}, but the scene has {objects} \
-                 objects (indices 0 to {objects} − 1)"
-            ),
             RenderError::BadBandRows { band_rows } => {
                 write!(f, "bands of {band_rows} rows: a band needs at least 1 row")
             }
@@ -425,15 +338,6 @@ impl core::fmt::Display for RenderError {
             RenderError::PointSizeOutOfRange { size, max } => write!(
                 f,
                 "points of {size} × {size} pixels: the side must be 1 to {max}"
-            ),
-            RenderError::NotPlanned {
-                method,
-                depth_bytes,
-            } => write!(
-                f,
-                "a plan of method {method} with {depth_bytes} bytes of depth per sample is not \
-                 one the planner makes: draw_plan draws back faces with no depth and the z-buffer \
-                 with 16- or 32-bit depth"
             ),
         }
     }

@@ -10,6 +10,7 @@
 //! Memory: none beside the frame and the vertex scratch; the span loops run with the
 //! zero-sized [`NoDepth`] sample, which compiles away the depth interpolant, test and store.
 
+use super::VisibilityError;
 use crate::output::{DepthBuffer, Framebuffer, NoDepth};
 use crate::render::{check_transparency, Draws};
 use crate::render::{BandPart, PreparedVertex, RenderError, Renderer, SceneRenderer, StatsSink};
@@ -19,27 +20,28 @@ use crate::scene::Scene;
 /// order, back faces
 /// culled, front faces painted as they come (no depth test). `scratch` holds at least the
 /// largest mesh's vertices. The picture equals the z-buffer's when the scene qualifies
-/// (the module doc of `visibility::backface`).
+/// (the module doc of `visibility::backface`). Its errors are the pipeline's, as
+/// [`VisibilityError::Render`].
 pub fn render_back_faces<const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
-) -> Result<(), RenderError> {
+) -> Result<(), VisibilityError> {
     let n = renderer.scene().objects.len();
-    draw_objects(
+    Ok(draw_objects(
         renderer.renderer(),
         renderer.scene(),
         (0..n, false),
         frame,
         scratch,
         stats,
-    )
+    )?)
 }
 
 /// [`render_back_faces`] with the objects drawn in `order` (indices into the scene's objects,
 /// e.g. far to near as [`plan`](super::plan) sorts separable objects: Schumacker's clusters).
-/// An index past the scene's objects is [`RenderError::NoSuchObject`], naming it; nothing is
+/// An index past the scene's objects is [`VisibilityError::NoSuchObject`], naming it; nothing is
 /// drawn then.
 pub fn render_back_faces_in_order<const S: u32>(
     renderer: &SceneRenderer<'_, S>,
@@ -47,14 +49,21 @@ pub fn render_back_faces_in_order<const S: u32>(
     frame: &mut Framebuffer<'_>,
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
-) -> Result<(), RenderError> {
+) -> Result<(), VisibilityError> {
     let (scene, renderer) = (renderer.scene(), renderer.renderer());
     let objects = scene.objects.len();
     if let Some(&index) = order.iter().find(|&&i| i as usize >= objects) {
-        return Err(RenderError::NoSuchObject { index, objects });
+        return Err(VisibilityError::NoSuchObject { index, objects });
     }
     let order = order.iter().map(|&i| i as usize);
-    draw_objects(renderer, scene, (order, false), frame, scratch, stats)
+    Ok(draw_objects(
+        renderer,
+        scene,
+        (order, false),
+        frame,
+        scratch,
+        stats,
+    )?)
 }
 
 /// Clears `frame` and draws the objects `order.0` names, with no depth buffer. When `order.1`,
@@ -87,11 +96,12 @@ pub(super) fn draw_objects<const S: u32>(
 }
 
 /// Runs `draw` with `frame` and a [`NoDepth`] buffer of the same rows: what the methods that
-/// paint without a depth test (back faces alone, the painter) draw through.
-pub(super) fn without_depth<R>(
+/// paint without a depth test (back faces alone, the painter) draw through, reporting in
+/// `draw`'s error type.
+pub(super) fn without_depth<R, E: From<RenderError>>(
     frame: &mut Framebuffer<'_>,
-    draw: impl FnOnce(&mut Framebuffer<'_>, &mut DepthBuffer<'_, NoDepth>) -> Result<R, RenderError>,
-) -> Result<R, RenderError> {
+    draw: impl FnOnce(&mut Framebuffer<'_>, &mut DepthBuffer<'_, NoDepth>) -> Result<R, E>,
+) -> Result<R, E> {
     let (width, height) = (frame.width(), frame.height());
     // Zero bytes at any length (a frame has at most 2^24 pixels).
     let mut samples = [NoDepth; 1 << 24];

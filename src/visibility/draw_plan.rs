@@ -29,19 +29,21 @@
 //!   and no table otherwise (a whole frame is one band). Slices longer than the plan's sizes
 //!   are cut to them, so the frame runs as planned whatever the caller gave.
 //! - Any other method or depth width (a `Plan` built by hand: the planner never makes one) is
-//!   [`RenderError::NotPlanned`].
+//!   [`VisibilityError::NotPlanned`].
 //!
 //! Every layout draws the z-buffer's pixels (`render_in_bands`' contract), and back faces alone
 //! draw them where the planner chose it (`plan.rs`, rule 1).
 //!
 //! Numeric contract: sizes are element counts as `usize` (saturating products); a slice
-//! shorter than its size is [`RenderError::BandMemoryTooSmall`] naming the part, the elements
-//! given and needed, checked before anything is drawn.
+//! shorter than its size is [`RenderError::BandMemoryTooSmall`] (as
+//! [`VisibilityError::Render`]) naming the part, the elements given and needed, checked before
+//! anything is drawn.
 
 use super::backface::render_back_faces_in_order;
+use super::error::Through;
 use super::plan::{DepthWidth, LayoutReason, Plan};
 use super::reverse::draw_front_to_back;
-use super::Visibility;
+use super::{Visibility, VisibilityError};
 use crate::output::{mask_words_needed, DepthBuffer, DepthValue, Framebuffer};
 use crate::render::{
     render_in_bands, render_in_compact_bands, BandPart, BandScratch, CompactBandScratch,
@@ -159,15 +161,15 @@ impl PlanSizes {
 }
 
 /// `slice[..needed]`, or [`RenderError::BandMemoryTooSmall`] naming `part`.
-fn cut<T>(slice: &mut [T], needed: usize, part: BandPart) -> Result<&mut [T], RenderError> {
+fn cut<T>(slice: &mut [T], needed: usize, part: BandPart) -> Result<&mut [T], VisibilityError> {
     let given = slice.len();
     slice
         .get_mut(..needed)
-        .ok_or(RenderError::BandMemoryTooSmall {
+        .ok_or(VisibilityError::Render(RenderError::BandMemoryTooSmall {
             part,
             given,
             needed,
-        })
+        }))
 }
 
 /// Draws the scene of `renderer` as `plan` says (the module doc's dispatch), with `memory`
@@ -175,9 +177,9 @@ fn cut<T>(slice: &mut [T], needed: usize, part: BandPart) -> Result<&mut [T], Re
 /// wrote (read by back faces alone and the reverse painter; the z-buffer draws in scene
 /// order). `band_done` receives
 /// each finished band, top to bottom (for a whole-frame plan, the frame once): flush it to the
-/// display there. Errors: the frame's ([`RenderError`], through `E`: a slice shorter than
+/// display there. Errors: the frame's ([`VisibilityError`], through `E`: a slice shorter than
 /// the plan needs names the part and both sizes; a hand-made plan the planner never makes is
-/// [`RenderError::NotPlanned`]), or the callback's own.
+/// [`VisibilityError::NotPlanned`]), or the callback's own.
 ///
 /// ```
 /// use zscan::prelude::*;
@@ -209,7 +211,7 @@ fn cut<T>(slice: &mut [T], needed: usize, part: BandPart) -> Result<&mut [T], Re
 /// assert_eq!((rows, stats.pixels_covered > 0), (48, true));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn draw_plan<E: From<RenderError>, const S: u32>(
+pub fn draw_plan<E: From<VisibilityError>, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     plan: &Plan,
     order: &[u16],
@@ -227,12 +229,13 @@ pub fn draw_plan<E: From<RenderError>, const S: u32>(
             let vertices = cut(memory.vertices, sizes.vertices, BandPart::PreparedVertices)?;
             // `cut` gave exactly the plan's `width × height` pixels, which `new` accepts.
             let given = pixels.len();
-            let mut frame =
-                Framebuffer::new(pixels, w, h).map_err(|_| RenderError::BandMemoryTooSmall {
+            let mut frame = Framebuffer::new(pixels, w, h)
+                .map_err(|_| RenderError::BandMemoryTooSmall {
                     part: BandPart::Pixels,
                     given,
                     needed: sizes.pixels,
-                })?;
+                })
+                .map_err(VisibilityError::Render)?;
             render_back_faces_in_order(renderer, order, &mut frame, vertices, stats)?;
             band_done(&mut frame)
         }
@@ -241,12 +244,13 @@ pub fn draw_plan<E: From<RenderError>, const S: u32>(
             let vertices = cut(memory.vertices, sizes.vertices, BandPart::PreparedVertices)?;
             let mask = cut(memory.mask, sizes.mask, BandPart::MaskWords)?;
             let given = pixels.len();
-            let mut frame =
-                Framebuffer::new(pixels, w, h).map_err(|_| RenderError::BandMemoryTooSmall {
+            let mut frame = Framebuffer::new(pixels, w, h)
+                .map_err(|_| RenderError::BandMemoryTooSmall {
                     part: BandPart::Pixels,
                     given,
                     needed: sizes.pixels,
-                })?;
+                })
+                .map_err(VisibilityError::Render)?;
             draw_front_to_back(renderer, order, &mut frame, mask, vertices, stats)?;
             band_done(&mut frame)
         }
@@ -266,7 +270,7 @@ pub fn draw_plan<E: From<RenderError>, const S: u32>(
             )?;
             zbuffer(renderer, plan, &sizes, depths, memory, stats, band_done)
         }
-        (visibility, depth) => Err(RenderError::NotPlanned {
+        (visibility, depth) => Err(VisibilityError::NotPlanned {
             method: visibility.name(),
             depth_bytes: depth.bytes(),
         }
@@ -276,7 +280,7 @@ pub fn draw_plan<E: From<RenderError>, const S: u32>(
 
 /// The z-buffer's layouts of [`draw_plan`] at depth `D`, `depths` already cut to the plan's
 /// size (its `memory.depth*` fields are not read).
-fn zbuffer<D: DepthValue, E: From<RenderError>, const S: u32>(
+fn zbuffer<D: DepthValue, E: From<VisibilityError>, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     plan: &Plan,
     sizes: &PlanSizes,
@@ -288,7 +292,9 @@ fn zbuffer<D: DepthValue, E: From<RenderError>, const S: u32>(
     let vp = renderer.scene().camera.viewport();
     let frame = (vp.width, vp.height, plan.band_rows);
     let pixels = cut(memory.pixels, sizes.pixels, BandPart::Pixels)?;
-    let flush = |band: &mut Framebuffer<'_>, _: &DepthBuffer<'_, D>| band_done(band);
+    // The banded entries take an error type that takes the pipeline's errors: `Through<E>`.
+    let flush =
+        |band: &mut Framebuffer<'_>, _: &DepthBuffer<'_, D>| band_done(band).map_err(Through);
     if plan.layout_reason == LayoutReason::CompactBands {
         let scratch = CompactBandScratch {
             vertices: cut(
@@ -300,11 +306,13 @@ fn zbuffer<D: DepthValue, E: From<RenderError>, const S: u32>(
             polygons: cut(memory.tops, sizes.tops, BandPart::Polygons)?,
         };
         render_in_compact_bands(renderer, (pixels, depths), frame, scratch, stats, flush)
+            .map_err(|Through(e)| e)
     } else {
         let scratch = BandScratch {
             vertices: cut(memory.vertices, sizes.vertices, BandPart::PreparedVertices)?,
             polygons: cut(memory.polygons, sizes.polygons, BandPart::PolygonRows)?,
         };
         render_in_bands(renderer, (pixels, depths), frame, scratch, stats, flush)
+            .map_err(|Through(e)| e)
     }
 }

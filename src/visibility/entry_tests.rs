@@ -16,7 +16,7 @@ use crate::lighting::Light;
 use crate::lighting::Material;
 use crate::output::{DepthBuffer, Framebuffer};
 use crate::render::{render_in_bands, render_scene, BandScratch, PreparedVertex, RenderStats};
-use crate::render::{RenderError, Renderer, SceneRenderer};
+use crate::render::{Renderer, SceneRenderer};
 use crate::scene::Intensities;
 use crate::scene::{Object, Scene};
 
@@ -88,7 +88,7 @@ fn entries(renderer: &SceneRenderer<'_, 4>) -> [[u8; N]; 5] {
             let at = y as usize * W as usize;
             picture[at..at + row.len()].copy_from_slice(row);
         }
-        Ok::<(), RenderError>(())
+        Ok::<(), crate::visibility::VisibilityError>(())
     };
     let scratch_b = BandScratch {
         vertices: &mut scratch,

@@ -19,14 +19,14 @@
 //! | [`ZBuffer`](Visibility::ZBuffer) (`render/`) | a depth sample per pixel (or per band pixel) | any scene |
 //!
 //! Where each breaks: the reverse painter is refused in words outside back faces alone's
-//! scenes ([`ReverseError::Refused`], the planner's reason); back faces alone draws the last
+//! scenes ([`VisibilityError::ReverseRefused`], the planner's reason); back faces alone draws the last
 //! of two overlapping front faces (the
 //! bunny: 279 wrong pixels); the painter without test 6 draws a cycle or interpenetration in
 //! the wrong order (101 and 514 wrong pixels in `tests/visibility.rs`), and with it judges each
 //! piece by its own outline and draws them right (the bunny: 2 splits; a piece may be cut as
 //! often as the store holds pieces: every one of 200 dense random soups and two interpenetrating
 //! cubes from any view), refusing a frame whose pieces its tests still cannot order
-//! ([`RenderError::PainterCycle`](crate::render::RenderError)) or whose split budget or store
+//! ([`VisibilityError::PainterCycle`]) or whose split budget or store
 //! is short (an error naming the budget or the capacity); the scan-line never differs from the
 //! z-buffer of its depth width, Warnock's subdivision never from the 32-bit z-buffer.
 //! Ties follow the z-buffer's rule in every method that claims its picture: at an equal depth
@@ -40,6 +40,14 @@
 //! capacity exhausted (store, split budget, active table, Warnock's stacks) is an error, never
 //! a picture.
 //!
+//! The methods' errors are this folder's own vocabulary, [`VisibilityError`] (`error.rs`): each
+//! method's refusals (its stores and stacks, its budget, an object it cannot draw in parts, a
+//! scene outside its rule, a hand-made plan), and the shared pipeline's
+//! [`RenderError`](crate::render::RenderError) wrapped as [`VisibilityError::Render`]. Every
+//! entry here returns it (the banded ones through their callback's error type); `render`
+//! names no method, so it does not import this folder. The methods' counts are
+//! [`MethodCounts`], beside the pipeline's in `stats.rs`.
+//!
 //! Objects the storing methods refuse, in words: the painter, the scan-line and Warnock keep a
 //! level per corner, so a core-lit Phong object (normals per corner, lit per pixel) is
 //! [`RenderError::PhongUnsupported`](crate::render::RenderError::PhongUnsupported): draw it
@@ -48,7 +56,7 @@
 //! subdivision and the painter's pieces draw parts of triangles, where fast Gouraud's 16.16
 //! luminance steps would start at the part's first column instead of the whole span's: Warnock
 //! refuses a fast Gouraud object and the painter a split of one
-//! ([`RenderError::FastGouraudInParts`](crate::render::RenderError::FastGouraudInParts)); the
+//! ([`VisibilityError::FastGouraudInParts`]); the
 //! scan-line's bands cut rows only and draw it as the z-buffer does.
 //!
 //! [`plan`] picks the cheapest method a scene allows within a RAM budget, from what is cheap
@@ -83,6 +91,7 @@ mod backface;
 mod draw_plan;
 #[cfg(test)]
 mod entry_tests;
+mod error;
 mod facts;
 mod outline;
 mod painter;
@@ -97,6 +106,7 @@ mod warnock;
 pub use crate::stats::{MethodCounts, WindowCounts};
 pub use backface::{render_back_faces, render_back_faces_in_order};
 pub use draw_plan::{draw_plan, PlanMemory, PlanSizes};
+pub use error::VisibilityError;
 pub use facts::{Convexity, FactsError, MeshFacts, NO_TWIN};
 pub use painter::{render_painter, Normal, PainterMemory, SplitPolicy};
 pub use plan::{
@@ -104,7 +114,7 @@ pub use plan::{
     PlanError, DEPTH_MARGIN, SCREEN_MARGIN,
 };
 pub use planned::{plan_frame, BackFaceFrame, PlannedFrame};
-pub use reverse::{render_reverse_painter, ReverseError};
+pub use reverse::render_reverse_painter;
 pub use scanline::{render_scan_lines, ScanLineMemory};
 pub use store::StoredTriangle;
 pub use warnock::{render_warnock, Area, WarnockMemory};

@@ -50,7 +50,7 @@
 //! `B` lies wholly in front of may be painted before `B`, and so may `A` wholly behind a plane
 //! that `B` was cut in front of. Splitting goes on while the split budget and the store allow
 //! (each named in its error when it runs out); a group that no split and no test can order
-//! is refused as [`RenderError::PainterCycle`] (none is left in the tests' random scenes:
+//! is refused as [`VisibilityError::PainterCycle`] (none is left in the tests' random scenes:
 //! soups of large triangles, interpenetrating cubes from any view). A piece keeps `P`'s
 //! corners (so its pixels get `P`'s exact depth and level) and its cuts, a chain through the
 //! store (its last cut and the piece it was cut from, whose cuts it inherits), so a piece may
@@ -70,13 +70,13 @@
 //! `tests/visibility.rs` counts.
 //!
 //! Refused in words (an error, never a picture): a store too small for the front triangles
-//! and pieces ([`RenderError::TriangleStoreFull`], naming its capacity), a split budget too
-//! small ([`RenderError::SplitBudgetExhausted`], naming it: the frame's
-//! [`MethodCounts::painter_splits`](crate::render::MethodCounts) is what it needs), a group of
-//! pieces the tests still cannot order ([`RenderError::PainterCycle`]), a core-lit Phong object
+//! and pieces ([`VisibilityError::TriangleStoreFull`], naming its capacity), a split budget too
+//! small ([`VisibilityError::SplitBudgetExhausted`], naming it: the frame's
+//! [`MethodCounts::painter_splits`](super::MethodCounts) is what it needs), a group of
+//! pieces the tests still cannot order ([`VisibilityError::PainterCycle`]), a core-lit Phong object
 //! (its corners carry normals, not levels: [`RenderError::PhongUnsupported`]; draw it with the
 //! z-buffer or back faces alone), and a split of a fast Gouraud triangle
-//! ([`RenderError::FastGouraudInParts`]: a piece is drawn row by row from its own first column,
+//! ([`VisibilityError::FastGouraudInParts`]: a piece is drawn row by row from its own first column,
 //! where the 16.16 luminance steps start differently from the whole span's; whole fast Gouraud
 //! triangles are drawn as the z-buffer draws them).
 //!
@@ -97,6 +97,7 @@ use super::outline::Outline;
 pub use super::plane::Normal;
 use super::plane::{Plane, Store};
 use super::store::{collect, cuts, sort_order, StoredTriangle, CUT_FRONT};
+use super::VisibilityError;
 use crate::output::{Framebuffer, NoDepth};
 use crate::raster::triangle::{RasterTarget, ShadeMode};
 use crate::raster::Window;
@@ -111,7 +112,7 @@ const MOVED: u32 = 1 << 31;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SplitPolicy {
     /// Test 6: split, at most this many times per frame (then
-    /// [`RenderError::SplitBudgetExhausted`]).
+    /// [`VisibilityError::SplitBudgetExhausted`]).
     Budget(usize),
     /// No test 6: the blocked triangle is drawn in the sorted order (wrong where a cycle or
     /// interpenetration overlaps; for measuring what test 6 buys).
@@ -134,10 +135,10 @@ pub struct PainterMemory<'a, const S: u32 = 4> {
 /// them by Newell's tests (module doc) and paints them back to front with no depth buffer: the
 /// 32-bit z-buffer's picture, ties included, where exact depths tie or differ by a unit or more.
 ///
-/// Errors (module doc): [`RenderError::TriangleStoreFull`] (front triangles and pieces beyond
-/// `memory`), [`RenderError::SplitBudgetExhausted`], [`RenderError::PainterCycle`],
+/// Errors (module doc): [`VisibilityError::TriangleStoreFull`] (front triangles and pieces beyond
+/// `memory`), [`VisibilityError::SplitBudgetExhausted`], [`VisibilityError::PainterCycle`],
 /// [`RenderError::PhongUnsupported`] (a core-lit Phong object: draw it with the z-buffer),
-/// [`RenderError::FastGouraudInParts`] (a fast Gouraud triangle that would be split), and the
+/// [`VisibilityError::FastGouraudInParts`] (a fast Gouraud triangle that would be split), and the
 /// renderer's own.
 pub fn render_painter<T: StatsSink, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
@@ -146,7 +147,7 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     memory: PainterMemory<'_, S>,
     policy: SplitPolicy,
     stats: &mut T,
-) -> Result<(), RenderError> {
+) -> Result<(), VisibilityError> {
     let scene = renderer.scene();
     renderer.renderer().check_frame(frame)?;
     check_transparency(renderer.scene(), "the painter", Draws::ScreenDoor)?;
@@ -160,7 +161,7 @@ pub fn render_painter<T: StatsSink, const S: u32>(
     let triangles = &mut triangles[..capacity];
     let order = &mut order[..capacity];
     let n = collect(renderer, scratch, triangles, counts)?;
-    let full = RenderError::TriangleStoreFull {
+    let full = VisibilityError::TriangleStoreFull {
         capacity: normals.len(),
     };
     let normals = normals.get_mut(..n).ok_or(full)?;
@@ -246,7 +247,7 @@ impl<const S: u32> Painter<'_, S> {
     /// entry to the front grows the moved part, pieces are inserted at their place), so the
     /// scan for triangles whose depth range overlaps the first one's stops at the first sorted
     /// entry that does not.
-    fn next(&mut self, policy: SplitPolicy) -> Result<Option<usize>, RenderError> {
+    fn next(&mut self, policy: SplitPolicy) -> Result<Option<usize>, VisibilityError> {
         loop {
             if self.count == 0 {
                 return Ok(None);
@@ -296,7 +297,7 @@ impl<const S: u32> Painter<'_, S> {
                     match cut {
                         Some((at, by)) => {
                             if self.splits >= budget {
-                                return Err(RenderError::SplitBudgetExhausted { budget });
+                                return Err(VisibilityError::SplitBudgetExhausted { budget });
                             }
                             self.splits += 1;
                             self.moves = 0;
@@ -309,7 +310,7 @@ impl<const S: u32> Painter<'_, S> {
                             }
                             self.moves += 1;
                         }
-                        None => return Err(RenderError::PainterCycle),
+                        None => return Err(VisibilityError::PainterCycle),
                     }
                 }
             }
@@ -384,10 +385,10 @@ impl<const S: u32> Painter<'_, S> {
 
     /// Test 6: replaces the entry `order[at]` by its piece behind `q`'s plane and inserts its
     /// piece in front at its place in the sorted part of the order.
-    fn split(&mut self, at: usize, q: usize) -> Result<(), RenderError> {
+    fn split(&mut self, at: usize, q: usize) -> Result<(), VisibilityError> {
         let capacity = self.triangles.len();
         if self.stored + 2 > capacity || self.count + 1 > self.order.len() {
-            return Err(RenderError::TriangleStoreFull { capacity });
+            return Err(VisibilityError::TriangleStoreFull { capacity });
         }
         let p = (self.order[at] & !MOVED) as usize;
         let plane = self.triangles[q].base;
@@ -395,7 +396,7 @@ impl<const S: u32> Painter<'_, S> {
         let object = whole.object as usize;
         let fast = self.scene.objects.get(object).map(|o| o.shade);
         if fast == Some(ShadeMode::GouraudFast) {
-            return Err(RenderError::FastGouraudInParts { object });
+            return Err(VisibilityError::FastGouraudInParts { object });
         }
         let (mut behind, mut front) = (whole, whole);
         behind.cut = plane;
@@ -847,7 +848,7 @@ mod tests {
                 draw_piece(scene, &painter.triangles[t], all, &mut target, &mut stats)?;
             }
             splits = painter.splits;
-            Ok(())
+            Ok::<(), VisibilityError>(())
         })
         .unwrap();
         let mut frame = Framebuffer::new(&mut zbuffered, W, H).unwrap();

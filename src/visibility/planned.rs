@@ -25,9 +25,9 @@
 use super::backface::draw_objects;
 use super::facts::MeshFacts;
 use super::plan::{plan_with, Lent, Placing, Plan, PlanError};
-use super::Visibility;
+use super::{Visibility, VisibilityError};
 use crate::output::Framebuffer;
-use crate::render::{PreparedVertex, RenderError, SceneRenderer, StatsSink};
+use crate::render::{PreparedVertex, SceneRenderer, StatsSink};
 
 /// What [`plan_frame`] returns: the plan, and for back faces alone the frame ready to draw.
 #[derive(Debug)]
@@ -83,17 +83,24 @@ impl<const S: u32> BackFaceFrame<'_, '_, S> {
     /// back faces culled, no depth buffer (as
     /// [`render_back_faces_in_order`](super::render_back_faces_in_order)): the z-buffer's
     /// picture. The object drawn first is not prepared again when the planner prepared it.
-    /// Errors are the frame's ([`RenderError`]: a scratch shorter than a mesh's vertex table,
+    /// Errors are the frame's ([`VisibilityError::Render`]: a scratch shorter than a mesh's vertex table,
     /// intensity tables too short, a frame too large, …).
     pub fn render(
         self,
         frame: &mut Framebuffer<'_>,
         stats: &mut impl StatsSink,
-    ) -> Result<(), RenderError> {
+    ) -> Result<(), VisibilityError> {
         let order = self.order.iter().map(|&i| i as usize);
         let (scene, renderer) = (self.renderer.scene(), self.renderer.renderer());
         let draw = (order, self.first_prepared);
-        draw_objects(renderer, scene, draw, frame, self.scratch, stats)
+        Ok(draw_objects(
+            renderer,
+            scene,
+            draw,
+            frame,
+            self.scratch,
+            stats,
+        )?)
     }
 }
 

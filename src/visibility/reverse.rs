@@ -13,8 +13,8 @@
 //! the mask never decides there. No two surfaces tie at a pixel (the ranges are strictly
 //! apart), so the picture is the z-buffer's, ties included, pixel for pixel
 //! (`host-tests/tests/reverse_painter.rs`: random separable convex scenes against the 32-bit
-//! z-buffer). A scene outside the rule is refused, in words ([`ReverseError::Refused`] with
-//! the planner's [`MethodReason`]), never drawn wrong.
+//! z-buffer). A scene outside the rule is refused, in words ([`VisibilityError::ReverseRefused`]
+//! with the planner's [`MethodReason`](super::MethodReason)), never drawn wrong.
 //!
 //! What it saves against back faces alone (the same order, far to near, no mask): a pixel
 //! that several objects cover is shaded and stored once, by the nearest, instead of once per
@@ -34,41 +34,10 @@
 //! depths, levels `0..=255`); the mask's bit layout is `output/mask.rs`'s.
 
 use super::facts::MeshFacts;
-use super::plan::{back_faces_allowed, MethodReason, Placing};
+use super::plan::{back_faces_allowed, Placing};
+use super::VisibilityError;
 use crate::output::{Framebuffer, PaintedMask, TargetError};
 use crate::render::{BandPart, PreparedVertex, RenderError, SceneRenderer, StatsSink};
-
-/// Why the reverse painter did not draw a frame.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ReverseError {
-    /// The scene is not one where a front-to-back order is right (the planner's rule 1 fails
-    /// for this reason): draw it with the z-buffer.
-    Refused(MethodReason),
-    /// The renderer's own error (a short mask is
-    /// [`RenderError::BandMemoryTooSmall`] with [`BandPart::MaskWords`]).
-    Render(RenderError),
-}
-
-impl core::fmt::Display for ReverseError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            ReverseError::Refused(reason) => write!(
-                f,
-                "the reverse painter draws the z-buffer's picture only for culled convex \
-                 objects apart in depth where they overlap on screen; here {reason}"
-            ),
-            ReverseError::Render(e) => write!(f, "{e}"),
-        }
-    }
-}
-
-impl core::error::Error for ReverseError {}
-
-impl From<RenderError> for ReverseError {
-    fn from(e: RenderError) -> Self {
-        ReverseError::Render(e)
-    }
-}
 
 /// Clears `frame` to the scene's background and draws the renderer's scene front to back
 /// through a mask of painted pixels over `mask` (at least
@@ -77,9 +46,12 @@ impl From<RenderError> for ReverseError {
 /// `order[..objects]` receives the drawing order, near to far. `scratch` holds at least the
 /// largest mesh's vertices.
 ///
-/// Errors: [`ReverseError::Refused`] naming why the scene is outside the method's rule,
-/// checked before anything is drawn; a short mask, order or facts slice, and the renderer's
-/// own errors, as [`ReverseError::Render`].
+/// Errors: [`VisibilityError::ReverseRefused`] naming why the scene is outside the method's
+/// rule, checked before anything is drawn; more than 65,536 objects
+/// ([`VisibilityError::TooManyObjects`]); an order or facts slice shorter than the scene's
+/// objects ([`VisibilityError::NoSuchObject`]); a short mask
+/// ([`RenderError::BandMemoryTooSmall`] with [`BandPart::MaskWords`]) and the renderer's own
+/// errors, as [`VisibilityError::Render`].
 pub fn render_reverse_painter<const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     facts: &[MeshFacts<'_>],
@@ -88,17 +60,18 @@ pub fn render_reverse_painter<const S: u32>(
     mask: &mut [u32],
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
-) -> Result<(), ReverseError> {
+) -> Result<(), VisibilityError> {
     let (scene, r) = (renderer.scene(), renderer.renderer());
     let n = scene.objects.len();
-    if n > u16::MAX as usize + 1 {
-        return Err(RenderError::TooManyObjects.into());
+    let max = u16::MAX as usize + 1;
+    if n > max {
+        return Err(VisibilityError::TooManyObjects { max });
     }
     let order =
         order
             .get_mut(..n)
             .filter(|_| facts.len() >= n)
-            .ok_or(RenderError::NoSuchObject {
+            .ok_or(VisibilityError::NoSuchObject {
                 index: n.min(u16::MAX as usize) as u16,
                 objects: n,
             })?;
@@ -110,7 +83,8 @@ pub fn render_reverse_painter<const S: u32>(
             projector: r.projector(),
             frustum: r.frustum(),
         };
-        back_faces_allowed(scene, facts, &view, order, None).map_err(ReverseError::Refused)?;
+        back_faces_allowed(scene, facts, &view, order, None)
+            .map_err(VisibilityError::ReverseRefused)?;
         order.reverse(); // far to near → near to far
     }
     draw_front_to_back(renderer, order, frame, mask, scratch, stats)?;
@@ -126,12 +100,12 @@ pub(super) fn draw_front_to_back<const S: u32>(
     mask: &mut [u32],
     scratch: &mut [PreparedVertex<S>],
     stats: &mut impl StatsSink,
-) -> Result<(), RenderError> {
+) -> Result<(), VisibilityError> {
     let (scene, r) = (renderer.scene(), renderer.renderer());
     r.check_frame(frame)?;
     let objects = scene.objects.len();
     if let Some(&index) = order.iter().find(|&&i| i as usize >= objects) {
-        return Err(RenderError::NoSuchObject { index, objects });
+        return Err(VisibilityError::NoSuchObject { index, objects });
     }
     let given = mask.len();
     let mut mask = PaintedMask::for_frame(mask, frame).map_err(|e| match e {

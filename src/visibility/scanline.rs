@@ -17,7 +17,9 @@
 //! Memory: a stored triangle (52 bytes) and a `u32` of order per front triangle, a `u32` per
 //! active triangle, and the band's pixels and depth samples (`width × band_rows` each).
 
+use super::error::through;
 use super::store::{collect, sort_order, StoredTriangle};
+use super::VisibilityError;
 use crate::output::{DepthBuffer, DepthValue, Framebuffer};
 use crate::raster::triangle::RasterTarget;
 use crate::render::{
@@ -47,9 +49,13 @@ pub struct ScanLineMemory<'a, D, const S: u32 = 4> {
 /// z-buffer's at the depth width `D` of `memory.depths` (module doc): `u16` samples give the
 /// 16-bit z-buffer's picture, `u32` the 32-bit one. `band_rows` is at least 1
 /// ([`RenderError::BadBandRows`] names a 0); a band taller than the picture draws the picture
-/// in one band. A core-lit Phong object is [`RenderError::PhongUnsupported`].
+/// in one band. A core-lit Phong object is [`RenderError::PhongUnsupported`]. More front
+/// triangles than `memory.triangles` and `memory.order` hold is
+/// [`VisibilityError::TriangleStoreFull`], more triangles reaching one band than
+/// `memory.active` holds [`VisibilityError::ActiveTableFull`]. Errors reach the caller
+/// through `E`, as the callback's own do.
 #[allow(clippy::too_many_arguments)]
-pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, const S: u32>(
+pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<VisibilityError>, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
     (width, height, band_rows): (u16, u16, u16),
     scratch: &mut [PreparedVertex<S>],
@@ -58,8 +64,10 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
     mut band_done: impl FnMut(&mut Framebuffer<'_>, &DepthBuffer<'_, D>) -> Result<(), E>,
 ) -> Result<(), E> {
     let scene = renderer.scene();
-    let band_rows = band_height(renderer.renderer(), (width, height, band_rows))?;
-    check_transparency(renderer.scene(), "the scan-line", Draws::ScreenDoor)?;
+    let band_rows =
+        band_height(renderer.renderer(), (width, height, band_rows)).map_err(through::<E>)?;
+    check_transparency(renderer.scene(), "the scan-line", Draws::ScreenDoor)
+        .map_err(through::<E>)?;
     let ScanLineMemory {
         triangles,
         order,
@@ -86,7 +94,7 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
             }
             let capacity = active.len();
             if live == capacity {
-                return Err(RenderError::ActiveTableFull { capacity }.into());
+                return Err(VisibilityError::ActiveTableFull { capacity }.into());
             }
             let at = active[..live].partition_point(|&a| a < t);
             active.copy_within(at..live, at + 1);
@@ -95,12 +103,13 @@ pub fn render_scan_lines<D: DepthValue, T: StatsSink, E: From<RenderError>, cons
         }
         counts.method.active_peak = counts.method.active_peak.max(live as u32);
         let (mut frame, mut depth) =
-            band_buffers((&mut *pixels, &mut *depths), (width, rows, top))?;
+            band_buffers((&mut *pixels, &mut *depths), (width, rows, top)).map_err(through::<E>)?;
         frame.clear(scene.background);
         depth.clear();
         {
             let mut target = RasterTarget::with_count(&mut frame, &mut depth, T::Count::default());
-            draw_active(scene, triangles, &active[..live], &mut target, counts)?;
+            draw_active(scene, triangles, &active[..live], &mut target, counts)
+                .map_err(through::<E>)?;
         }
         band_done(&mut frame, &depth)?;
         // Triangles ending in this band leave the table.

@@ -19,6 +19,8 @@ use crate::render::consumer::{Corner, LevelWriter, TriangleConsumer};
 use crate::render::RenderError;
 use crate::scene::Scene;
 
+use super::VisibilityError;
+
 /// No cut: see [`StoredTriangle::cuts`].
 pub(crate) const NO_CUT: u32 = u32::MAX;
 /// A cut's side bit: the piece keeps the samples in front of (not behind) the plane.
@@ -138,10 +140,19 @@ pub(crate) fn cuts<'a, const S: u32>(
 }
 
 /// The consumer that stores each triangle of one object, in order, into `store[len..]`.
+///
+/// The polygon stage's seam reports in the pipeline's vocabulary ([`RenderError`]), which
+/// has no word for a method's full store: a triangle that finds the store full sets `full`
+/// and is dropped, the stage goes on to the object's end, and [`collect`] reports
+/// [`VisibilityError::TriangleStoreFull`] then. The stage stops at its first error, so an
+/// error it returns after `full` was set came later, and the store's is the one reported, as
+/// if the stage had stopped there.
 pub(crate) struct Collector<'a, const S: u32> {
     pub(crate) store: &'a mut [StoredTriangle<S>],
     pub(crate) len: usize,
     pub(crate) object: u8,
+    /// A triangle found the store full (and was dropped).
+    pub(crate) full: bool,
 }
 
 impl<const S: u32> TriangleConsumer<S, 1> for Collector<'_, S> {
@@ -161,44 +172,58 @@ impl<const S: u32> TriangleConsumer<S, 1> for Collector<'_, S> {
             return Ok((0, 0));
         }
         let capacity = self.store.len().min(MAX_STORED);
-        let slot = self
+        match self
             .store
             .get_mut(..capacity)
             .and_then(|s| s.get_mut(self.len))
-            .ok_or(RenderError::TriangleStoreFull { capacity })?;
-        *slot = t;
-        self.len += 1;
+        {
+            Some(slot) => {
+                *slot = t;
+                self.len += 1;
+            }
+            None => self.full = true,
+        }
         Ok((0, 0))
     }
 }
 
 /// Runs the vertex and polygon stages of every object of the renderer's scene, storing its
-/// front triangles into `store`; returns how many.
+/// front triangles into `store`; returns how many. More than `store` holds is
+/// [`VisibilityError::TriangleStoreFull`] naming its capacity; a scene of more than 256
+/// objects (a stored triangle names its object in a byte) is
+/// [`VisibilityError::TooManyObjects`].
 pub(crate) fn collect<const S: u32>(
     renderer: &crate::render::SceneRenderer<'_, S>,
     scratch: &mut [crate::render::PreparedVertex<S>],
     store: &mut [StoredTriangle<S>],
     stats: &mut crate::render::RenderStats,
-) -> Result<usize, RenderError> {
+) -> Result<usize, VisibilityError> {
     let (scene, renderer) = (renderer.scene(), renderer.renderer());
     if scene.objects.len() > 256 {
-        return Err(RenderError::TooManyObjects);
+        return Err(VisibilityError::TooManyObjects { max: 256 });
     }
+    let capacity = store.len().min(MAX_STORED);
     let mut len = 0;
     for (i, object) in scene.objects.iter().enumerate() {
         if object.texture.is_some() {
             return Err(RenderError::TextureUnsupported {
                 object: i,
                 method: "a visibility method that stores triangles",
-            });
+            }
+            .into());
         }
         renderer.prepare(object, scratch)?;
         let mut collector = Collector {
             store: &mut *store,
             len,
             object: i as u8,
+            full: false,
         };
-        renderer.collect_levels(object, scratch, stats, &mut collector)?;
+        let stage = renderer.collect_levels(object, scratch, stats, &mut collector);
+        if collector.full {
+            return Err(VisibilityError::TriangleStoreFull { capacity });
+        }
+        stage?;
         len = collector.len;
     }
     stats.method.stored = len as u32;

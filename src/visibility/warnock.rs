@@ -33,7 +33,7 @@
 //!
 //! Refused in words: a core-lit Phong object ([`RenderError::PhongUnsupported`]: a stored
 //! corner keeps a level, not a normal) and a fast Gouraud object
-//! ([`RenderError::FastGouraudInParts`]: a triangle drawn window by window would start its
+//! ([`VisibilityError::FastGouraudInParts`]: a triangle drawn window by window would start its
 //! 16.16 luminance steps at each window's first column, not at its span's, and differ from the
 //! z-buffer by a level at some pixels); draw those with exact Gouraud, the scan-line or the
 //! z-buffer.
@@ -59,6 +59,7 @@
 
 use super::backface::without_depth;
 use super::store::{collect, StoredTriangle};
+use super::VisibilityError;
 use crate::output::{DepthValue, Framebuffer, NoDepth};
 use crate::raster::triangle::{RasterTarget, ShadeMode, WrittenCount};
 use crate::raster::Window;
@@ -120,7 +121,7 @@ pub(crate) enum Relation {
 /// Clears `frame` to the background, stores every object's front triangles and draws them by
 /// area subdivision (module doc): the 32-bit z-buffer's picture with no depth buffer. A
 /// core-lit Phong object is [`RenderError::PhongUnsupported`], a fast Gouraud object
-/// [`RenderError::FastGouraudInParts`].
+/// [`VisibilityError::FastGouraudInParts`].
 /// The windows visited are added to `windows`.
 pub fn render_warnock<T: StatsSink, const S: u32>(
     renderer: &SceneRenderer<'_, S>,
@@ -128,7 +129,7 @@ pub fn render_warnock<T: StatsSink, const S: u32>(
     scratch: &mut [PreparedVertex<S>],
     memory: WarnockMemory<'_, S>,
     stats: &mut T,
-) -> Result<(), RenderError> {
+) -> Result<(), VisibilityError> {
     let scene = renderer.scene();
     renderer.renderer().check_frame(frame)?;
     check_transparency(renderer.scene(), "Warnock's subdivision", Draws::Neither)?;
@@ -145,7 +146,7 @@ pub fn render_warnock<T: StatsSink, const S: u32>(
         .iter()
         .position(|o| o.shade == ShadeMode::GouraudFast);
     if let Some(object) = fast {
-        return Err(RenderError::FastGouraudInParts { object });
+        return Err(VisibilityError::FastGouraudInParts { object });
     }
     let capacity = triangles.len().min(candidates.len());
     let n = collect(renderer, scratch, &mut triangles[..capacity], counts)?;
@@ -189,7 +190,7 @@ enum Verdict {
 
 impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
     /// Visits windows depth first from the whole frame.
-    fn run(&mut self) -> Result<(), RenderError> {
+    fn run(&mut self) -> Result<(), VisibilityError> {
         let stack_capacity = self.windows.len();
         let full = self.target.buffers();
         if full.is_empty() {
@@ -223,7 +224,7 @@ impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
                     if level + 1 >= MAX_LEVELS {
                         // A window of at most 2^16 pixels a side is one pixel by then, and a
                         // one-pixel window is always simple (module doc): not reached.
-                        return Err(RenderError::SubdivisionStackFull {
+                        return Err(VisibilityError::SubdivisionStackFull {
                             capacity: stack_capacity,
                         });
                     }
@@ -247,12 +248,17 @@ impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
     }
 
     /// Pushes a window on the stack, or says the stack is full.
-    fn push(&mut self, top: &mut usize, window: Window, level: usize) -> Result<(), RenderError> {
+    fn push(
+        &mut self,
+        top: &mut usize,
+        window: Window,
+        level: usize,
+    ) -> Result<(), VisibilityError> {
         let capacity = self.windows.len();
         let slot = self
             .windows
             .get_mut(*top)
-            .ok_or(RenderError::SubdivisionStackFull { capacity })?;
+            .ok_or(VisibilityError::SubdivisionStackFull { capacity })?;
         *slot = Area {
             window,
             level: level as u8,
@@ -265,12 +271,12 @@ impl<C: WrittenCount, const S: u32> Warnock<'_, '_, '_, C, S> {
 
     /// Writes the window's candidates (its parent's that are not disjoint from it, in stored
     /// order, flagged [`SURROUNDS`] when they surround it) as level `level`'s list.
-    fn filter(&mut self, window: Window, level: usize) -> Result<(), RenderError> {
+    fn filter(&mut self, window: Window, level: usize) -> Result<(), VisibilityError> {
         let looker = Looker::<S>::new(window);
         let start = self.starts[level];
         let mut end = start;
         let capacity = self.lists.len();
-        let full = RenderError::SubdivisionCandidatesFull { capacity };
+        let full = VisibilityError::SubdivisionCandidatesFull { capacity };
         let parent = if level == 0 {
             0..0
         } else {

@@ -27,7 +27,6 @@ pub mod coarse {
 }
 
 use zscan::prelude::*;
-use zscan::render::RenderError;
 use zscan::visibility::{Plan, PlanError};
 
 /// The bunny lit by the scene's lights with `material`, Gouraud shaded, its normals from flash.
@@ -55,7 +54,7 @@ pub fn plan_bunnies(
 }
 
 /// Draws `plan` of `scene` from `memory`, each finished band handed to `flush`.
-pub fn frame<E: From<RenderError>>(
+pub fn frame<E: From<VisibilityError>>(
     scene: &Scene<'_>,
     plan: &Plan,
     order: &[u16],
@@ -63,6 +62,6 @@ pub fn frame<E: From<RenderError>>(
     stats: &mut RenderStats,
     flush: impl FnMut(&mut Framebuffer<'_>) -> Result<(), E>,
 ) -> Result<(), E> {
-    let renderer = Renderer::for_scene(scene)?;
+    let renderer = Renderer::for_scene(scene).map_err(VisibilityError::from)?;
     draw_plan(&renderer, plan, order, memory, stats, flush)
 }

@@ -40,7 +40,7 @@ pub fn run(args: FailuresArgs) -> Result<(), CliError> {
     if args.textures {
         return textures(&args.out_dir, scale);
     }
-    let cases = failures().map_err(|e| crate::cli::render::render_error_words(&e))?;
+    let cases = failures().map_err(|e| crate::cli::render::visibility_error_words(&e))?;
     std::fs::create_dir_all(&args.out_dir)
         .map_err(|e| format!("{}: {e}", args.out_dir.display()))?;
     crate::outln!("| picture | method and scene | wrong pixels |")?;

@@ -123,7 +123,7 @@ use zscan::texture::{shade_table, ShadeTable, Texture, TextureMode, Texturing};
 
 use super::CliError;
 use crate::core_render::coord;
-use zscan::visibility::Visibility;
+use zscan::visibility::{Visibility, VisibilityError};
 
 /// Arguments of `zscan render`.
 #[derive(clap::Args, Debug)]
@@ -2098,7 +2098,7 @@ impl LoadedScene {
         };
         let n = self.objects.len();
         let words = e.words();
-        if let FrameError::Render(zscan::render::RenderError::TooManyObjects) = e {
+        if let FrameError::Method(VisibilityError::TooManyObjects { .. }) = e {
             return Err(format!(
                 "render: {words} (the scene has {n}; --visibility {visibility} stores \
                  triangles, which name their object in one byte)"
@@ -2151,8 +2151,10 @@ impl LoadedScene {
         if visibility == Visibility::ReversePainter {
             let (pixels, stats) =
                 crate::core_render::reverse_picture(&renderer, (w, h)).map_err(|e| match e {
-                    zscan::visibility::ReverseError::Render(e) => FrameError::Render(e),
-                    refused => FrameError::Setup(refused.to_string()),
+                    refused @ VisibilityError::ReverseRefused(_) => {
+                        FrameError::Setup(refused.to_string())
+                    }
+                    e => FrameError::from(e),
                 })?;
             let depth = vec![D::FAR; w as usize * h as usize];
             return Ok(Frame {
@@ -2171,7 +2173,7 @@ impl LoadedScene {
                 Some(PAINTER_SPLITS),
                 band,
             )
-            .map_err(FrameError::Render)?;
+            .map_err(FrameError::from)?;
             let bands = if visibility == Visibility::ScanLine {
                 band_count(h, band)
             } else {
@@ -2358,6 +2360,19 @@ enum FrameError {
     Setup(String),
     /// The core's error.
     Render(zscan::render::RenderError),
+    /// A hidden-surface method's own refusal (its store, budget or stacks, an object it does
+    /// not draw in parts).
+    Method(VisibilityError),
+}
+
+impl From<VisibilityError> for FrameError {
+    /// The pipeline's error a method passed on is [`FrameError::Render`].
+    fn from(e: VisibilityError) -> Self {
+        match e {
+            VisibilityError::Render(e) => FrameError::Render(e),
+            e => FrameError::Method(e),
+        }
+    }
 }
 
 impl FrameError {
@@ -2365,6 +2380,7 @@ impl FrameError {
         match self {
             FrameError::Setup(s) => s.clone(),
             FrameError::Render(e) => render_error_words(e),
+            FrameError::Method(e) => e.to_string(),
         }
     }
 }
@@ -2375,6 +2391,15 @@ impl FrameError {
 /// picture of no row has no band.
 fn band_count(h: u16, band_rows: u16) -> u32 {
     h.div_ceil(band_rows.clamp(1, h.max(1))) as u32
+}
+
+/// Words for a hidden-surface method's [`VisibilityError`]: the pipeline's as
+/// [`render_error_words`], the method's own as the core prints them.
+pub fn visibility_error_words(e: &VisibilityError) -> String {
+    match e {
+        VisibilityError::Render(e) => render_error_words(e),
+        other => other.to_string(),
+    }
 }
 
 /// Words for a core [`RenderError`](zscan::render::RenderError), naming the limit that was

@@ -47,7 +47,7 @@ pub fn points(count: Option<Counter<'_>>) -> Result<Vec<Point>, CliError> {
     for trap in Trap::ALL {
         for method in Method::ALL {
             let (picture, reference) =
-                against_z32(trap, method).map_err(|e| super::render::render_error_words(&e))?;
+                against_z32(trap, method).map_err(|e| super::render::visibility_error_words(&e))?;
             let wrong = picture
                 .iter()
                 .zip(&reference)
@@ -102,7 +102,7 @@ pub fn run_one(tag: &str) -> Result<(), CliError> {
     let (trap, method) = found.ok_or_else(|| format!("no scene and method {tag:?}"))?;
     let picture = trap
         .with(|r| method.draw(std::hint::black_box(r)))
-        .map_err(|e| super::render::render_error_words(&e))?;
+        .map_err(|e| super::render::visibility_error_words(&e))?;
     crate::outln!("{tag}: {} pixels", picture.len())?;
     Ok(())
 }

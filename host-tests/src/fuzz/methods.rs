@@ -23,8 +23,8 @@ use embedded_graphics::primitives::Rectangle;
 use zscan::output::{DepthValue, Framebuffer, Lut};
 use zscan::raster::triangle::ShadeMode;
 use zscan::render::{
-    BandScratch, BandSink, DoubleBands, PolygonRows, PreparedVertex, RenderError, RenderStats,
-    Renderer, SceneRenderer,
+    BandScratch, BandSink, DoubleBands, PolygonRows, PreparedVertex, RenderStats, Renderer,
+    SceneRenderer,
 };
 use zscan::scene::Object;
 use zscan::visibility::{
@@ -311,7 +311,7 @@ fn scan_lines<D: DepthValue>(
                     _ => outside = true,
                 }
             }
-            Ok::<(), RenderError>(())
+            Ok::<(), zscan::visibility::VisibilityError>(())
         },
     )
     .map_err(|e| e.to_string())?;

@@ -14,7 +14,7 @@
 
 use zscan::output::Framebuffer;
 use zscan::render::{
-    CompactVertex, PolygonRows, PolygonTop, PreparedVertex, RenderError, RenderStats, Renderer,
+    CompactVertex, PolygonRows, PolygonTop, PreparedVertex, RenderStats, Renderer,
 };
 use zscan::visibility::{
     draw_plan, plan, plan_frame, DepthWidth, MeshFacts, PlanMemory, PlanSizes, PlannedFrame,
@@ -210,7 +210,7 @@ pub(super) fn run(seed: u64) -> Result<Outcome, String> {
                     _ => outside = true,
                 }
             }
-            Ok::<(), RenderError>(())
+            Ok::<(), zscan::visibility::VisibilityError>(())
         },
     );
     if outside {
