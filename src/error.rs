@@ -1,6 +1,6 @@
 //! The crate's error vocabulary.
 //!
-//! Every stage reports what went wrong with an error enum of its own ([`TargetError`],
+//! Every stage reports what went wrong with an error enum of its own ([`BufferError`],
 //! [`MeshError`], [`RenderError`], …). Each implements [`Display`](core::fmt::Display) with a
 //! message that names what failed and, where there is one, the limit that was exceeded, and
 //! [`core::error::Error`], so it can be printed, logged or boxed as it is.
@@ -13,7 +13,7 @@
 //! prefix, and [`source`](core::error::Error::source) returns `None`.
 //!
 //! Most messages live here; the enums whose files already printed themselves
-//! ([`LutError`], [`TargetError`], [`FillError`], [`CircleError`], [`LineError`],
+//! ([`LutError`], [`BufferError`], [`FillError`], [`CircleError`], [`LineError`],
 //! [`ShadowError`], [`RenderError`], [`VisibilityError`]) keep their `Display` beside their
 //! definition.
 //!
@@ -28,7 +28,7 @@ use crate::geometry::camera::CameraError;
 use crate::geometry::matrix::MatrixError;
 use crate::geometry::mesh::MeshError;
 use crate::lighting::{LightingError, MAX_LIGHTS};
-use crate::output::{LutError, TargetError};
+use crate::output::{BufferError, LutError};
 use crate::project::ProjectError;
 use crate::raster::circle::CircleError;
 use crate::raster::line::LineError;
@@ -281,7 +281,7 @@ macro_rules! stage_errors {
         ///     Ok(())
         /// }
         /// let e = too_small().unwrap_err();
-        /// assert!(matches!(e, zscan::Error::Target(_)));
+        /// assert!(matches!(e, zscan::Error::Buffer(_)));
         /// assert_eq!(e.to_string(), "buffer holds 10 elements but 16 are needed");
         /// ```
         #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -317,8 +317,8 @@ macro_rules! stage_errors {
 stage_errors!(
     /// A colour look-up table could not be built.
     Lut(LutError),
-    /// A buffer could not be wrapped as a render target.
-    Target(TargetError),
+    /// A caller buffer could not be wrapped as a framebuffer, depth buffer or mask.
+    Buffer(BufferError),
     /// A point could not be projected.
     Project(ProjectError),
     /// A mesh or a generator's output is invalid.
@@ -425,17 +425,17 @@ mod tests {
     #[test]
     fn target_error_names_sizes() {
         let t = messages(&[
-            TargetError::ZeroSize,
-            TargetError::StrideTooSmall {
+            BufferError::ZeroSize,
+            BufferError::StrideTooSmall {
                 stride: 3,
                 width: 4,
             },
-            TargetError::BufferTooSmall {
+            BufferError::BufferTooSmall {
                 needed: 16,
                 len: 10,
             },
-            TargetError::SizeMismatch,
-            TargetError::NotWholePages { top: 4, height: 12 },
+            BufferError::SizeMismatch,
+            BufferError::NotWholePages { top: 4, height: 12 },
         ]);
         assert!(t[0].contains("at least 1"), "{}", t[0]);
         assert!(

@@ -18,7 +18,7 @@
 //! same pictures). The cost is three `min`s per triangle (a `min` per pixel, measured first,
 //! cost the standard frames 10–15 %).
 
-use super::{check_layout, TargetError};
+use super::{check_layout, BufferError};
 
 /// An unsigned depth sample width (`u16` or `u32`).
 pub trait DepthValue: Copy + Ord + core::fmt::Debug + 'static {
@@ -86,7 +86,7 @@ impl DepthValue for u32 {
 /// let mut samples = [NoDepth; 320 * 240]; // zero bytes
 /// assert_eq!(core::mem::size_of_val(&samples), 0);
 /// let depth = DepthBuffer::new(&mut samples, 320, 240)?;
-/// # Ok::<(), zscan::output::TargetError>(())
+/// # Ok::<(), zscan::output::BufferError>(())
 /// ```
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub struct NoDepth;
@@ -117,7 +117,7 @@ impl DepthValue for NoDepth {
 /// depth.clear(); // everything far
 /// assert_eq!(depth.get(7, 3), Some(u16::FAR));
 /// assert_eq!(depth.get(8, 0), None);
-/// # Ok::<(), zscan::output::TargetError>(())
+/// # Ok::<(), zscan::output::BufferError>(())
 /// ```
 #[derive(Debug)]
 pub struct DepthBuffer<'a, D: DepthValue> {
@@ -131,7 +131,7 @@ pub struct DepthBuffer<'a, D: DepthValue> {
 
 impl<'a, D: DepthValue> DepthBuffer<'a, D> {
     /// Wraps `samples` as a `width × height` depth buffer (rows packed).
-    pub fn new(samples: &'a mut [D], width: u16, height: u16) -> Result<Self, TargetError> {
+    pub fn new(samples: &'a mut [D], width: u16, height: u16) -> Result<Self, BufferError> {
         check_layout(samples.len(), width, height, width as usize)?;
         Ok(DepthBuffer {
             samples,
@@ -148,7 +148,7 @@ impl<'a, D: DepthValue> DepthBuffer<'a, D> {
         width: u16,
         height: u16,
         top: u16,
-    ) -> Result<Self, TargetError> {
+    ) -> Result<Self, BufferError> {
         let mut d = Self::new(samples, width, height)?;
         d.top = top as i32;
         d.band = true;

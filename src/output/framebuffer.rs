@@ -7,7 +7,7 @@
 //! A framebuffer may be a *band*: `height` rows starting at absolute row `top` of a taller
 //! picture. All coordinates taken and returned here are absolute picture coordinates.
 
-use super::{check_layout, TargetError, Window};
+use super::{check_layout, BufferError, Window};
 
 /// An 8-bit indexed framebuffer (possibly a band of a taller picture).
 ///
@@ -27,7 +27,7 @@ use super::{check_layout, TargetError, Window};
 /// band.set_pixel(0, 17, 9);
 /// assert_eq!(band.pixel(0, 17), Some(9));
 /// assert_eq!(band.pixel(0, 1), None);
-/// # Ok::<(), zscan::output::TargetError>(())
+/// # Ok::<(), zscan::output::BufferError>(())
 /// ```
 #[derive(Debug)]
 pub struct Framebuffer<'a> {
@@ -43,10 +43,10 @@ pub struct Framebuffer<'a> {
 impl<'a> Framebuffer<'a> {
     /// Wraps `pixels` as a `width × height` frame with rows packed (`stride == width`).
     ///
-    /// Errors: [`TargetError::ZeroSize`] for a zero dimension, [`TargetError::BufferTooSmall`]
+    /// Errors: [`BufferError::ZeroSize`] for a zero dimension, [`BufferError::BufferTooSmall`]
     /// when `pixels` is shorter than `width * height`. A longer slice is accepted (the rest is
     /// left untouched).
-    pub fn new(pixels: &'a mut [u8], width: u16, height: u16) -> Result<Self, TargetError> {
+    pub fn new(pixels: &'a mut [u8], width: u16, height: u16) -> Result<Self, BufferError> {
         Self::with_stride(pixels, width, height, width as usize)
     }
 
@@ -56,7 +56,7 @@ impl<'a> Framebuffer<'a> {
         width: u16,
         height: u16,
         stride: usize,
-    ) -> Result<Self, TargetError> {
+    ) -> Result<Self, BufferError> {
         check_layout(pixels.len(), width, height, stride)?;
         Ok(Framebuffer {
             pixels,
@@ -74,7 +74,7 @@ impl<'a> Framebuffer<'a> {
         width: u16,
         height: u16,
         top: u16,
-    ) -> Result<Self, TargetError> {
+    ) -> Result<Self, BufferError> {
         let mut fb = Self::new(pixels, width, height)?;
         fb.top = top as i32;
         fb.band = true;

@@ -10,10 +10,10 @@
 //! ([`mask_words_needed`]): pixel `(x, y)` of a `width × height` mask whose first row is `top`
 //! is bit `i mod 32` (least significant first) of word `⌊i / 32⌋`, `i = (y − top) · width + x`,
 //! so a span's bits are consecutive. `width · height < 2^32`, so every index fits `usize` on
-//! 32-bit targets; a shorter buffer is refused ([`TargetError::BufferTooSmall`], naming the
+//! 32-bit targets; a shorter buffer is refused ([`BufferError::BufferTooSmall`], naming the
 //! words given and needed), never cropped.
 
-use super::{Framebuffer, TargetError};
+use super::{BufferError, Framebuffer};
 
 /// The `u32` words a `width × height` mask needs: `⌈width · height / 32⌉` (a 320 × 240 frame:
 /// 2,400 words, 9,600 bytes; a 16-bit depth buffer of the same frame is 153,600 bytes).
@@ -32,7 +32,7 @@ pub const fn mask_words_needed(width: u16, height: u16) -> usize {
 /// mask.clear();
 /// assert_eq!(mask.painted(39, 29), Some(false));
 /// assert_eq!(mask.painted(40, 0), None);
-/// # Ok::<(), zscan::output::TargetError>(())
+/// # Ok::<(), zscan::output::BufferError>(())
 /// ```
 #[derive(Debug)]
 pub struct PaintedMask<'a> {
@@ -44,8 +44,8 @@ pub struct PaintedMask<'a> {
 
 impl<'a> PaintedMask<'a> {
     /// Wraps `words` as the mask of a `width × height` frame; fewer than
-    /// [`mask_words_needed`] words is [`TargetError::BufferTooSmall`] (`needed`, `len`: words).
-    pub fn new(words: &'a mut [u32], width: u16, height: u16) -> Result<Self, TargetError> {
+    /// [`mask_words_needed`] words is [`BufferError::BufferTooSmall`] (`needed`, `len`: words).
+    pub fn new(words: &'a mut [u32], width: u16, height: u16) -> Result<Self, BufferError> {
         Self::band(words, width, height, 0)
     }
 
@@ -55,13 +55,13 @@ impl<'a> PaintedMask<'a> {
         width: u16,
         height: u16,
         top: u16,
-    ) -> Result<Self, TargetError> {
+    ) -> Result<Self, BufferError> {
         if width == 0 || height == 0 {
-            return Err(TargetError::ZeroSize);
+            return Err(BufferError::ZeroSize);
         }
         let needed = mask_words_needed(width, height);
         if words.len() < needed {
-            return Err(TargetError::BufferTooSmall {
+            return Err(BufferError::BufferTooSmall {
                 needed,
                 len: words.len(),
             });
@@ -75,8 +75,8 @@ impl<'a> PaintedMask<'a> {
     }
 
     /// The mask of `frame`'s rows (its width and height, its first row) over `words`.
-    pub fn for_frame(words: &'a mut [u32], frame: &Framebuffer<'_>) -> Result<Self, TargetError> {
-        let top = u16::try_from(frame.top()).map_err(|_| TargetError::SizeMismatch)?;
+    pub fn for_frame(words: &'a mut [u32], frame: &Framebuffer<'_>) -> Result<Self, BufferError> {
+        let top = u16::try_from(frame.top()).map_err(|_| BufferError::SizeMismatch)?;
         Self::band(words, frame.width(), frame.height(), top)
     }
 

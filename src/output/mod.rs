@@ -35,9 +35,9 @@ pub use pages::{pack_pages, page_bytes};
 pub use palette_index::PaletteIndex;
 pub use window::Window;
 
-/// Why a buffer could not be wrapped as a render target.
+/// Why a caller buffer could not be wrapped as a framebuffer, depth buffer or mask.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TargetError {
+pub enum BufferError {
     /// Width or height is zero.
     ZeroSize,
     /// The stride is smaller than the width.
@@ -66,18 +66,18 @@ pub enum TargetError {
     },
 }
 
-impl core::fmt::Display for TargetError {
+impl core::fmt::Display for BufferError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            TargetError::ZeroSize => write!(f, "width and height must be at least 1"),
-            TargetError::StrideTooSmall { stride, width } => {
+            BufferError::ZeroSize => write!(f, "width and height must be at least 1"),
+            BufferError::StrideTooSmall { stride, width } => {
                 write!(f, "stride {stride} is smaller than the width {width}")
             }
-            TargetError::BufferTooSmall { needed, len } => {
+            BufferError::BufferTooSmall { needed, len } => {
                 write!(f, "buffer holds {len} elements but {needed} are needed")
             }
-            TargetError::SizeMismatch => write!(f, "depth buffer and framebuffer differ in size"),
-            TargetError::NotWholePages { top, height } => write!(
+            BufferError::SizeMismatch => write!(f, "depth buffer and framebuffer differ in size"),
+            BufferError::NotWholePages { top, height } => write!(
                 f,
                 "pages are 8 rows: a buffer packed into pages starts on a multiple of 8 rows and \
                  holds whole pages, this one holds {height} rows from row {top}"
@@ -86,7 +86,7 @@ impl core::fmt::Display for TargetError {
     }
 }
 
-impl core::error::Error for TargetError {}
+impl core::error::Error for BufferError {}
 
 /// Bytes the buffer clears ([`fill_u8`], [`fill_u16`], [`fill_u32`]) write per loop iteration.
 pub(crate) const FILL_CHUNK_BYTES: usize = 128;
@@ -168,23 +168,23 @@ pub(crate) fn check_layout(
     width: u16,
     height: u16,
     stride: usize,
-) -> Result<usize, TargetError> {
+) -> Result<usize, BufferError> {
     if width == 0 || height == 0 {
-        return Err(TargetError::ZeroSize);
+        return Err(BufferError::ZeroSize);
     }
     if stride < width as usize {
-        return Err(TargetError::StrideTooSmall { stride, width });
+        return Err(BufferError::StrideTooSmall { stride, width });
     }
     // (height - 1) * stride + width, computed with checked arithmetic: a huge stride must not wrap.
     let needed = (height as usize - 1)
         .checked_mul(stride)
         .and_then(|n| n.checked_add(width as usize))
-        .ok_or(TargetError::BufferTooSmall {
+        .ok_or(BufferError::BufferTooSmall {
             needed: usize::MAX,
             len,
         })?;
     if len < needed {
-        return Err(TargetError::BufferTooSmall { needed, len });
+        return Err(BufferError::BufferTooSmall { needed, len });
     }
     Ok(needed)
 }

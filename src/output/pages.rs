@@ -16,15 +16,15 @@
 //! copy.
 //!
 //! Numeric contract and layout: a page is 8 rows. For a buffer holding rows `top..top +
-//! height`, `top` and `height` are multiples of 8 ([`TargetError::NotWholePages`] otherwise:
+//! height`, `top` and `height` are multiples of 8 ([`BufferError::NotWholePages`] otherwise:
 //! the controller cannot write part of a page, and a packed page with invented rows would send
 //! a wrong picture); the output holds [`page_bytes`]`(width, height)` bytes (fewer is
-//! [`TargetError::BufferTooSmall`], naming both sizes; nothing is written then). Pixel
+//! [`BufferError::BufferTooSmall`], naming both sizes; nothing is written then). Pixel
 //! `(x, y)` is bit `(y − top) mod 8` (least significant bit the top row) of byte
 //! `⌊(y − top) / 8⌋ · width + x`; a set bit is a pixel whose index the table maps to
 //! `BinaryColor::On`. Sizes are `u16`, so every index fits `usize`.
 
-use super::{Framebuffer, Lut, TargetError};
+use super::{BufferError, Framebuffer, Lut};
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
 /// Rows in a page.
@@ -57,23 +57,23 @@ pub const fn page_bytes(width: u16, height: u16) -> usize {
 /// # Ok::<(), zscan::Error>(())
 /// ```
 ///
-/// Errors: [`TargetError::NotWholePages`] when the frame's first row or height is not a
-/// multiple of 8, [`TargetError::BufferTooSmall`] (bytes needed and given) when `pages` is
+/// Errors: [`BufferError::NotWholePages`] when the frame's first row or height is not a
+/// multiple of 8, [`BufferError::BufferTooSmall`] (bytes needed and given) when `pages` is
 /// shorter than [`page_bytes`].
 pub fn pack_pages(
     frame: &Framebuffer<'_>,
     lut: &Lut<BinaryColor>,
     pages: &mut [u8],
-) -> Result<usize, TargetError> {
+) -> Result<usize, BufferError> {
     let (width, height, top) = (frame.width(), frame.height(), frame.top());
     if top % PAGE_ROWS as i32 != 0 || height % PAGE_ROWS != 0 {
-        return Err(TargetError::NotWholePages { top, height });
+        return Err(BufferError::NotWholePages { top, height });
     }
     let needed = page_bytes(width, height);
     let len = pages.len();
     let out = pages
         .get_mut(..needed)
-        .ok_or(TargetError::BufferTooSmall { needed, len })?;
+        .ok_or(BufferError::BufferTooSmall { needed, len })?;
     // One page (8 rows) after the other: its bytes cleared, then each row's bits or-ed in.
     let mut rows = frame.rows();
     for page in out.chunks_exact_mut(width as usize) {
@@ -177,7 +177,7 @@ mod tests {
         let mut out = [7u8; 255];
         assert_eq!(
             pack_pages(&frame, &lut, &mut out),
-            Err(TargetError::BufferTooSmall {
+            Err(BufferError::BufferTooSmall {
                 needed: 256,
                 len: 255
             })
@@ -198,7 +198,7 @@ mod tests {
             let frame = Framebuffer::band(&mut pixels, 16, height, top).unwrap();
             assert_eq!(
                 pack_pages(&frame, &lut, &mut out),
-                Err(TargetError::NotWholePages {
+                Err(BufferError::NotWholePages {
                     top: top as i32,
                     height
                 }),

@@ -36,7 +36,7 @@
 use super::facts::MeshFacts;
 use super::plan::{back_faces_allowed, Placing};
 use super::VisibilityError;
-use crate::output::{Framebuffer, PaintedMask, TargetError};
+use crate::output::{BufferError, Framebuffer, PaintedMask};
 use crate::render::{BandPart, PreparedVertex, RenderError, SceneRenderer, StatsSink};
 
 /// Clears `frame` to the scene's background and draws the renderer's scene front to back
@@ -109,7 +109,7 @@ pub(super) fn draw_front_to_back<const S: u32>(
     }
     let given = mask.len();
     let mut mask = PaintedMask::for_frame(mask, frame).map_err(|e| match e {
-        TargetError::BufferTooSmall { needed, len } => RenderError::BandMemoryTooSmall {
+        BufferError::BufferTooSmall { needed, len } => RenderError::BandMemoryTooSmall {
             part: BandPart::MaskWords,
             given: len,
             needed,

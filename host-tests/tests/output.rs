@@ -1,4 +1,4 @@
-//! The target module: framebuffer layout and errors, bands, flushing to a display through the
+//! The output module: framebuffer layout and errors, bands, flushing to a display through the
 //! LUT, the `DrawTarget` implementation of `Framebuffer`, and the palette builders.
 
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
@@ -6,29 +6,29 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{Line, PrimitiveStyle, Rectangle};
 use embedded_graphics::text::{Baseline, Text};
-use zscan::output::{flush, shaded_index, Framebuffer, Lut, LutError, PaletteIndex, TargetError};
+use zscan::output::{flush, shaded_index, BufferError, Framebuffer, Lut, LutError, PaletteIndex};
 
 #[test]
 fn framebuffer_rejects_bad_layouts_without_panicking() {
     let mut buf = vec![0u8; 100];
     assert_eq!(
         Framebuffer::new(&mut buf, 0, 10).unwrap_err(),
-        TargetError::ZeroSize
+        BufferError::ZeroSize
     );
     assert_eq!(
         Framebuffer::new(&mut buf, 10, 0).unwrap_err(),
-        TargetError::ZeroSize
+        BufferError::ZeroSize
     );
     assert_eq!(
         Framebuffer::new(&mut buf, 11, 10).unwrap_err(),
-        TargetError::BufferTooSmall {
+        BufferError::BufferTooSmall {
             needed: 110,
             len: 100
         }
     );
     assert_eq!(
         Framebuffer::with_stride(&mut buf, 10, 10, 9).unwrap_err(),
-        TargetError::StrideTooSmall {
+        BufferError::StrideTooSmall {
             stride: 9,
             width: 10
         }
@@ -40,7 +40,7 @@ fn framebuffer_rejects_bad_layouts_without_panicking() {
     assert!(Framebuffer::with_stride(&mut buf, 1, 3, usize::MAX).is_err());
     assert_eq!(
         Framebuffer::band(&mut buf, 50, 3, 7).unwrap_err(),
-        TargetError::BufferTooSmall {
+        BufferError::BufferTooSmall {
             needed: 150,
             len: 100
         }
