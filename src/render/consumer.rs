@@ -96,8 +96,12 @@ impl<D: DepthValue, C: WrittenCount, T: SpanTarget<Depth = D>, const S: u32> Tri
         let v = c.map(|c| c.screen);
         let values = c.map(|c| [c.depth, c.attrs[0].clamp(0, 255) as u32]);
         let (ramp, shade) = (self.object.ramp, self.object.shade);
-        if let Some(drawn) = transparent(self.target, v, values, self.object) {
-            return Ok(drawn);
+        // Without the feature no transparent object gets here (the entries refused it), and
+        // no call is made: an empty call per triangle cost its arguments' stores.
+        if cfg!(feature = "transparency") {
+            if let Some(drawn) = transparent(self.target, v, values, self.object) {
+                return Ok(drawn);
+            }
         }
         Ok(if self.object.dither {
             draw_in_range(self.target, v, values, shade, |x, y| Bayer4::at(ramp, x, y))

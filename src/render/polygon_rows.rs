@@ -151,32 +151,52 @@ impl BandTable for [PolygonRows] {
             r.packed >= below
                 && ((r.top() as i32) < c1 || r.top() == PolygonRows::CLIPPED_FROM_ROW_0)
         };
-        let mut visit = |pi: usize, r: PolygonRows| match (r.meets(band), r.is_clipped()) {
-            (false, _) => Ok(()),
-            (true, true) => one(pi, Reach::Clip),
-            (true, false) => one(pi, Reach::Meets),
-        };
-        // Two entries per step: most pairs are passed over with two tests.
-        let pairs = table.chunks_exact(2);
-        let odd = pairs.remainder();
-        for (j, pair) in pairs.enumerate() {
-            if let [r0, r1] = *pair {
-                if maybe(&r0) || maybe(&r1) {
-                    if maybe(&r0) {
-                        visit(2 * j, r0)?;
-                    }
-                    if maybe(&r1) {
-                        visit(2 * j + 1, r1)?;
-                    }
-                }
+        // One call site for every candidate, so that `one` (the band's drawing) inlines into
+        // the scan once: with a call site for each entry of a pair and one for the odd entry,
+        // it stayed out of line (Cortex-M4 frame_bunny_bands16 3,019,639 instructions with one
+        // call site kept out of line, 3,008,720 inline).
+        let mut pi = 0;
+        loop {
+            pi = next_candidate(table, pi, &maybe);
+            let Some(&r) = table.get(pi) else {
+                return Ok(());
+            };
+            if r.meets(band) {
+                let reach = match r.is_clipped() {
+                    true => Reach::Clip,
+                    false => Reach::Meets,
+                };
+                one(pi, reach)?;
+            }
+            pi += 1;
+        }
+    }
+}
+
+/// The index of the first entry of `table` from `from` on that `maybe` accepts, or the
+/// table's length. Two entries a step: most pairs are passed over with two tests.
+#[inline(always)]
+fn next_candidate(
+    table: &[PolygonRows],
+    from: usize,
+    maybe: &impl Fn(&PolygonRows) -> bool,
+) -> usize {
+    let Some(rest) = table.get(from..) else {
+        return table.len();
+    };
+    let mut at = from;
+    let mut pairs = rest.chunks_exact(2);
+    for pair in &mut pairs {
+        if let [r0, r1] = pair {
+            if maybe(r0) || maybe(r1) {
+                return if maybe(r0) { at } else { at + 1 };
             }
         }
-        if let [r] = *odd {
-            if maybe(&r) {
-                visit(table.len() - 1, r)?;
-            }
-        }
-        Ok(())
+        at += 2;
+    }
+    match pairs.remainder() {
+        [r] if !maybe(r) => at + 1,
+        _ => at,
     }
 }
 
@@ -191,6 +211,47 @@ mod tests {
         assert_eq!(PolygonRows::ZERO, PolygonRows::default());
         for band in [(0, 16), (16, 32), (224, 240), (0, 65_536)] {
             assert!(!PolygonRows::ZERO.meets(band), "{band:?}");
+        }
+    }
+
+    /// The scan sends exactly the entries that `reach` sends, in order, for tables of odd and
+    /// even lengths, clipped entries (from row 0 too) and bands on both sides of the rows.
+    #[test]
+    fn scan_sends_what_reach_decides() {
+        let entries = [
+            PolygonRows::rows(0, 5),
+            PolygonRows::NEVER,
+            PolygonRows::rows(10, 20),
+            PolygonRows::clipped(0, 7),
+            PolygonRows::clipped(15, 40),
+            PolygonRows::CLIP,
+            PolygonRows::rows(30, 31),
+            PolygonRows::rows(-5, 70_000),
+            PolygonRows::ZERO,
+        ];
+        for n in 0..=entries.len() {
+            let table = &entries[..n];
+            for band in [
+                (0, 16),
+                (16, 32),
+                (5, 10),
+                (30, 31),
+                (-16, 0),
+                (64, 80),
+                (0, 65_536),
+            ] {
+                let mut sent = heapless::Vec::<(usize, Reach), 16>::new();
+                table
+                    .scan(n, band, |pi, reach| {
+                        sent.push((pi, reach)).unwrap();
+                        Ok(())
+                    })
+                    .unwrap();
+                let expected: heapless::Vec<(usize, Reach), 16> = (0..n)
+                    .filter_map(|pi| table.reach(pi, band).map(|r| (pi, r)))
+                    .collect();
+                assert_eq!(sent, expected, "{n} entries, band {band:?}");
+            }
         }
     }
 }
