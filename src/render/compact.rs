@@ -50,8 +50,8 @@
 //! and its 32-bit depth unchanged, so the triangle writer gets the values the full frame's
 //! `PreparedVertex` holds. A table entry is the polygon's top row `⌈y_min / 2^S⌉` (clamped to
 //! the picture) shifted right by `g`, the smallest shift that brings the picture's last row
-//! to 253 or less (`g = 0`, exact rows, up to 254 rows); 254 marks a polygon taller than a
-//! band (its rows are read from its vertices in every band), 255 one never drawn (culled, or
+//! to 253 or less (`g = 0`, exact rows, up to 254 rows); 254 marks a polygon taller than two
+//! bands (its rows are read from its vertices in every band), 255 one never drawn (culled, or
 //! no row inside the picture). The frame's tallest other polygon spans `H` row groups, so a
 //! band whose rows are the groups `g0..=g1` draws exactly the entries within `g0 − H ..= g1`
 //! whose rows (from the vertices where the entry alone does not decide) meet it.
@@ -111,7 +111,7 @@ impl Default for PolygonTop {
 }
 
 impl PolygonTop {
-    /// Taller than a band: its rows are read from its vertices in every band.
+    /// Taller than two bands: its rows are read from its vertices in every band.
     const TALL: PolygonTop = PolygonTop(254);
     /// Never drawn: culled, or without a row inside the picture.
     const NEVER: PolygonTop = PolygonTop(255);
@@ -219,8 +219,10 @@ pub(super) fn vertex_lit(object: &Object<'_>) -> bool {
 }
 
 /// The band geometry of a compact frame: the picture's rows, the row-group shift, the
-/// height (in groups) from which a polygon is [`PolygonTop::TALL`], and the tallest other
-/// polygon's span in groups, `H`, found by the classification.
+/// height (in groups) from which a polygon is [`PolygonTop::TALL`] (twice a band's: a
+/// polygon up to two bands tall stays in the scan's window, whose test is then one
+/// comparison per entry when no polygon is taller), and the tallest other polygon's span in
+/// groups, `H`, found by the classification.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Rows {
     pub(super) height: i32,
@@ -242,7 +244,7 @@ impl Rows {
         Rows {
             height: height as i32,
             shift,
-            tall: (band_rows as i32 >> shift).max(1),
+            tall: (2 * (band_rows as i32 >> shift)).max(1),
             spread: 0,
             tall_seen: false,
         }
@@ -635,7 +637,7 @@ mod tests {
     }
 
     /// The row-group shift keeps every top row of the picture below the codes, and a polygon
-    /// taller than a band is marked tall.
+    /// taller than two bands is marked tall.
     #[test]
     fn row_groups_and_codes() {
         let r = Rows::new(240, 12);
@@ -651,8 +653,10 @@ mod tests {
         assert_eq!(r.entry(-3, 4), PolygonTop(0));
         assert_eq!(r.entry(100, 113), PolygonTop(100));
         assert_eq!(r.spread, 12);
-        assert_eq!(r.entry(100, 114), PolygonTop::TALL);
+        assert_eq!(r.entry(100, 125), PolygonTop(100));
+        assert_eq!(r.spread, 24);
+        assert_eq!(r.entry(100, 126), PolygonTop::TALL);
         assert_eq!(r.entry(239, 1000), PolygonTop(239));
-        assert_eq!(r.spread, 12);
+        assert_eq!(r.spread, 24);
     }
 }
