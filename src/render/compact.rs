@@ -38,12 +38,14 @@
 //! (`scripts/footprint.sh` draws it so in 32 KB of RAM, the stack included).
 //!
 //! # Cost
-//! Beside the full frame's work: each band scans the whole table (out of line, about five
-//! Cortex-M0 instructions per entry), and a polygon that crosses a band boundary is set up
-//! again by the writer in every band it reaches (rows outside the band are not walked). On
-//! the standard bunny in 22 bands of 11 rows (Cortex-M0): 540 of the 1,903 triangle set-ups
-//! are repeats, about 1.0 M instructions, and the scans about 0.5 M; the vertex stage and the
-//! culling run once, as in the full frame (`docs/BENCHMARKS.md`, "32 KB footprint").
+//! Beside the full frame's work: each band scans the whole table (out of line, about four and
+//! a half Cortex-M0 instructions per entry), and a polygon that crosses a band boundary is set
+//! up again by the writer in every band it reaches (rows outside the band are not walked). On
+//! the standard bunny in 24 bands of 10 rows (Cortex-M0, `scripts/m4-profile.sh --m0
+//! frame_bunny_compact`): 571 of the 1,931 triangle set-ups are repeats, about 1.1 M
+//! instructions (the writer and its divisions), the scans about 0.5 M and sending the
+//! candidates to the polygon stage about 0.25 M; the vertex stage and the culling run once, as
+//! in the full frame (`docs/BENCHMARKS.md`, "32 KB footprint").
 //!
 //! # Numeric contract
 //! A [`CompactVertex`] holds the projector's sub-pixel position as `i16` (checked per vertex)
@@ -520,7 +522,7 @@ impl BandTable for CompactTable<'_> {
         is_candidate::<true>(e, w.lo, w.width).then(|| self.reach_of(e, &w))
     }
 
-    /// The scan is the band's per-polygon cost: out of line, four entries a step, one
+    /// The scan is the band's per-polygon cost: out of line, eight entries a step, one
     /// subtraction and one comparison each; only candidates come back, and are drawn out of
     /// line (so that the scan keeps its registers).
     #[inline(always)]
@@ -566,8 +568,8 @@ fn is_candidate<const TALL: bool>(e: PolygonTop, lo: i32, width: u32) -> bool {
 }
 
 /// The index of the first entry of `table` from `from` on that is a candidate
-/// ([`is_candidate`]), or the table's length. Four entries a step, with no other value live
-/// than the bounds: on a Cortex-M0 about five instructions per entry.
+/// ([`is_candidate`]), or the table's length. Eight entries a step, with no other value live
+/// than the bounds: on a Cortex-M0 about four and a half instructions per entry.
 #[inline(never)]
 fn next_candidate<const TALL: bool>(
     table: &[PolygonTop],
@@ -577,12 +579,15 @@ fn next_candidate<const TALL: bool>(
 ) -> usize {
     let hit = |e: &PolygonTop| is_candidate::<TALL>(*e, lo, width);
     let mut at = from.min(table.len());
-    let mut steps = table[at..].chunks_exact(4);
-    for c in &mut steps {
+    for c in table[at..].chunks_exact(8) {
         if hit(&c[0]) || hit(&c[1]) || hit(&c[2]) || hit(&c[3]) {
             break;
         }
-        at += 4;
+        if hit(&c[4]) || hit(&c[5]) || hit(&c[6]) || hit(&c[7]) {
+            at += 4;
+            break;
+        }
+        at += 8;
     }
     // Within the step that hit, or the last entries.
     match table[at..].iter().position(hit) {
