@@ -38,20 +38,22 @@
 //! (`scripts/footprint.sh` draws it so in 32 KB of RAM, the stack included).
 //!
 //! # Cost
-//! Beside the full frame's work: each band scans the whole table (out of line, about five
-//! Cortex-M0 instructions per entry), and a polygon that crosses a band boundary is set up
-//! again by the writer in every band it reaches (rows outside the band are not walked). On
-//! the standard bunny in 22 bands of 11 rows (Cortex-M0): 540 of the 1,903 triangle set-ups
-//! are repeats, about 1.0 M instructions, and the scans about 0.5 M; the vertex stage and the
-//! culling run once, as in the full frame (`docs/BENCHMARKS.md`, "32 KB footprint").
+//! Beside the full frame's work: each band scans the whole table (out of line, about four and
+//! a half Cortex-M0 instructions per entry), and a polygon that crosses a band boundary is set
+//! up again by the writer in every band it reaches (rows outside the band are not walked). On
+//! the standard bunny in 24 bands of 10 rows (Cortex-M0, `scripts/m4-profile.sh --m0
+//! frame_bunny_compact`): 571 of the 1,931 triangle set-ups are repeats, about 1.1 M
+//! instructions (the writer and its divisions), the scans about 0.5 M and sending the
+//! candidates to the polygon stage about 0.25 M; the vertex stage and the culling run once, as
+//! in the full frame (`docs/BENCHMARKS.md`, "32 KB footprint").
 //!
 //! # Numeric contract
 //! A [`CompactVertex`] holds the projector's sub-pixel position as `i16` (checked per vertex)
 //! and its 32-bit depth unchanged, so the triangle writer gets the values the full frame's
 //! `PreparedVertex` holds. A table entry is the polygon's top row `⌈y_min / 2^S⌉` (clamped to
 //! the picture) shifted right by `g`, the smallest shift that brings the picture's last row
-//! to 253 or less (`g = 0`, exact rows, up to 254 rows); 254 marks a polygon taller than a
-//! band (its rows are read from its vertices in every band), 255 one never drawn (culled, or
+//! to 253 or less (`g = 0`, exact rows, up to 254 rows); 254 marks a polygon taller than two
+//! bands (its rows are read from its vertices in every band), 255 one never drawn (culled, or
 //! no row inside the picture). The frame's tallest other polygon spans `H` row groups, so a
 //! band whose rows are the groups `g0..=g1` draws exactly the entries within `g0 − H ..= g1`
 //! whose rows (from the vertices where the entry alone does not decide) meet it.
@@ -111,7 +113,7 @@ impl Default for PolygonTop {
 }
 
 impl PolygonTop {
-    /// Taller than a band: its rows are read from its vertices in every band.
+    /// Taller than two bands: its rows are read from its vertices in every band.
     const TALL: PolygonTop = PolygonTop(254);
     /// Never drawn: culled, or without a row inside the picture.
     const NEVER: PolygonTop = PolygonTop(255);
@@ -219,8 +221,10 @@ pub(super) fn vertex_lit(object: &Object<'_>) -> bool {
 }
 
 /// The band geometry of a compact frame: the picture's rows, the row-group shift, the
-/// height (in groups) from which a polygon is [`PolygonTop::TALL`], and the tallest other
-/// polygon's span in groups, `H`, found by the classification.
+/// height (in groups) from which a polygon is [`PolygonTop::TALL`] (twice a band's: a
+/// polygon up to two bands tall stays in the scan's window, whose test is then one
+/// comparison per entry when no polygon is taller), and the tallest other polygon's span in
+/// groups, `H`, found by the classification.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Rows {
     pub(super) height: i32,
@@ -242,7 +246,7 @@ impl Rows {
         Rows {
             height: height as i32,
             shift,
-            tall: (band_rows as i32 >> shift).max(1),
+            tall: (2 * (band_rows as i32 >> shift)).max(1),
             spread: 0,
             tall_seen: false,
         }
@@ -518,7 +522,7 @@ impl BandTable for CompactTable<'_> {
         is_candidate::<true>(e, w.lo, w.width).then(|| self.reach_of(e, &w))
     }
 
-    /// The scan is the band's per-polygon cost: out of line, four entries a step, one
+    /// The scan is the band's per-polygon cost: out of line, eight entries a step, one
     /// subtraction and one comparison each; only candidates come back, and are drawn out of
     /// line (so that the scan keeps its registers).
     #[inline(always)]
@@ -564,8 +568,8 @@ fn is_candidate<const TALL: bool>(e: PolygonTop, lo: i32, width: u32) -> bool {
 }
 
 /// The index of the first entry of `table` from `from` on that is a candidate
-/// ([`is_candidate`]), or the table's length. Four entries a step, with no other value live
-/// than the bounds: on a Cortex-M0 about five instructions per entry.
+/// ([`is_candidate`]), or the table's length. Eight entries a step, with no other value live
+/// than the bounds: on a Cortex-M0 about four and a half instructions per entry.
 #[inline(never)]
 fn next_candidate<const TALL: bool>(
     table: &[PolygonTop],
@@ -575,12 +579,15 @@ fn next_candidate<const TALL: bool>(
 ) -> usize {
     let hit = |e: &PolygonTop| is_candidate::<TALL>(*e, lo, width);
     let mut at = from.min(table.len());
-    let mut steps = table[at..].chunks_exact(4);
-    for c in &mut steps {
+    for c in table[at..].chunks_exact(8) {
         if hit(&c[0]) || hit(&c[1]) || hit(&c[2]) || hit(&c[3]) {
             break;
         }
-        at += 4;
+        if hit(&c[4]) || hit(&c[5]) || hit(&c[6]) || hit(&c[7]) {
+            at += 4;
+            break;
+        }
+        at += 8;
     }
     // Within the step that hit, or the last entries.
     match table[at..].iter().position(hit) {
@@ -635,7 +642,7 @@ mod tests {
     }
 
     /// The row-group shift keeps every top row of the picture below the codes, and a polygon
-    /// taller than a band is marked tall.
+    /// taller than two bands is marked tall.
     #[test]
     fn row_groups_and_codes() {
         let r = Rows::new(240, 12);
@@ -651,8 +658,10 @@ mod tests {
         assert_eq!(r.entry(-3, 4), PolygonTop(0));
         assert_eq!(r.entry(100, 113), PolygonTop(100));
         assert_eq!(r.spread, 12);
-        assert_eq!(r.entry(100, 114), PolygonTop::TALL);
+        assert_eq!(r.entry(100, 125), PolygonTop(100));
+        assert_eq!(r.spread, 24);
+        assert_eq!(r.entry(100, 126), PolygonTop::TALL);
         assert_eq!(r.entry(239, 1000), PolygonTop(239));
-        assert_eq!(r.spread, 12);
+        assert_eq!(r.spread, 24);
     }
 }
