@@ -55,7 +55,11 @@ pub const WIDE_REGISTERS: bool = cfg!(target_pointer_width = "64");
 /// `frame_sphere` +11 %, each row's divisions being library calls) nor on 64-bit hosts, whose
 /// general path is already 64-bit arithmetic (x86-64 `frame_sphere` +1.7 %,
 /// `frame_bunny_flat` +10.8 %). The pictures are the same either way (tested).
-pub const TINY_WRITER: bool = HARDWARE_DIVIDE && !WIDE_REGISTERS;
+pub const TINY_WRITER: bool = !WIDE_REGISTERS;
+
+/// Whether the tiny-triangle writer walks its edges from row to row by subtraction (one
+/// division per edge) rather than dividing on every row: where a division is a library call.
+pub const TINY_WALKS_EDGES: bool = !HARDWARE_DIVIDE;
 
 /// `v / 2^s` rounded to nearest (ties toward +∞); `s = 0` returns `v`, `s > 62` gives 0.
 /// Never overflows: the rounding bit is added after the shift.
