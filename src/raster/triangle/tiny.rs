@@ -10,7 +10,7 @@
 //! and each span is a call with a fresh register budget. Measured on the Cortex-M4 (QEMU,
 //! instructions): SCENES.md's bunny frame 2.57 M → 2.09 M, the sphere 1.33 M → 1.19 M,
 //! 16-row bands of the bunny 3.47 M → 3.02 M. It is used where that measured faster
-//! ([`TINY_WRITER`](crate::arith::TINY_WRITER)).
+//! ([`TINY_WRITER`](crate::arith::TINY_WRITER)): the 32-bit cores, with and without a divider.
 //!
 //! ## When it applies
 //! Exact Gouraud luminance, or flat luminance over a depth plane that is not constant (flat
@@ -26,6 +26,23 @@
 //! level plus the ramp's first entry) and store it; any other ramp, plain or dithered, maps
 //! the level (`0..=255`) at each pixel ([`draw_triangle_on`](super::draw::draw_triangle_on)
 //! sends flat triangles here only through a 256-level ramp).
+//!
+//! ## Without a hardware divider
+//! On the Cortex-M0 (a division is a library loop, about 45 instructions plus 12 per quotient
+//! bit) the same writer divides as little as the general path: every set-up division by `D`
+//! or `2D`, and the two span starts, go through the area's reciprocal
+//! ([`DivisorU32`], one division per triangle; the hardware's division elsewhere, the same
+//! instructions as before), and the edges are walked from row to row ([`EdgeWalk`]: one
+//! division per edge, at its first drawn row, then adds and carries;
+//! [`TINY_WALKS_EDGES`](crate::arith::TINY_WALKS_EDGES)). Flat triangles keep the general
+//! path there ([`TINY_FLAT`](crate::arith::TINY_FLAT)). Measured on the Cortex-M0 (QEMU,
+//! instructions): SCENES.md's bunny frame 7.05 M → 6.61 M, the sphere 2.83 M → 2.82 M, 16-row
+//! bands of the bunny 8.65 M → 8.07 M.
+//! Tried there and dropped: the span starts walked down the left edge with the crossing
+//! (the row's quotient-and-remainder step plus one pixel step per carry, a division only at
+//! the first covered row of a left edge): the spans lose their two divisions (bunny span
+//! calls 1.53 M → 0.93 M) but the walk's state spills the row loop: bunny 7.06 M inlined,
+//! 7.17 M with the row loop out of line, sphere 2.94 M.
 //!
 //! ## Where its instructions go, and what did not pay
 //! Cortex-M4 profile of SCENES.md's bunny frame (`scripts/m4-profile.sh frame_bunny`,
@@ -48,7 +65,8 @@
 //! the triangle fill's (TIPE 2010): rows `⌈y_top⌉ ≤ y < ⌈y_bottom⌉`, columns
 //! `⌈x_left⌉ ≤ x < ⌈x_right⌉` (left edges in, right edges out), each edge crossing
 //! `⌈x_e(y)⌉ = ⌊(x_e·DY + F·DY − 1) / (F·DY)⌋` by one unsigned division per row
-//! (TIPE's `Parcours` with its bias; the numerator `x_e·DY` is non-negative in local units).
+//! (TIPE's `Parcours` with its bias; the numerator `x_e·DY` is non-negative in local units), or
+//! walked from the first drawn row's quotient and remainder ([`EdgeWalk`]).
 //!
 //! ## Numeric contract
 //! - Depth (`u32` vertex values, the full range): the [`SmallPlane`](super::interpolants::SmallPlane)
@@ -104,10 +122,10 @@ impl RowCrossings {
 
 /// An edge's crossing stepped from row to row without a division (TIPE's `Parcours` with the
 /// quotient found by subtraction): the numerator `n = den·x + k` with `0 ≤ k < den`; a row adds
-/// `F·DX` to `k`, then whole `den`s move between `k` and `x`, one a turn. Over an edge's rows
-/// the turns number at most its width in pixels plus its rows (a turn moves `x` by one pixel,
-/// each row ends at most one turn short of... or past its quotient), so the walk never moves an
-/// edge past its last drawn row (one sub-pixel high, it may be 2^K units wide).
+/// `F·DX` to `k`, then whole `den`s move between `k` and `x`, one a turn (each turn moves the
+/// crossing one pixel). A row takes `|F·DX| / den + 1` turns at most, so over an edge's drawn
+/// rows the turns number at most its width in pixels plus its rows; the walk is never moved
+/// past an edge's last drawn row (an edge one sub-pixel high may be `2^K` units wide).
 ///
 /// Numeric contract: `den = F·DY < 2^20` and `|F·DX| < 2^20` (`S + K ≤ 19`), so `k + F·DX` is
 /// an `i32`; `x` wraps like [`RowCrossings::n`] (the crossings of drawn rows are
@@ -233,8 +251,7 @@ impl<const S: u32> TinyTriangle<S> {
         let d = DivisorU32::new(NonZeroU32::new(d)?);
         let two_d = d.doubled();
         let (z, z_step) = depth_terms::<S>(p[0], values.map(|a| a[0]), &d, (ey, ex), corner);
-        let (l, l_step) =
-            luminance_terms::<S>(p[0], values.map(|a| a[1] as i32), &two_d, (ey, ex));
+        let (l, l_step) = luminance_terms::<S>(p[0], values.map(|a| a[1] as i32), &two_d, (ey, ex));
         // Wrapping: only a box about 2^31 rows from the window (possible at S = 0), which draws
         // nothing either way, makes them wrap.
         let (top, bottom) = (window.y0.wrapping_sub(oy), window.y1.wrapping_sub(oy));
