@@ -41,8 +41,9 @@
 //! Tried there and dropped: the span starts walked down the left edge with the crossing
 //! (the row's quotient-and-remainder step plus one pixel step per carry, a division only at
 //! the first covered row of a left edge): the spans lose their two divisions (bunny span
-//! calls 1.53 M → 0.93 M) but the walk's state spills the row loop: bunny 7.06 M inlined,
-//! 7.17 M with the row loop out of line, sphere 2.94 M.
+//! calls 1.53 M → 0.93 M) but the walk's state spills the row loop: bunny 6.71 M → 7.06 M
+//! inlined, 7.17 M with the row loop out of line, sphere 2.89 M → 2.94 M (measured with flat
+//! triangles still in this writer).
 //!
 //! ## Where its instructions go, and what did not pay
 //! Cortex-M4 profile of SCENES.md's bunny frame (`scripts/m4-profile.sh frame_bunny`,
