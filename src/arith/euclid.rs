@@ -132,6 +132,13 @@ pub struct DivisorU32 {
 }
 
 impl DivisorU32 {
+    /// The divisor 1 (a placeholder where nothing is divided).
+    pub const ONE: Self = DivisorU32 {
+        d: NonZeroU32::MIN,
+        #[cfg(not(hardware_divide))]
+        m: u32::MAX,
+    };
+
     /// Prepares `d` (one division where there is no hardware division).
     #[inline(always)]
     pub fn new(d: NonZeroU32) -> Self {

@@ -7,9 +7,10 @@
 //! numeric contract; nothing here wraps or panics on the documented ranges.
 //!
 //! ## What each core can do
-//! The four facts below are the only place the crate asks which core it is built for (with
-//! [`TINY_WRITER`], the one fast path derived from them). `build.rs` classifies the target once
-//! and sets `cfg(hardware_divide)`; the other three are read from the target's own cfgs. Every
+//! The facts below are the only place the crate asks which core it is built for (with
+//! [`TINY_WRITER`], [`TINY_FLAT`] and [`TINY_WALKS_EDGES`], the one fast path and its forms,
+//! derived from them). `build.rs` classifies the target once and sets
+//! `cfg(hardware_divide)`; the others are read from the target's own cfgs. Every
 //! choice made from them changes speed, never results: all targets draw the same pixels (the
 //! CI compares the Cortex-M4 and Cortex-M0 checksums with the host's).
 //!
@@ -18,7 +19,9 @@
 //! | [`HARDWARE_DIVIDE`]: a 32-bit division is one instruction | yes | yes (`sdiv`, `udiv`) | no: library routine |
 //! | [`NARROW_MULTIPLY`]: no 32×32→64-bit multiply | no | no (`smull`) | yes: four 16-bit products inline |
 //! | [`WIDE_REGISTERS`]: 64-bit registers, a 64-bit division is one instruction | yes | no | no |
-//! | [`TINY_WRITER`]: the tiny-triangle writer is used | no | yes | no |
+//! | [`TINY_WRITER`]: the tiny-triangle writer is used | no | yes | yes |
+//! | [`TINY_FLAT`]: flat triangles take it too | - | yes | no |
+//! | [`TINY_WALKS_EDGES`]: its edges are walked, not divided per row | - | no | yes |
 
 pub mod euclid;
 pub mod isqrt;
@@ -49,13 +52,23 @@ pub const NARROW_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_has_a
 pub const WIDE_REGISTERS: bool = cfg!(target_pointer_width = "64");
 
 /// Whether small triangles take the tiny-triangle writer (`raster/triangle/tiny.rs`): on 32-bit
-/// cores with a hardware divider, where its 32-bit set-up and one division per edge and row
-/// replace the general path's spilled state (Cortex-M4 `frame_bunny` −19 %, `frame_sphere`
-/// −11 %, `frame_bunny_bands16` −13 %). Not on cores that divide in software (Cortex-M0:
-/// `frame_sphere` +11 %, each row's divisions being library calls) nor on 64-bit hosts, whose
-/// general path is already 64-bit arithmetic (x86-64 `frame_sphere` +1.7 %,
-/// `frame_bunny_flat` +10.8 %). The pictures are the same either way (tested).
-pub const TINY_WRITER: bool = HARDWARE_DIVIDE && !WIDE_REGISTERS;
+/// cores, where its 32-bit set-up replaces the general path's spilled state (Cortex-M4
+/// `frame_bunny` −19 %, `frame_sphere` −11 %, `frame_bunny_bands16` −13 %; Cortex-M0, with
+/// its edges walked and its divisions through the area's reciprocal, `frame_bunny` −6.3 %,
+/// `frame_sphere` −0.4 %). Not on 64-bit hosts, whose general path is already 64-bit
+/// arithmetic (x86-64 `frame_sphere` +1.7 %, `frame_bunny_flat` +10.8 %). The pictures are the
+/// same either way (tested).
+pub const TINY_WRITER: bool = !WIDE_REGISTERS;
+
+/// Whether flat triangles (one luminance over a depth plane) take the tiny-triangle writer too:
+/// not where a division is a library call, whose general path steps one attribute to the tiny
+/// writer's two (Cortex-M0 `frame_bunny_flat` 6.05 M instructions there, 6.74 M through the
+/// tiny writer).
+pub const TINY_FLAT: bool = HARDWARE_DIVIDE;
+
+/// Whether the tiny-triangle writer walks its edges from row to row by subtraction (one
+/// division per edge) rather than dividing on every row: where a division is a library call.
+pub const TINY_WALKS_EDGES: bool = !HARDWARE_DIVIDE;
 
 /// `v / 2^s` rounded to nearest (ties toward +∞); `s = 0` returns `v`, `s > 62` gives 0.
 /// Never overflows: the rounding bit is added after the shift.

@@ -45,7 +45,7 @@ use super::span::{Direct, LuminanceRamp, Quantizer, SkipWritten, WrittenCount};
 use super::spans::TriangleSpans;
 use super::textured::{TexCorner, TexturedKind};
 use super::tiny::TinyTriangle;
-use crate::arith::TINY_WRITER;
+use crate::arith::{TINY_FLAT, TINY_WRITER};
 use crate::geometry::vector::Vec3;
 use crate::lighting::phong;
 use crate::lighting::{Illumination, Material};
@@ -324,7 +324,7 @@ pub(crate) fn draw_in_range<
     let depth_constant =
         (luminance_constant || mode == ShadeMode::Flat) && (D::BITS == 0 || constant(0));
     let kind = span_kind(mode, depth_constant, luminance_constant);
-    if TINY_WRITER && kind.may_take_tiny() {
+    if TINY_WRITER && kind.may_take_tiny() && (TINY_FLAT || kind != Kind::Flat) {
         if let Some(drawn) = draw_tiny(target, &t, values, kind, &quantizer_at) {
             return drawn;
         }

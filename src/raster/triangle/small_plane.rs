@@ -311,7 +311,7 @@ pub(super) fn split_gradient_narrow(
 /// `(⌊a / d⌋ mod 2^32, a mod d)` for `|a| < 2^32` and `0 < d < 2^31`: one 32-bit division of
 /// `|a|`.
 #[inline(always)]
-fn div_floor_by_u32(a: i64, d: &DivisorU32) -> (u32, u32) {
+pub(super) fn div_floor_by_u32(a: i64, d: &DivisorU32) -> (u32, u32) {
     let m = a.unsigned_abs() as u32;
     let (q, r) = d.div_rem(m);
     if a >= 0 {

@@ -10,7 +10,7 @@
 //! and each span is a call with a fresh register budget. Measured on the Cortex-M4 (QEMU,
 //! instructions): SCENES.md's bunny frame 2.57 M → 2.09 M, the sphere 1.33 M → 1.19 M,
 //! 16-row bands of the bunny 3.47 M → 3.02 M. It is used where that measured faster
-//! ([`TINY_WRITER`](crate::arith::TINY_WRITER)).
+//! ([`TINY_WRITER`](crate::arith::TINY_WRITER)): the 32-bit cores, with and without a divider.
 //!
 //! ## When it applies
 //! Exact Gouraud luminance, or flat luminance over a depth plane that is not constant (flat
@@ -26,6 +26,24 @@
 //! level plus the ramp's first entry) and store it; any other ramp, plain or dithered, maps
 //! the level (`0..=255`) at each pixel ([`draw_triangle_on`](super::draw::draw_triangle_on)
 //! sends flat triangles here only through a 256-level ramp).
+//!
+//! ## Without a hardware divider
+//! On the Cortex-M0 (a division is a library loop, about 45 instructions plus 12 per quotient
+//! bit) the same writer divides as little as the general path: every set-up division by `D`
+//! or `2D`, and the two span starts, go through the area's reciprocal
+//! ([`DivisorU32`], one division per triangle; the hardware's division elsewhere, the same
+//! instructions as before), and the edges are walked from row to row ([`EdgeWalk`]: one
+//! division per edge, at its first drawn row, then adds and carries;
+//! [`TINY_WALKS_EDGES`](crate::arith::TINY_WALKS_EDGES)). Flat triangles keep the general
+//! path there ([`TINY_FLAT`](crate::arith::TINY_FLAT)). Measured on the Cortex-M0 (QEMU,
+//! instructions): SCENES.md's bunny frame 7.05 M → 6.61 M, the sphere 2.83 M → 2.82 M, 16-row
+//! bands of the bunny 8.65 M → 8.07 M.
+//! Tried there and dropped: the span starts walked down the left edge with the crossing
+//! (the row's quotient-and-remainder step plus one pixel step per carry, a division only at
+//! the first covered row of a left edge): the spans lose their two divisions (bunny span
+//! calls 1.53 M → 0.93 M) but the walk's state spills the row loop: bunny 6.71 M → 7.06 M
+//! inlined, 7.17 M with the row loop out of line, sphere 2.89 M → 2.94 M (measured with flat
+//! triangles still in this writer).
 //!
 //! ## Where its instructions go, and what did not pay
 //! Cortex-M4 profile of SCENES.md's bunny frame (`scripts/m4-profile.sh frame_bunny`,
@@ -48,7 +66,8 @@
 //! the triangle fill's (TIPE 2010): rows `⌈y_top⌉ ≤ y < ⌈y_bottom⌉`, columns
 //! `⌈x_left⌉ ≤ x < ⌈x_right⌉` (left edges in, right edges out), each edge crossing
 //! `⌈x_e(y)⌉ = ⌊(x_e·DY + F·DY − 1) / (F·DY)⌋` by one unsigned division per row
-//! (TIPE's `Parcours` with its bias; the numerator `x_e·DY` is non-negative in local units).
+//! (TIPE's `Parcours` with its bias; the numerator `x_e·DY` is non-negative in local units), or
+//! walked from the first drawn row's quotient and remainder ([`EdgeWalk`]).
 //!
 //! ## Numeric contract
 //! - Depth (`u32` vertex values, the full range): the [`SmallPlane`](super::interpolants::SmallPlane)
@@ -68,9 +87,10 @@
 
 use super::interpolants::Exact;
 use super::slices::SpanTarget;
-use super::small_plane::small_bits;
+use super::small_plane::{div_floor_by_u32, small_bits};
 use super::span::{depth_span, in_range, Quantizer, WrittenCount};
-use crate::arith::euclid::div_floor_i32;
+use crate::arith::euclid::{div_floor_i32, DivisorU32};
+use crate::arith::{HARDWARE_DIVIDE, TINY_WALKS_EDGES};
 use crate::raster::triangle::setup::TriangleSetup;
 use crate::raster::{SubpixelPoint, Window};
 use core::num::NonZeroU32;
@@ -85,6 +105,58 @@ struct RowCrossings {
     step: u32,
     /// `F·DY` (1 for an edge that covers no row: it is never divided by then).
     den: NonZeroU32,
+}
+
+impl RowCrossings {
+    /// The walk of this edge from its current row: one division.
+    #[inline(always)]
+    fn walk(&self) -> EdgeWalk {
+        EdgeWalk {
+            x: self.n / self.den,
+            // n mod den < den < 2^20 (S + K ≤ 19): an `i32`.
+            k: (self.n % self.den) as i32,
+            step: self.step as i32,
+            den: self.den.get() as i32,
+        }
+    }
+}
+
+/// An edge's crossing stepped from row to row without a division (TIPE's `Parcours` with the
+/// quotient found by subtraction): the numerator `n = den·x + k` with `0 ≤ k < den`; a row adds
+/// `F·DX` to `k`, then whole `den`s move between `k` and `x`, one a turn (each turn moves the
+/// crossing one pixel). A row takes `|F·DX| / den + 1` turns at most, so over an edge's drawn
+/// rows the turns number at most its width in pixels plus its rows; the walk is never moved
+/// past an edge's last drawn row (an edge one sub-pixel high may be `2^K` units wide).
+///
+/// Numeric contract: `den = F·DY < 2^20` and `|F·DX| < 2^20` (`S + K ≤ 19`), so `k + F·DX` is
+/// an `i32`; `x` wraps like [`RowCrossings::n`] (the crossings of drawn rows are
+/// non-negative).
+#[derive(Debug, Clone, Copy)]
+struct EdgeWalk {
+    /// `⌊n / den⌋`, the crossing `⌈x_e⌉` on the current row.
+    x: u32,
+    /// `n mod den`.
+    k: i32,
+    /// `F·DX`.
+    step: i32,
+    /// `F·DY`.
+    den: i32,
+}
+
+impl EdgeWalk {
+    /// Moves to the next row.
+    #[inline(always)]
+    fn next_row(&mut self) {
+        self.k += self.step;
+        while self.k >= self.den {
+            self.k -= self.den;
+            self.x = self.x.wrapping_add(1);
+        }
+        while self.k < 0 {
+            self.k += self.den;
+            self.x = self.x.wrapping_sub(1);
+        }
+    }
 }
 
 /// A triangle set up for the tiny-triangle writer (see the module doc).
@@ -103,8 +175,8 @@ pub(crate) struct TinyTriangle<const S: u32> {
     short: [RowCrossings; 2],
     /// True when the short edges are the left ones.
     middle_left: bool,
-    /// `2D`, twice the positive doubled area.
-    two_d: NonZeroU32,
+    /// `2D`, twice the positive doubled area, prepared for the span starts' divisions.
+    two_d: DivisorU32,
     /// Depth at local pixel `(x, y)`: whole part `z[0] + z[1]·x + z[2]·y` and numerator
     /// `e' = z[3] + z[4]·x + z[5]·y` (all mod `2^32`), the [`SmallPlane`] terms
     /// `(B, g1, h1, 2·c0 + D, 2·g0, 2·h0)` re-based from the corner `C` to the local origin
@@ -121,10 +193,14 @@ pub(crate) struct TinyTriangle<const S: u32> {
     l_step: (u32, u32),
 }
 
-/// `(⌊n / d⌋, n mod d)` for `0 < d < 2^31`, as `u32` bits.
+/// `(⌊n / d⌋ mod 2^32, n mod d)` for `0 < d < 2^31`: the signed hardware division where
+/// there is one, else `|n|` through `d`'s reciprocal and the floor's fix-up.
 #[inline(always)]
-fn div_floor(n: i32, d: u32) -> (u32, u32) {
-    let (q, r) = div_floor_i32(n, d as i32);
+fn div_floor(n: i32, d: &DivisorU32) -> (u32, u32) {
+    if !HARDWARE_DIVIDE {
+        return div_floor_by_u32(n as i64, d);
+    }
+    let (q, r) = div_floor_i32(n, d.get() as i32);
     (q as u32, r as u32)
 }
 
@@ -171,8 +247,12 @@ impl<const S: u32> TinyTriangle<S> {
             return Some(TinyTriangle::EMPTY);
         }
         let corner = (x_lo - (ox << S), y_lo - (oy << S));
-        let (z, z_step) = depth_terms::<S>(p[0], values.map(|a| a[0]), d, (ey, ex), corner);
-        let (l, l_step) = luminance_terms::<S>(p[0], values.map(|a| a[1] as i32), d, (ey, ex));
+        // Every set-up division is by D or 2D: prepared once (a reciprocal where there is no
+        // divider). D < 2^(2K) ≤ 2^20: 2D does not overflow.
+        let d = DivisorU32::new(NonZeroU32::new(d)?);
+        let two_d = d.doubled();
+        let (z, z_step) = depth_terms::<S>(p[0], values.map(|a| a[0]), &d, (ey, ex), corner);
+        let (l, l_step) = luminance_terms::<S>(p[0], values.map(|a| a[1] as i32), &two_d, (ey, ex));
         // Wrapping: only a box about 2^31 rows from the window (possible at S = 0), which draws
         // nothing either way, makes them wrap.
         let (top, bottom) = (window.y0.wrapping_sub(oy), window.y1.wrapping_sub(oy));
@@ -184,7 +264,7 @@ impl<const S: u32> TinyTriangle<S> {
             long,
             short,
             middle_left: t.middle_left(),
-            two_d: NonZeroU32::new(2 * d)?,
+            two_d,
             z,
             z_step,
             l,
@@ -208,7 +288,7 @@ impl<const S: u32> TinyTriangle<S> {
             den: NonZeroU32::MIN,
         }; 2],
         middle_left: false,
-        two_d: NonZeroU32::MIN,
+        two_d: DivisorU32::ONE,
         z: [0; 6],
         z_step: (0, 0),
         l: [0; 4],
@@ -221,6 +301,21 @@ impl<const S: u32> TinyTriangle<S> {
     /// count).
     #[inline(always)]
     pub(crate) fn draw<T: SpanTarget, C: WrittenCount, Q: Quantizer>(
+        &self,
+        targets: &mut T,
+        count: C,
+        quantizer_at: &impl Fn(i32, i32) -> Q,
+    ) -> (u32, u32) {
+        if TINY_WALKS_EDGES {
+            self.draw_walked(targets, count, quantizer_at)
+        } else {
+            self.draw_divided(targets, count, quantizer_at)
+        }
+    }
+
+    /// [`Self::draw`] with one division per edge and row.
+    #[inline(always)]
+    fn draw_divided<T: SpanTarget, C: WrittenCount, Q: Quantizer>(
         &self,
         targets: &mut T,
         count: C,
@@ -244,6 +339,57 @@ impl<const S: u32> TinyTriangle<S> {
                 short.n = short.n.wrapping_add(short.step);
                 y += 1;
             }
+        }
+        (covered, written)
+    }
+
+    /// [`Self::draw`] with one division per edge, at its first drawn row: each later row's
+    /// crossing is the previous one moved by the carries of the remainder ([`EdgeWalk`]).
+    #[inline(always)]
+    fn draw_walked<T: SpanTarget, C: WrittenCount, Q: Quantizer>(
+        &self,
+        targets: &mut T,
+        count: C,
+        quantizer_at: &impl Fn(i32, i32) -> Q,
+    ) -> (u32, u32) {
+        let (mut covered, mut written) = (0u32, 0u32);
+        let mut long: Option<EdgeWalk> = None;
+        let mut y = self.rows[0];
+        for (half, short) in self.short.iter().enumerate() {
+            let end = self.rows[half + 1];
+            if y >= end {
+                continue;
+            }
+            // The long edge is started on its first drawn row, and moved on from the top half's
+            // last row to the bottom half's first.
+            let mut l = match long {
+                None => self.long.walk(),
+                Some(mut l) => {
+                    l.next_row();
+                    l
+                }
+            };
+            let mut s = short.walk();
+            loop {
+                let (x0, x1) = if self.middle_left {
+                    (s.x, l.x)
+                } else {
+                    (l.x, s.x)
+                };
+                if x0 < x1 {
+                    covered += x1 - x0;
+                    written += self.span(targets, x0, x1, y, count, quantizer_at);
+                }
+                y += 1;
+                // Never moved past its half's last row: an edge one sub-pixel high may cross a
+                // row 2^K units wide.
+                if y >= end {
+                    break;
+                }
+                l.next_row();
+                s.next_row();
+            }
+            long = Some(l);
         }
         (covered, written)
     }
@@ -273,17 +419,14 @@ impl<const S: u32> TinyTriangle<S> {
         let e = e0
             .wrapping_add(ex.wrapping_mul(x0))
             .wrapping_add(ey.wrapping_mul(y as u32));
-        let z = Exact::from_parts(
-            whole.wrapping_add(e / two_d),
-            e % two_d,
-            self.z_step,
-            two_d.get(),
-        );
+        let (value, rem) = two_d.add_div_rem(whole, e);
+        let z = Exact::from_parts(value, rem, self.z_step, two_d.get());
         let [t0, gx, gy, l_min] = self.l;
         let t = t0
             .wrapping_add(gx.wrapping_mul(x0))
             .wrapping_add(gy.wrapping_mul(y as u32));
-        let lum = Exact::from_parts(l_min + t / two_d, t % two_d, self.l_step, two_d.get());
+        let (value, rem) = two_d.add_div_rem(l_min, t);
+        let lum = Exact::from_parts(value, rem, self.l_step, two_d.get());
         depth_span(cs, zs, z, in_range(lum, quantizer_at(px, py)), count)
     }
 }
@@ -295,37 +438,39 @@ impl<const S: u32> TinyTriangle<S> {
 fn depth_terms<const S: u32>(
     p0: (i32, i32),
     z: [u32; 3],
-    d: u32,
+    dd: &DivisorU32,
     (ey, ex): ([i32; 3], [i32; 3]),
     (cxl, cyl): (i32, i32),
 ) -> ([u32; 6], (u32, u32)) {
     // A_i − A_min = D·Q_i + R_i; gx = Σ (A_i − A_min)·ey_i, gy = Σ (A_i − A_min)·ex_i.
+    let d = dd.get();
     let z_min = z[0].min(z[1]).min(z[2]);
     let (mut gq, mut gr, mut hq, mut hr) = (0u32, 0i32, 0u32, 0i32);
     for i in 0..3 {
         let a = z[i] - z_min;
-        let (q, r) = (a / d, a % d);
+        let (q, r) = dd.div_rem(a);
         gq = gq.wrapping_add(q.wrapping_mul(ey[i] as u32));
         hq = hq.wrapping_add(q.wrapping_mul(ex[i] as u32));
         // One of the three R is 0 (the vertex of least depth): |Σ R·e| < 2·D·2^K.
         gr = gr.wrapping_add((r as i32).wrapping_mul(ey[i]));
         hr = hr.wrapping_add((r as i32).wrapping_mul(ex[i]));
     }
-    let (g1, g0) = div_floor(gr, d);
-    let (h1, h0) = div_floor(hr, d);
+    let (g1, g0) = div_floor(gr, dd);
+    let (h1, h0) = div_floor(hr, dd);
     let (g1, h1) = (gq.wrapping_add(g1), hq.wrapping_add(h1));
     // Corner C = (min x, min y) of the vertices (local); offsets from vertex 0.
     let (cx, cy) = (cxl - p0.0, cyl - p0.1);
     let e = (g0 as i32)
         .wrapping_mul(cx)
         .wrapping_add((h0 as i32).wrapping_mul(cy));
-    let (c1, c0) = div_floor(e, d);
+    let (c1, c0) = div_floor(e, dd);
     let base = z[0]
         .wrapping_add(g1.wrapping_mul(cx as u32))
         .wrapping_add(h1.wrapping_mul(cy as u32))
         .wrapping_add(c1);
     let fg0 = g0 << S;
-    let z_step = (g1.wrapping_shl(S).wrapping_add(fg0 / d), 2 * (fg0 % d));
+    let (fq, fr) = dd.div_rem(fg0);
+    let z_step = (g1.wrapping_shl(S).wrapping_add(fq), 2 * fr);
     // Offsets from the corner are `x·F − cx`, `y·F − cy`: fold `cx`, `cy` in.
     let (cx, cy) = (cxl as u32, cyl as u32);
     let (g0x2, h0x2, e_corner) = (2 * g0, 2 * h0, 2 * c0 + d);
@@ -350,10 +495,11 @@ fn depth_terms<const S: u32>(
 fn luminance_terms<const S: u32>(
     p0: (i32, i32),
     l: [i32; 3],
-    d: u32,
+    two_dd: &DivisorU32,
     (ey, ex): ([i32; 3], [i32; 3]),
 ) -> ([u32; 4], (u32, u32)) {
-    let two_d = 2 * d;
+    let two_d = two_dd.get();
+    let d = two_d / 2;
     let l_min = l[0].min(l[1]).min(l[2]);
     let (lx, ly) = (
         l[0] * ey[0] + l[1] * ey[1] + l[2] * ey[2],
@@ -362,7 +508,7 @@ fn luminance_terms<const S: u32>(
     let t0 = (d + two_d * (l[0] - l_min) as u32)
         .wrapping_sub((2 * lx).wrapping_mul(p0.0) as u32)
         .wrapping_sub((2 * ly).wrapping_mul(p0.1) as u32);
-    let l_step = div_floor((2 * lx) << S, two_d);
+    let l_step = div_floor((2 * lx) << S, two_dd);
     let l = [
         t0,
         ((2 * lx) << S) as u32,
@@ -444,7 +590,8 @@ mod tests {
         init: &[u16; TW * TH],
         quantizer_at: impl Fn(i32, i32) -> Q + Copy,
     ) -> Option<(u32, u32)> {
-        let draw = |tiny: bool| {
+        // 0: the general path; 1: the tiny writer dividing on each row; 2: walking its edges.
+        let draw = |writer: u8| {
             let mut px = [7u8; TW * TH];
             let mut zs = *init;
             let n = TW * height as usize;
@@ -452,14 +599,28 @@ mod tests {
             let mut zb = DepthBuffer::band(&mut zs[..n], TW as u16, height, top).unwrap();
             let mut target = RasterTarget::new(&mut fb, &mut zb);
             let t = TriangleSetup::in_range(v);
-            let counts = draw_tiny_or_planar(&mut target, t, values, quantizer_at, tiny);
+            let counts = match writer {
+                0 => draw_tiny_or_planar(&mut target, t, values, quantizer_at, false),
+                _ => TinyTriangle::<S>::new(&t, values, &target.window).map(|tiny| {
+                    let (targets, count) = (&mut target.targets, target.count);
+                    if writer == 1 {
+                        tiny.draw_divided(targets, count, &quantizer_at)
+                    } else {
+                        tiny.draw_walked(targets, count, &quantizer_at)
+                    }
+                }),
+            };
             (counts, px, zs)
         };
-        let (tiny, tiny_px, tiny_zs) = draw(true);
-        let tiny = tiny?;
-        let (general, px, zs) = draw(false);
-        assert!(tiny_px == px, "pixels {v:?} {values:?}");
-        assert!(tiny_zs == zs, "depths {v:?} {values:?}");
+        let (general, px, zs) = draw(0);
+        let (divided, divided_px, divided_zs) = draw(1);
+        let (walked, walked_px, walked_zs) = draw(2);
+        assert_eq!(divided, walked, "counts {v:?} {values:?}");
+        let tiny = divided?;
+        for (tiny_px, tiny_zs) in [(divided_px, divided_zs), (walked_px, walked_zs)] {
+            assert!(tiny_px == px, "pixels {v:?} {values:?}");
+            assert!(tiny_zs == zs, "depths {v:?} {values:?}");
+        }
         assert_eq!(Some(tiny), general, "counts {v:?} {values:?}");
         Some(tiny)
     }
