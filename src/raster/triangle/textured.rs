@@ -17,9 +17,14 @@
 //!
 //! - **Exact** ([`TextureMode::Exact`]): `Q` steps by one add per pixel, and so does the
 //!   remainder `r = N − Q·t` of the previous texel `t` (by `dN − dQ·t`, kept beside it); `r` is
-//!   tested against `0 ≤ r < Q`; outside, `t` moves by one (one more compare) or, past that,
-//!   by the Euclidean quotient `⌊r / Q⌋` (minified texels, out of line). Every pixel gets the
-//!   exact floor, with no multiply and no division on the common path.
+//!   tested against `0 ≤ r < Q`; outside, `t` moves by one (one more compare) or, past that
+//!   (minified texels, out of line), by one per `Q` taken off `r` (or added) up to eight
+//!   texels, and by the Euclidean quotient `⌊r / Q⌋` beyond. Every pixel gets the exact
+//!   floor, with no multiply and no division on the common path.
+//!
+//! The texel is read by masks when both sides are powers of two, else wrapped or clamped per
+//! side, and turned into an index through the shade table when lit: each combination has its
+//! own span loop, so that a pixel tests neither.
 //! - **Subdivided** (8 or 16 pixels) and **affine**: the exact value `⌊2^16·N / Q⌋` (texels
 //!   in 16.16) at a segment's ends, a 16.16 step between; affine objects take `q_i = 1`
 //!   (the planes of `u` and `v` themselves) and one segment per span.
@@ -43,7 +48,7 @@
 //! The floors there are first guessed as the previous span's first texels (the same
 //! triangle's, so `|t|` within its bound above, and the remainder `N − Q·t` in range):
 //! a guess is kept when its remainder lies in `[0, Q)`, moved by one when it lies one `Q`
-//! outside, and only otherwise replaced by the division; the floor is the one integer with
+//! outside, and otherwise stepped by up to eight `Q` before the division; the floor is the one integer with
 //! that remainder, so the guess changes no texel.
 //! Likewise a segment end's `⌊2^16·N / Q⌋` runs in `i64` when `2^16·|N| < 2^63` and
 //! `Q < 2^62` at every covered pixel (`|N| < 2^47`, checked once per triangle); else, under
@@ -255,6 +260,7 @@ impl<'a> TexturedKind<'a> {
     /// each texel turned into its index by `tone`: one loop per sampling (wrapped or
     /// clamped) and tone, so that a pixel tests neither.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn span<G: SpanTest, Z: Interpolant, L: Interpolant, C: WrittenCount, Tn: Tone>(
         &self,
         colours: &mut [u8],
@@ -567,7 +573,7 @@ impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> ExactTexels<T, L, X, Tn> {
 
 /// `(t, N − Q·t)` with `t = ⌊N / Q⌋` for `Q > 0`, from a guess `g`: accepted when its
 /// remainder `N − Q·g` lies in `[0, Q)`, moved by one when the remainder is one `Q` outside,
-/// else the division. Under the `i64` bound (module doc) every value here stays in range when
+/// else by [`walk`]. Under the `i64` bound (module doc) every value here stays in range when
 /// `|g|` is at most the triangle's texel bound, as any covered pixel's floor is.
 #[inline(always)]
 fn settle<T: Wide>(n: T, q: T, g: i32) -> (i32, T) {
@@ -585,8 +591,33 @@ fn settle<T: Wide>(n: T, q: T, g: i32) -> (i32, T) {
             return (g + 1, down);
         }
     }
-    let t = n.floor_div(q);
-    (t, n.sub(q.times(t)))
+    let (m, r) = walk(r, q);
+    (g.wrapping_add(m), r)
+}
+
+/// `(m, r − Q·m)` with `m = ⌊r / Q⌋` for `Q > 0`: up to [`JUMP_STEPS`] steps of `Q` taken off
+/// `r` (or added), which is the quotient's definition, then the division. The remainders met
+/// lie between `r` and the final one, in range where those are (module doc).
+#[inline(never)]
+fn walk<T: Wide>(mut r: T, q: T) -> (i32, T) {
+    let mut m = 0i32;
+    if r >= T::ZERO {
+        while r >= q && m < JUMP_STEPS {
+            r = r.sub(q);
+            m += 1;
+        }
+    } else {
+        while r < T::ZERO && m > -JUMP_STEPS {
+            r = r.add(q);
+            m -= 1;
+        }
+    }
+    if r < T::ZERO || r >= q {
+        let rest = r.floor_div(q);
+        r = r.sub(q.times(rest));
+        m = m.wrapping_add(rest);
+    }
+    (m, r)
 }
 
 impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> Shading for ExactTexels<T, L, X, Tn> {
@@ -629,33 +660,14 @@ impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> Shading for ExactTexels<T, L
 
 impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> ExactTexels<T, L, X, Tn> {
     /// The texel `k` moved by more than one: by the Euclidean quotient `m = ⌊r / Q⌋` (nothing
-    /// where `Q ≤ 0`, past a span's end). A move of up to [`JUMP_STEPS`] texels (minified
-    /// textures: a few texels per pixel) takes `Q` off `r` (or adds it) once per texel, which
-    /// is the quotient's definition; a longer one, the division. The remainders met lie
-    /// between `r` and the final one, in range where those are (module doc).
+    /// where `Q ≤ 0`, past a span's end), by [`walk`] (minified textures: a few texels per
+    /// pixel).
     #[cold]
     #[inline(never)]
     fn jump(&mut self, k: usize) {
         let q = self.q;
         if q > T::ZERO {
-            let mut r = self.r[k];
-            let mut m = 0i32;
-            if r >= T::ZERO {
-                while r >= q && m < JUMP_STEPS {
-                    r = r.sub(q);
-                    m += 1;
-                }
-            } else {
-                while r < T::ZERO && m > -JUMP_STEPS {
-                    r = r.add(q);
-                    m -= 1;
-                }
-            }
-            if r < T::ZERO || r >= q {
-                let rest = r.floor_div(q);
-                r = r.sub(q.times(rest));
-                m = m.wrapping_add(rest);
-            }
+            let (m, r) = walk(self.r[k], q);
             self.t[k] = self.t[k].wrapping_add(m);
             self.r[k] = r;
             self.e[k] = self.e[k].sub(self.dq.times(m));
