@@ -48,7 +48,7 @@
 //! The floors there are first guessed as the previous span's first texels (the same
 //! triangle's, so `|t|` within its bound above, and the remainder `N − Q·t` in range):
 //! a guess is kept when its remainder lies in `[0, Q)`, moved by one when it lies one `Q`
-//! outside, and otherwise stepped by up to eight `Q` before the division; the floor is the one integer with
+//! outside, and only otherwise replaced by the division; the floor is the one integer with
 //! that remainder, so the guess changes no texel.
 //! Likewise a segment end's `⌊2^16·N / Q⌋` runs in `i64` when `2^16·|N| < 2^63` and
 //! `Q < 2^62` at every covered pixel (`|N| < 2^47`, checked once per triangle); else, under
@@ -573,7 +573,7 @@ impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> ExactTexels<T, L, X, Tn> {
 
 /// `(t, N − Q·t)` with `t = ⌊N / Q⌋` for `Q > 0`, from a guess `g`: accepted when its
 /// remainder `N − Q·g` lies in `[0, Q)`, moved by one when the remainder is one `Q` outside,
-/// else by [`walk`]. Under the `i64` bound (module doc) every value here stays in range when
+/// else the division. Under the `i64` bound (module doc) every value here stays in range when
 /// `|g|` is at most the triangle's texel bound, as any covered pixel's floor is.
 #[inline(always)]
 fn settle<T: Wide>(n: T, q: T, g: i32) -> (i32, T) {
@@ -591,8 +591,8 @@ fn settle<T: Wide>(n: T, q: T, g: i32) -> (i32, T) {
             return (g + 1, down);
         }
     }
-    let (m, r) = walk(r, q);
-    (g.wrapping_add(m), r)
+    let t = n.floor_div(q);
+    (t, n.sub(q.times(t)))
 }
 
 /// `(m, r − Q·m)` with `m = ⌊r / Q⌋` for `Q > 0`: up to [`JUMP_STEPS`] steps of `Q` taken off
