@@ -17,9 +17,14 @@
 //!
 //! - **Exact** ([`TextureMode::Exact`]): `Q` steps by one add per pixel, and so does the
 //!   remainder `r = N − Q·t` of the previous texel `t` (by `dN − dQ·t`, kept beside it); `r` is
-//!   tested against `0 ≤ r < Q`; outside, `t` moves by one (one more compare) or, past that,
-//!   by the Euclidean quotient `⌊r / Q⌋` (minified texels, out of line). Every pixel gets the
-//!   exact floor, with no multiply and no division on the common path.
+//!   tested against `0 ≤ r < Q`; outside, `t` moves by one (one more compare) or, past that
+//!   (minified texels, out of line), by one per `Q` taken off `r` (or added) up to eight
+//!   texels, and by the Euclidean quotient `⌊r / Q⌋` beyond. Every pixel gets the exact
+//!   floor, with no multiply and no division on the common path.
+//!
+//! The texel is read by masks when both sides are powers of two, else wrapped or clamped per
+//! side, and turned into an index through the shade table when lit: each combination has its
+//! own span loop, so that a pixel tests neither.
 //! - **Subdivided** (8 or 16 pixels) and **affine**: the exact value `⌊2^16·N / Q⌋` (texels
 //!   in 16.16) at a segment's ends, a 16.16 step between; affine objects take `q_i = 1`
 //!   (the planes of `u` and `v` themselves) and one segment per span.
@@ -175,7 +180,9 @@ impl Plane {
 /// and how the texel becomes an index.
 #[derive(Debug, Clone)]
 pub(crate) struct TexturedKind<'a> {
-    look: Lookup<'a>,
+    sampling: Sampling<'a>,
+    /// The shade table of a lit texture.
+    shades: Option<ShadeTable<'a>>,
     mode: TextureMode,
     /// `Q = 256·D·q(p)`.
     q: Plane,
@@ -238,7 +245,8 @@ impl<'a> TexturedKind<'a> {
             SegmentPrecision::Wide
         };
         Some(TexturedKind {
-            look: Lookup::new(texture, texturing.shades),
+            sampling: Sampling::new(texture),
+            shades: texturing.shades,
             mode: texturing.mode,
             q: Plane::of(t, q.map(|w| 256 * w as i128), sign),
             n: [planes(0), planes(1)],
@@ -248,9 +256,31 @@ impl<'a> TexturedKind<'a> {
         })
     }
 
-    /// The span of `colours`/`depths` from pixel `(x, y)` with depth `z` and luminance `lum`.
+    /// The span of `colours`/`depths` from pixel `(x, y)` with depth `z` and luminance `lum`,
+    /// each texel turned into its index by `tone`: one loop per sampling (wrapped or
+    /// clamped) and tone, so that a pixel tests neither.
     #[inline(always)]
-    fn span<G: SpanTest, Z: Interpolant, L: Interpolant, C: WrittenCount>(
+    #[allow(clippy::too_many_arguments)]
+    fn span<G: SpanTest, Z: Interpolant, L: Interpolant, C: WrittenCount, Tn: Tone>(
+        &self,
+        colours: &mut [u8],
+        depths: G,
+        z: Z,
+        lum: L,
+        at: (i32, i32),
+        count: C,
+        tone: Tn,
+    ) -> u32 {
+        match self.sampling {
+            Sampling::Wrapped(s) => self.sampled(colours, depths, z, lum, at, count, s, tone),
+            Sampling::Clamped(s) => self.sampled(colours, depths, z, lum, at, count, s, tone),
+        }
+    }
+
+    /// [`Self::span`] with sampler `sampler`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn sampled<G: SpanTest, Z: Interpolant, L: Interpolant, C: WrittenCount, X, Tn>(
         &self,
         colours: &mut [u8],
         depths: G,
@@ -258,15 +288,21 @@ impl<'a> TexturedKind<'a> {
         lum: L,
         (x, y): (i32, i32),
         count: C,
-    ) -> u32 {
-        let look = self.look;
+        sampler: X,
+        tone: Tn,
+    ) -> u32
+    where
+        X: Sampler,
+        Tn: Tone,
+    {
+        let look = Look { sampler, tone };
         match (self.mode, self.wide) {
             (TextureMode::Exact, false) => {
-                let sh = ExactTexels::<i64, L>::start(self, look, lum, x, y);
+                let sh = ExactTexels::<i64, L, X, Tn>::start(self, look, lum, x, y);
                 depth_span(colours, depths, z, sh, count)
             }
             (TextureMode::Exact, true) => {
-                let sh = ExactTexels::<i128, L>::start(self, look, lum, x, y);
+                let sh = ExactTexels::<i128, L, X, Tn>::start(self, look, lum, x, y);
                 depth_span(colours, depths, z, sh, count)
             }
             (mode, _) => {
@@ -290,7 +326,7 @@ impl SpanKind<1> for TexturedKind<'_> {
         at: (i32, i32),
         count: C,
     ) -> u32 {
-        self.span(colours, depths, z, Constant(0), at, count)
+        self.span(colours, depths, z, Constant(0), at, count, Unlit)
     }
 }
 
@@ -306,46 +342,119 @@ impl SpanKind<2> for TexturedKind<'_> {
         at: (i32, i32),
         count: C,
     ) -> u32 {
-        self.span(colours, depths, z, lum, at, count)
+        // The lit writer is chosen for lit textures only; an unlit one would read the
+        // one-level identity table (the texel itself).
+        let shades = self.shades.unwrap_or(IDENTITY_SHADES);
+        self.span(colours, depths, z, lum, at, count, Lit(shades))
     }
 }
 
-/// Texel `(i, j)` → palette index: the texture (wrapped by masks when both sides are powers
-/// of two, else each side wrapped or clamped by [`Texture::texel`]), and the shade table
-/// when lit.
+/// How a texel `(i, j)` is read from the texture: by masks when both sides are powers of
+/// two ([`Wrapped`]), else each side wrapped or clamped by [`Texture::texel`] ([`Clamped`]).
 #[derive(Debug, Clone, Copy)]
-struct Lookup<'a> {
-    texture: Texture<'a>,
-    shades: Option<ShadeTable<'a>>,
-    /// `Some((W − 1, H − 1, log2 W))` for power-of-two sides.
-    masks: Option<(i32, i32, u32)>,
+enum Sampling<'a> {
+    Wrapped(Wrapped<'a>),
+    Clamped(Clamped<'a>),
 }
 
-impl<'a> Lookup<'a> {
-    fn new(texture: Texture<'a>, shades: Option<ShadeTable<'a>>) -> Self {
+impl<'a> Sampling<'a> {
+    fn new(texture: Texture<'a>) -> Self {
         let (w, h) = (texture.width(), texture.height());
-        let masks = (w.is_power_of_two() && h.is_power_of_two())
-            .then(|| (w as i32 - 1, h as i32 - 1, w.trailing_zeros()));
-        Lookup {
-            texture,
-            shades,
-            masks,
+        if w.is_power_of_two() && h.is_power_of_two() {
+            Sampling::Wrapped(Wrapped {
+                texture,
+                masks: [w as i32 - 1, h as i32 - 1],
+                shift: w.trailing_zeros(),
+            })
+        } else {
+            Sampling::Clamped(Clamped(texture))
         }
     }
+}
 
+/// Texel `(i, j)` → the texel's palette entry.
+trait Sampler: Copy {
+    fn texel(&self, t: [i32; 2]) -> u8;
+}
+
+/// Power-of-two sides: `(j & (H − 1))·W + (i & (W − 1))`.
+#[derive(Debug, Clone, Copy)]
+struct Wrapped<'a> {
+    texture: Texture<'a>,
+    /// `[W − 1, H − 1]`.
+    masks: [i32; 2],
+    /// `log2 W`.
+    shift: u32,
+}
+
+impl Sampler for Wrapped<'_> {
     #[inline(always)]
-    fn index(&self, t: [i32; 2], lum: u32) -> u8 {
-        let texel = match self.masks {
-            Some((mw, mh, shift)) => self
-                .texture
-                .texel_at((((t[1] & mh) << shift) | (t[0] & mw)) as usize),
-            None => self.texture.texel(t[0], t[1]),
-        };
-        match self.shades {
-            Some(s) => s.shade(s.row(lum), texel),
-            None => texel,
-        }
+    fn texel(&self, t: [i32; 2]) -> u8 {
+        let k = ((t[1] & self.masks[1]) << self.shift) | (t[0] & self.masks[0]);
+        self.texture.texel_at(k as usize)
     }
+}
+
+/// Any sides: [`Texture::texel`].
+#[derive(Debug, Clone, Copy)]
+struct Clamped<'a>(Texture<'a>);
+
+impl Sampler for Clamped<'_> {
+    #[inline(always)]
+    fn texel(&self, t: [i32; 2]) -> u8 {
+        self.0.texel(t[0], t[1])
+    }
+}
+
+/// Texel and luminance → the stored palette index.
+trait Tone: Copy {
+    fn index(&self, texel: u8, lum: u32) -> u8;
+}
+
+/// Unlit: the texel as it is.
+#[derive(Debug, Clone, Copy)]
+struct Unlit;
+
+impl Tone for Unlit {
+    #[inline(always)]
+    fn index(&self, texel: u8, _: u32) -> u8 {
+        texel
+    }
+}
+
+/// Lit: the texel through the shade table's row of the luminance.
+#[derive(Debug, Clone, Copy)]
+struct Lit<'a>(ShadeTable<'a>);
+
+impl Tone for Lit<'_> {
+    #[inline(always)]
+    fn index(&self, texel: u8, lum: u32) -> u8 {
+        self.0.shade(self.0.row(lum), texel)
+    }
+}
+
+/// The one-level shade table whose every entry is its texel.
+const IDENTITY_TABLE: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut k = 0;
+    while k < 256 {
+        t[k] = k as u8;
+        k += 1;
+    }
+    t
+};
+
+/// [`IDENTITY_TABLE`] as a shade table (one level, 256 entries: always valid).
+const IDENTITY_SHADES: ShadeTable<'static> = match ShadeTable::new(&IDENTITY_TABLE, 1) {
+    Ok(s) => s,
+    Err(_) => panic!("the identity table has one level of 256 entries"),
+};
+
+/// A span's sampler and tone.
+#[derive(Debug, Clone, Copy)]
+struct Look<X, Tn> {
+    sampler: X,
+    tone: Tn,
 }
 
 /// The per-pixel integer type of the exact planes: `i64` where the triangle's bound allows,
@@ -423,19 +532,19 @@ impl Wide for i128 {
 /// remainder's step `e = dN − dQ·t` (so a pixel costs one add per coordinate, and a move of
 /// the texel one add to each of `r` and `e`).
 #[derive(Debug, Clone, Copy)]
-struct ExactTexels<'a, T, L> {
+struct ExactTexels<T, L, X, Tn> {
     q: T,
     dq: T,
     r: [T; 2],
     e: [T; 2],
     t: [i32; 2],
     lum: L,
-    look: Lookup<'a>,
+    look: Look<X, Tn>,
 }
 
-impl<'a, T: Wide, L: Interpolant> ExactTexels<'a, T, L> {
+impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> ExactTexels<T, L, X, Tn> {
     #[inline(always)]
-    fn start(k: &TexturedKind<'_>, look: Lookup<'a>, lum: L, x: i32, y: i32) -> Self {
+    fn start(k: &TexturedKind<'_>, look: Look<X, Tn>, lum: L, x: i32, y: i32) -> Self {
         let q = T::at(&k.q, x, y);
         let n = k.n.map(|p| T::at(&p, x, y));
         // A covered pixel has Q > 0 (module doc); there the guess is tried first.
@@ -486,10 +595,36 @@ fn settle<T: Wide>(n: T, q: T, g: i32) -> (i32, T) {
     (t, n.sub(q.times(t)))
 }
 
-impl<T: Wide, L: Interpolant> Shading for ExactTexels<'_, T, L> {
+/// `(m, r − Q·m)` with `m = ⌊r / Q⌋` for `Q > 0`: up to [`JUMP_STEPS`] steps of `Q` taken off
+/// `r` (or added), which is the quotient's definition, then the division. The remainders met
+/// lie between `r` and the final one, in range where those are (module doc).
+#[inline(never)]
+fn walk<T: Wide>(mut r: T, q: T) -> (i32, T) {
+    let mut m = 0i32;
+    if r >= T::ZERO {
+        while r >= q && m < JUMP_STEPS {
+            r = r.sub(q);
+            m += 1;
+        }
+    } else {
+        while r < T::ZERO && m > -JUMP_STEPS {
+            r = r.add(q);
+            m -= 1;
+        }
+    }
+    if r < T::ZERO || r >= q {
+        let rest = r.floor_div(q);
+        r = r.sub(q.times(rest));
+        m = m.wrapping_add(rest);
+    }
+    (m, r)
+}
+
+impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> Shading for ExactTexels<T, L, X, Tn> {
     #[inline(always)]
     fn index(&self) -> u8 {
-        self.look.index(self.t, self.lum.value())
+        let texel = self.look.sampler.texel(self.t);
+        self.look.tone.index(texel, self.lum.value())
     }
 
     #[inline(always)]
@@ -523,20 +658,25 @@ impl<T: Wide, L: Interpolant> Shading for ExactTexels<'_, T, L> {
     }
 }
 
-impl<T: Wide, L: Interpolant> ExactTexels<'_, T, L> {
+impl<T: Wide, L: Interpolant, X: Sampler, Tn: Tone> ExactTexels<T, L, X, Tn> {
     /// The texel `k` moved by more than one: by the Euclidean quotient `m = ⌊r / Q⌋` (nothing
-    /// where `Q ≤ 0`, past a span's end).
+    /// where `Q ≤ 0`, past a span's end), by [`walk`] (minified textures: a few texels per
+    /// pixel).
     #[cold]
     #[inline(never)]
     fn jump(&mut self, k: usize) {
-        if self.q > T::ZERO {
-            let m = self.r[k].floor_div(self.q);
+        let q = self.q;
+        if q > T::ZERO {
+            let (m, r) = walk(self.r[k], q);
             self.t[k] = self.t[k].wrapping_add(m);
-            self.r[k] = self.r[k].sub(self.q.times(m));
+            self.r[k] = r;
             self.e[k] = self.e[k].sub(self.dq.times(m));
         }
     }
 }
+
+/// The longest texel move [`ExactTexels::jump`] makes by steps before it divides.
+const JUMP_STEPS: i32 = 8;
 
 /// `⌊2^16·r / q⌋` for `0 ≤ r < q < 2^63`: sixteen steps of binary long division (each
 /// doubles `r < q`, so `2·r < 2^64`); the result is below `2^16`.
@@ -570,7 +710,7 @@ enum SegmentPrecision {
 /// ends of each segment of `segment` pixels (and at the span's last pixel), stepped linearly
 /// between.
 #[derive(Debug, Clone, Copy)]
-struct SegmentTexels<'a, 'k, L> {
+struct SegmentTexels<'k, L, X, Tn> {
     /// Texels in 16.16 at the current pixel, and the step.
     acc: [i64; 2],
     inc: [i64; 2],
@@ -585,14 +725,14 @@ struct SegmentTexels<'a, 'k, L> {
     /// The triangle's planes (borrowed: a span copies none of them).
     kind: &'k TexturedKind<'k>,
     lum: L,
-    look: Lookup<'a>,
+    look: Look<X, Tn>,
 }
 
-impl<'a, 'k, L: Interpolant> SegmentTexels<'a, 'k, L> {
+impl<'k, L: Interpolant, X: Sampler, Tn: Tone> SegmentTexels<'k, L, X, Tn> {
     #[inline(always)]
     fn start(
         k: &'k TexturedKind<'k>,
-        look: Lookup<'a>,
+        look: Look<X, Tn>,
         lum: L,
         x: i32,
         y: i32,
@@ -679,11 +819,11 @@ impl<'a, 'k, L: Interpolant> SegmentTexels<'a, 'k, L> {
     }
 }
 
-impl<L: Interpolant> Shading for SegmentTexels<'_, '_, L> {
+impl<L: Interpolant, X: Sampler, Tn: Tone> Shading for SegmentTexels<'_, L, X, Tn> {
     #[inline(always)]
     fn index(&self) -> u8 {
-        self.look
-            .index(self.acc.map(|a| (a >> 16) as i32), self.lum.value())
+        let texel = self.look.sampler.texel(self.acc.map(|a| (a >> 16) as i32));
+        self.look.tone.index(texel, self.lum.value())
     }
 
     #[inline(always)]
